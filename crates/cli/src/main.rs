@@ -1,0 +1,42 @@
+//! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders.
+
+mod merge_cmd;
+mod plot;
+mod render_cmd;
+mod study;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(
+    name = "rtl",
+    version,
+    about = "Ray Tracing: The Rest of Your Life, in Rust"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a built-in scene (see `--list`) or a scene file.
+    Render(render_cmd::RenderArgs),
+    /// Measure accuracy against time and write a CSV and plots.
+    Study(study::StudyArgs),
+    /// Merge partial renders (disjoint sample ranges of one scene) into one image.
+    Merge(merge_cmd::MergeArgs),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => render_cmd::run(args),
+        Command::Study(args) => study::run(args),
+        Command::Merge(args) => merge_cmd::run(args),
+    };
+    if let Err(err) = result {
+        eprintln!("error: {err:#}");
+        std::process::exit(1);
+    }
+}

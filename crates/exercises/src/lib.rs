@@ -1,0 +1,1 @@
+//! Chapter exercises (placeholder; the exercises issue fills this crate).

@@ -1,0 +1,1 @@
+//! Monte Carlo integration (book 3, chapters 2 and 3).

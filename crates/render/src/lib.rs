@@ -1,0 +1,1 @@
+//! rtl-render (placeholder)

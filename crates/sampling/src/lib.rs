@@ -1,0 +1,1 @@
+//! rtl-sampling (placeholder)
