@@ -13,6 +13,7 @@
 //! test of an estimate against an exact value that the tests of every crate use.
 
 pub mod check;
+pub mod densities;
 mod domain;
 mod error;
 mod estimate;
