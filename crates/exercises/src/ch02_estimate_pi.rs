@@ -1,0 +1,133 @@
+//! # Chapter 2, "Estimating Pi": estimate pi by throwing darts
+//!
+//! **Task.** Draw `n` points uniformly in the square [-1, 1]^2 and count the ones inside the unit
+//! circle (x^2 + y^2 < 1). The fraction inside estimates the ratio of areas pi/4, so the estimate is
+//! `4 * inside / n`. Return `None` for `n = 0`: no samples, no estimate.
+//!
+//! The count is binomial with p = pi/4, so the estimate has standard error 4 sqrt(p (1 - p) / n): the
+//! check z-tests it against pi at that error, and checks that every estimate is a multiple of 4/n.
+//!
+//! Write your code in [`estimate_pi`], in place of the `todo!()`.
+
+use crate::check::{self, CheckResult};
+use rand::{Rng, RngCore};
+use std::f64::consts::PI;
+
+/// Estimate pi from `n` uniform points in [-1, 1]^2: `4 * (points inside the unit circle) / n`,
+/// `None` when `n = 0`.
+pub fn estimate_pi<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
+    #[cfg(feature = "solutions")]
+    return solution::estimate_pi(n, rng);
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = (n, rng);
+        todo!("ch02 estimate_pi: count uniform points of [-1,1]^2 inside the unit circle")
+    }
+}
+
+/// The estimator under test: `(n, rng) -> estimate`.
+pub trait PiEstimator: Fn(usize, &mut dyn RngCore) -> Option<f64> {}
+impl<F: Fn(usize, &mut dyn RngCore) -> Option<f64>> PiEstimator for F {}
+
+/// With 1e5 points the estimate is within 4.89 standard errors of pi (false failure 1e-6).
+pub fn check_value(estimate: impl PiEstimator) -> CheckResult {
+    let n = 100_000;
+    let p = PI / 4.0;
+    let se = 4.0 * (p * (1.0 - p) / n as f64).sqrt();
+    let got = estimate(n, &mut check::seeded(2)).ok_or("estimate_pi(100000) returned None")?;
+    check::z_test("estimate_pi with 1e5 points", got, se, PI)
+}
+
+/// `n = 0` gives `None`; otherwise the estimate is 4 k / n for a whole number k in [0, n].
+pub fn check_lattice(estimate: impl PiEstimator) -> CheckResult {
+    if let Some(x) = estimate(0, &mut check::seeded(3)) {
+        return Err(format!(
+            "estimate_pi(0) returned Some({x}); no samples give no estimate (None)"
+        ));
+    }
+    let mut rng = check::seeded(4);
+    for n in [1usize, 2, 3, 10, 1000] {
+        let got = estimate(n, &mut rng).ok_or(format!("estimate_pi({n}) returned None"))?;
+        let k = got * n as f64 / 4.0;
+        if !(0.0..=n as f64).contains(&k) || (k - k.round()).abs() > 1e-9 {
+            return Err(format!(
+                "estimate_pi({n}) = {got} is not 4 k / {n} for a count k in 0..={n}"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// All of this exercise's checks.
+pub fn check_estimate_pi(estimate: impl PiEstimator) -> CheckResult {
+    check_lattice(&estimate)?;
+    check_value(&estimate)
+}
+
+/// This exercise's checks, run on your [`estimate_pi`].
+pub fn check() -> CheckResult {
+    check_estimate_pi(|n, rng: &mut dyn RngCore| estimate_pi(n, rng))
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use rand::Rng;
+
+    pub fn estimate_pi<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
+        if n == 0 {
+            return None;
+        }
+        let inside = (0..n)
+            .filter(|_| {
+                let x = rng.random_range(-1.0..1.0);
+                let y = rng.random_range(-1.0..1.0);
+                x * x + y * y < 1.0
+            })
+            .count();
+        Some(4.0 * inside as f64 / n as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn estimate_is_within_its_standard_error_of_pi() {
+        check_value(|n, rng: &mut dyn RngCore| estimate_pi(n, rng)).unwrap();
+    }
+
+    #[test]
+    fn estimate_is_a_multiple_of_4_over_n_and_none_without_samples() {
+        check_lattice(|n, rng: &mut dyn RngCore| estimate_pi(n, rng)).unwrap();
+    }
+
+    /// Wrong: forgets the factor 4 (estimates pi/4); and returns NaN for n = 0.
+    fn without_factor_4(n: usize, rng: &mut dyn RngCore) -> Option<f64> {
+        let inside = (0..n)
+            .filter(|_| {
+                let (x, y): (f64, f64) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                x * x + y * y < 1.0
+            })
+            .count();
+        Some(inside as f64 / n as f64)
+    }
+
+    #[test]
+    fn checks_reject_a_wrong_estimator() {
+        assert!(check_value(without_factor_4).is_err());
+        assert!(check_lattice(without_factor_4).is_err());
+        // Wrong: the circle of radius 1/2 (x^2 + y^2 < 0.5^2 read as < 0.5).
+        let half = |n: usize, rng: &mut dyn RngCore| {
+            let inside = (0..n)
+                .filter(|_| {
+                    let (x, y): (f64, f64) =
+                        (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                    x * x + y * y < 0.5
+                })
+                .count();
+            (n > 0).then(|| 4.0 * inside as f64 / n as f64)
+        };
+        assert!(check_value(half).is_err());
+    }
+}

@@ -1,0 +1,137 @@
+//! # Chapter 2, "Stratified Samples (Jittering)": estimate pi with one point per grid cell
+//!
+//! **Task.** Split the square [-1, 1]^2 into `sqrt_n x sqrt_n` equal cells and draw one uniform point
+//! inside each cell (cell (i, j) spans x in [-1 + 2i/k, -1 + 2(i+1)/k), likewise y, with k = `sqrt_n`).
+//! Return `4 * inside / sqrt_n^2`, the same estimator as [`estimate_pi`](crate::ch02_estimate_pi::estimate_pi)
+//! but with stratified samples; `None` for `sqrt_n = 0`.
+//!
+//! Stratification keeps the estimator unbiased but only the cells cut by the circle contribute
+//! variance, so its variance falls well below the binomial 16 p (1 - p) / N of independent points.
+//! The check z-tests the mean of 400 estimates against pi, and tests (a chi-square test on the sample
+//! variance, false failure 1e-6) that the variance is below that of independent points.
+
+use crate::check::{self, CheckResult};
+use rand::{Rng, RngCore};
+use statrs::distribution::{ChiSquared, ContinuousCDF};
+use std::f64::consts::PI;
+
+/// Estimate pi from one uniform point in each of the `sqrt_n x sqrt_n` cells of [-1, 1]^2;
+/// `None` when `sqrt_n = 0`.
+pub fn jittered_pi<R: Rng + ?Sized>(sqrt_n: usize, rng: &mut R) -> Option<f64> {
+    #[cfg(feature = "solutions")]
+    return solution::jittered_pi(sqrt_n, rng);
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = (sqrt_n, rng);
+        todo!("ch02 jittered_pi: one uniform point per cell of a sqrt_n x sqrt_n grid on [-1,1]^2")
+    }
+}
+
+/// Unbiased (mean of 400 estimates of 16 x 16 points z-tested against pi) and of variance below
+/// the variance of 256 independent points.
+pub fn check_jittered_pi(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f64>) -> CheckResult {
+    if let Some(x) = estimate(0, &mut check::seeded(5)) {
+        return Err(format!(
+            "jittered_pi(0) returned Some({x}); no samples give no estimate (None)"
+        ));
+    }
+    let (k, reps) = (16usize, 400usize);
+    let mut rng = check::seeded(6);
+    let mut values = Vec::with_capacity(reps);
+    for _ in 0..reps {
+        values.push(estimate(k, &mut rng).ok_or("jittered_pi(16) returned None")?);
+    }
+    let (mean, se) = check::mean_and_std_error(values.iter().copied());
+    check::z_test(
+        "mean of 400 jittered estimates of pi (16 x 16 points each)",
+        mean,
+        se,
+        PI,
+    )?;
+    // Under "no better than independent points" (variance sigma0^2), (reps - 1) s^2 / sigma0^2 is
+    // chi-square with reps - 1 degrees of freedom; stratification must put it below the 1e-6 quantile.
+    let p = PI / 4.0;
+    let sigma0_sq = 16.0 * p * (1.0 - p) / (k * k) as f64;
+    let s_sq = se * se * reps as f64;
+    let stat = (reps - 1) as f64 * s_sq / sigma0_sq;
+    let bound = ChiSquared::new((reps - 1) as f64)
+        .expect("dof > 0")
+        .inverse_cdf(check::Z_FALSE_FAILURE);
+    if stat < bound {
+        Ok(())
+    } else {
+        Err(format!(
+            "jittered_pi: variance {s_sq:.2e} is not below the {sigma0_sq:.2e} of independent points \
+             (ratio {:.2}); are the points stratified, one per cell?",
+            s_sq / sigma0_sq
+        ))
+    }
+}
+
+/// This exercise's checks, run on your [`jittered_pi`].
+pub fn check() -> CheckResult {
+    check_jittered_pi(|k, rng: &mut dyn RngCore| jittered_pi(k, rng))
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use rand::Rng;
+
+    pub fn jittered_pi<R: Rng + ?Sized>(sqrt_n: usize, rng: &mut R) -> Option<f64> {
+        if sqrt_n == 0 {
+            return None;
+        }
+        let cell = 2.0 / sqrt_n as f64;
+        let mut inside = 0usize;
+        for i in 0..sqrt_n {
+            for j in 0..sqrt_n {
+                let x = -1.0 + cell * (i as f64 + rng.random::<f64>());
+                let y = -1.0 + cell * (j as f64 + rng.random::<f64>());
+                if x * x + y * y < 1.0 {
+                    inside += 1;
+                }
+            }
+        }
+        Some(4.0 * inside as f64 / (sqrt_n * sqrt_n) as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn jittered_estimate_is_unbiased_with_reduced_variance() {
+        check_jittered_pi(|k, rng: &mut dyn RngCore| jittered_pi(k, rng)).unwrap();
+    }
+
+    #[test]
+    fn check_rejects_unstratified_points_and_cell_centres() {
+        // Wrong: independent points, not one per cell (unbiased, but no variance reduction).
+        let plain = |k: usize, rng: &mut dyn RngCore| {
+            let inside = (0..k * k)
+                .filter(|_| {
+                    let (x, y): (f64, f64) =
+                        (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                    x * x + y * y < 1.0
+                })
+                .count();
+            (k > 0).then(|| 4.0 * inside as f64 / (k * k) as f64)
+        };
+        let err = check_jittered_pi(plain).unwrap_err();
+        assert!(err.contains("variance"), "{err}");
+        // Wrong: cell centres without jitter (zero variance, but biased).
+        let centres = |k: usize, _: &mut dyn RngCore| {
+            let cell = 2.0 / k as f64;
+            let inside = (0..k * k)
+                .filter(|m| {
+                    let x = -1.0 + cell * ((m / k) as f64 + 0.5);
+                    let y = -1.0 + cell * ((m % k) as f64 + 0.5);
+                    x * x + y * y < 1.0
+                })
+                .count();
+            (k > 0).then(|| 4.0 * inside as f64 / (k * k) as f64)
+        };
+        assert!(check_jittered_pi(centres).is_err());
+    }
+}

@@ -1,0 +1,125 @@
+//! # Chapter 3, "Inverse Transform Sampling": sample x/2 and 3x^2/8 on [0, 2]
+//!
+//! **Task.** Turn a uniform `u` in [0, 1) into a sample of a density on [0, 2] by inverting its CDF:
+//!
+//! - [`sample_linear`]: density p(x) = x/2, CDF P(x) = x^2/4, so x = P^-1(u) = 2 sqrt(u);
+//! - [`sample_quadratic`]: density p(x) = 3x^2/8, CDF P(x) = x^3/8, so x = 2 cbrt(u).
+//!
+//! Both must be monotone in `u`, give 0 at u = 0 and stay in [0, 2] up to u = 1 - 2^-53. The check
+//! compares exact values, then bins 1e5 samples into 40 equal bins of [0, 2] and chi-square tests
+//! the counts against n (P(b) - P(a)).
+
+use crate::check::{self, CheckResult, U_MAX};
+use rand::Rng;
+
+/// A sample of the density x/2 on [0, 2] from a uniform `u` in [0, 1).
+pub fn sample_linear(u: f64) -> f64 {
+    #[cfg(feature = "solutions")]
+    return 2.0 * u.sqrt();
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = u;
+        todo!("ch03 sample_linear: invert the CDF x^2/4 of the density x/2 on [0,2]")
+    }
+}
+
+/// A sample of the density 3x^2/8 on [0, 2] from a uniform `u` in [0, 1).
+pub fn sample_quadratic(u: f64) -> f64 {
+    #[cfg(feature = "solutions")]
+    return 2.0 * u.cbrt();
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = u;
+        todo!("ch03 sample_quadratic: invert the CDF x^3/8 of the density 3x^2/8 on [0,2]")
+    }
+}
+
+/// Exact values, range and monotonicity of a sampler of the density with CDF `cdf`, and a chi-square
+/// test of 1e5 samples in 40 bins of [0, 2].
+pub fn check_sampler(
+    name: &str,
+    sample: impl Fn(f64) -> f64,
+    cdf: impl Fn(f64) -> f64,
+) -> CheckResult {
+    // Exact values: P^-1(P(x)) = x at x = 0, 1/2, 1 (P(x) is dyadic there, so u is exact).
+    for x in [0.0, 0.5, 1.0] {
+        check::close(&format!("{name}(u = P({x}))"), sample(cdf(x)), x, 1e-15)?;
+    }
+    let top = sample(U_MAX);
+    if !(top.is_finite() && (1.99..=2.0).contains(&top)) {
+        return Err(format!("{name}(1 - 2^-53) = {top}, expected just below 2"));
+    }
+    let mut last = sample(0.0);
+    for i in 1..=1000 {
+        let x = sample(i as f64 / 1001.0);
+        if x.is_nan() || x < last {
+            return Err(format!("{name} is not increasing in u: {x} after {last}"));
+        }
+        last = x;
+    }
+    let (n, bins) = (100_000usize, 40usize);
+    let mut rng = check::seeded(30);
+    let mut observed = vec![0u64; bins];
+    for _ in 0..n {
+        let x = sample(rng.random());
+        if !(0.0..=2.0).contains(&x) {
+            return Err(format!("{name} returned {x}, outside [0, 2]"));
+        }
+        observed[((x / 2.0 * bins as f64) as usize).min(bins - 1)] += 1;
+    }
+    let expected: Vec<f64> = (0..bins)
+        .map(|i| {
+            let (a, b) = (
+                2.0 * i as f64 / bins as f64,
+                2.0 * (i + 1) as f64 / bins as f64,
+            );
+            n as f64 * (cdf(b) - cdf(a))
+        })
+        .collect();
+    check::chi_square(name, &observed, &expected)
+}
+
+/// [`check_sampler`] for a sampler of x/2.
+pub fn check_linear(sample: impl Fn(f64) -> f64) -> CheckResult {
+    check_sampler("sample_linear", sample, |x| x * x / 4.0)
+}
+
+/// [`check_sampler`] for a sampler of 3x^2/8.
+pub fn check_quadratic(sample: impl Fn(f64) -> f64) -> CheckResult {
+    check_sampler("sample_quadratic", sample, |x| x * x * x / 8.0)
+}
+
+/// This exercise's checks, run on your [`sample_linear`] and [`sample_quadratic`].
+pub fn check() -> CheckResult {
+    check_linear(sample_linear)?;
+    check_quadratic(sample_quadratic)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linear_sampler_follows_x_over_2() {
+        check_linear(sample_linear).unwrap();
+    }
+
+    #[test]
+    fn quadratic_sampler_follows_3x_sq_over_8() {
+        check_quadratic(sample_quadratic).unwrap();
+    }
+
+    #[test]
+    fn checks_reject_wrong_inverses() {
+        // Wrong: sqrt(2u) inverts x^2/2, a density on [0, sqrt 2].
+        assert!(check_linear(|u| (2.0 * u).sqrt()).is_err());
+        // Wrong: 2u is uniform on [0, 2]; passes the end points, fails the exact values and the fit.
+        assert!(check_linear(|u| 2.0 * u).is_err());
+        // Wrong: 2 sqrt(u) is the linear sampler, not the quadratic one.
+        assert!(check_quadratic(|u| 2.0 * u.sqrt()).is_err());
+        // Wrong: exact at u = 0, 1/64, 1/8 but not following the density elsewhere.
+        let wiggly =
+            |u: f64| 2.0 * u.cbrt() + 0.05 * (8.0 * std::f64::consts::PI * u.cbrt()).sin().powi(2);
+        assert!(check_quadratic(wiggly).is_err());
+    }
+}

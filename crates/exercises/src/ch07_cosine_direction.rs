@@ -1,0 +1,171 @@
+//! # Chapter 7, "Cosine Sampling a Hemisphere": a cosine-weighted direction and its pdf
+//!
+//! **Task.** Two functions, in the frame where the surface normal is +z:
+//!
+//! - [`random_cosine_direction`]: a direction on the hemisphere z >= 0 with density cos theta / pi
+//!   w.r.t. solid angle, from two uniforms: phi = 2 pi u1, z = sqrt(1 - u2), x = cos(phi) sqrt(u2),
+//!   y = sin(phi) sqrt(u2). (Under this density z^2 is uniform in [0, 1]:
+//!   P(z <= t) = t^2, so z = sqrt(1 - u2) inverts it.)
+//! - [`cosine_pdf_value`]: that density, max(0, cos theta) / pi, given cos theta; exactly 0 below the
+//!   horizon, never negative.
+//!
+//! The check: unit length to 1e-12 and z >= 0 at u = 0 and u = 1 - 2^-53 (where z = sqrt(2^-53) is
+//! tiny but must not underflow the length); exact pdf values; and a chi-square test of 1e5 directions
+//! in 16 x 10 cells of (phi, z) on the hemisphere, against n (delta phi / 2 pi) (z_hi^2 - z_lo^2), the
+//! exact integral of the density over each cell.
+
+use crate::check::{self, CheckResult, SphereBins, U_MAX};
+use glam::DVec3;
+use rand::Rng;
+use std::f64::consts::FRAC_1_PI;
+
+/// A direction on the hemisphere z >= 0 with density cos theta / pi, from `u1`, `u2` in [0, 1).
+pub fn random_cosine_direction(u1: f64, u2: f64) -> DVec3 {
+    #[cfg(feature = "solutions")]
+    return solution::random_cosine_direction(u1, u2);
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = (u1, u2);
+        todo!("ch07 random_cosine_direction: phi = 2 pi u1, z = sqrt(1 - u2), radius sqrt(u2)")
+    }
+}
+
+/// The cosine density max(0, cos theta) / pi per steradian.
+pub fn cosine_pdf_value(cos_theta: f64) -> f64 {
+    #[cfg(feature = "solutions")]
+    return cos_theta.max(0.0) * FRAC_1_PI;
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = cos_theta;
+        todo!("ch07 cosine_pdf_value: max(0, cos theta) / pi")
+    }
+}
+
+/// Unit, upper-hemisphere directions at the corners of [0, 1)^2.
+pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
+    for u1 in [0.0, 0.25, U_MAX] {
+        for u2 in [0.0, 0.5, U_MAX] {
+            let d = sample(u1, u2);
+            check::unit(&format!("random_cosine_direction({u1}, {u2})"), d)?;
+            if !(d.z >= 0.0) {
+                return Err(format!(
+                    "random_cosine_direction({u1}, {u2}) = {d} is below the horizon"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Chi-square test of 1e5 directions against the cosine density.
+pub fn check_distribution(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
+    let bins = SphereBins {
+        n_phi: 16,
+        n_z: 10,
+        z_min: 0.0,
+        z_max: 1.0,
+    };
+    let n = 100_000;
+    let mut rng = check::seeded(70);
+    let dirs: Vec<DVec3> = (0..n).map(|_| sample(rng.random(), rng.random())).collect();
+    let observed = bins.histogram("random_cosine_direction", dirs)?;
+    let expected: Vec<f64> = (0..bins.n_z * bins.n_phi)
+        .map(|c| {
+            let (lo, hi) = bins.z_range(c / bins.n_phi);
+            n as f64 * (hi * hi - lo * lo) / bins.n_phi as f64
+        })
+        .collect();
+    check::chi_square("random_cosine_direction", &observed, &expected)
+}
+
+/// Exact values of the pdf: 1/pi at the pole, 1/(2 pi) at 60 degrees, 0 at and below the horizon.
+pub fn check_pdf(pdf: impl Fn(f64) -> f64) -> CheckResult {
+    for (c, want) in [
+        (1.0, FRAC_1_PI),
+        (0.5, 0.5 * FRAC_1_PI),
+        (1e-300, 1e-300 * FRAC_1_PI),
+        (0.0, 0.0),
+        (-1e-12, 0.0),
+        (-1.0, 0.0),
+    ] {
+        let got = pdf(c);
+        if !(got >= 0.0) {
+            return Err(format!(
+                "cosine_pdf_value({c}) = {got}; a density is never negative or NaN"
+            ));
+        }
+        check::close(&format!("cosine_pdf_value({c})"), got, want, 1e-15)?;
+    }
+    Ok(())
+}
+
+/// This exercise's checks, run on your [`random_cosine_direction`] and [`cosine_pdf_value`].
+pub fn check() -> CheckResult {
+    check_pdf(cosine_pdf_value)?;
+    check_corners(random_cosine_direction)?;
+    check_distribution(random_cosine_direction)
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use glam::DVec3;
+    use std::f64::consts::PI;
+
+    pub fn random_cosine_direction(u1: f64, u2: f64) -> DVec3 {
+        let phi = 2.0 * PI * u1;
+        let r = u2.sqrt();
+        DVec3::new(phi.cos() * r, phi.sin() * r, (1.0 - u2).sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn pdf_values_including_below_the_horizon() {
+        check_pdf(cosine_pdf_value).unwrap();
+    }
+
+    #[test]
+    fn directions_at_u_0_and_u_max_are_unit_and_above_the_horizon() {
+        check_corners(random_cosine_direction).unwrap();
+    }
+
+    #[test]
+    fn directions_follow_the_cosine_density() {
+        check_distribution(random_cosine_direction).unwrap();
+    }
+
+    #[test]
+    fn checks_reject_wrong_warps_and_pdfs() {
+        // Wrong: the factor-2 bug phi = pi u1 covers half the hemisphere.
+        let half_circle = |u1: f64, u2: f64| {
+            let phi = PI * u1;
+            DVec3::new(
+                phi.cos() * u2.sqrt(),
+                phi.sin() * u2.sqrt(),
+                (1.0 - u2).sqrt(),
+            )
+        };
+        assert!(check_distribution(half_circle).is_err());
+        // Wrong: radius u2 instead of sqrt(u2) (and then not of unit length).
+        let no_sqrt = |u1: f64, u2: f64| {
+            let phi = 2.0 * PI * u1;
+            DVec3::new(phi.cos() * u2, phi.sin() * u2, (1.0 - u2).sqrt())
+        };
+        assert!(check_corners(no_sqrt).is_err());
+        assert!(check_distribution(no_sqrt).is_err());
+        // Wrong: uniform hemisphere z = u2 is not cosine-weighted.
+        let uniform = |u1: f64, u2: f64| {
+            let phi = 2.0 * PI * u1;
+            let r = (1.0 - u2 * u2).sqrt();
+            DVec3::new(phi.cos() * r, phi.sin() * r, u2)
+        };
+        assert!(check_distribution(uniform).is_err());
+        // Wrong: the factor-2 bug in the pdf (cos / (2 pi)), and an unclamped cosine.
+        assert!(check_pdf(|c: f64| c.max(0.0) / (2.0 * PI)).is_err());
+        assert!(check_pdf(|c: f64| c / PI).is_err());
+    }
+}

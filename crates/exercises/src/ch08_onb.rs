@@ -1,0 +1,203 @@
+//! # Chapter 8, "Orthonormal Bases": a right-handed basis around a unit vector
+//!
+//! **Task.** Write [`Onb::from_w`]: given a unit vector w, find unit u and v such that (u, v, w) is
+//! orthonormal and right-handed, u x v = w; and [`Onb::transform`], which maps local coordinates
+//! (a, b, c) to the world vector a u + b v + c w (a direction sampled around +z becomes one around w).
+//!
+//! Use the branchless construction of Duff et al., "Building an Orthonormal Basis, Revisited"
+//! (JCGT 2017): with s = sign(w.z) (+1 for w.z = +-0 as well) and a = -1 / (s + w.z),
+//! b = w.x w.y a:
+//!
+//! u = (1 + s w.x^2 a, s b, -s w.x),  v = (b, s + w.y^2 a, -w.y).
+//!
+//! It is exact at the poles and stable near them; Frisvad's earlier version (a = -1 / (1 + w.z))
+//! divides by ~0 near w = -z. Note that the book's `build_from_w` (v = w x a, u = w x v) gives a
+//! left-handed basis.
+//!
+//! The check: w = +-x, +-y, +-z, the f32 case of Duff et al. near -z, and 1000 random unit vectors:
+//! u, v of unit length and orthogonal to each other and to w (to 1e-12), u x v = w, `w` kept as given;
+//! and [`Onb::transform`] of the axes gives u, v, w.
+
+use crate::check::{self, CheckResult};
+use glam::DVec3;
+
+/// An orthonormal basis (u, v, w), right-handed: u x v = w.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Onb {
+    pub u: DVec3,
+    pub v: DVec3,
+    pub w: DVec3,
+}
+
+impl Onb {
+    /// The right-handed basis with third axis `w` (a unit vector), by Duff et al. (2017).
+    pub fn from_w(w: DVec3) -> Onb {
+        #[cfg(feature = "solutions")]
+        return solution::from_w(w);
+        #[cfg(not(feature = "solutions"))]
+        {
+            let _ = w;
+            todo!("ch08 Onb::from_w: Duff et al.'s branchless basis, u x v = w")
+        }
+    }
+
+    /// The world vector with local coordinates `a`: a.x u + a.y v + a.z w.
+    pub fn transform(&self, a: DVec3) -> DVec3 {
+        #[cfg(feature = "solutions")]
+        return a.x * self.u + a.y * self.v + a.z * self.w;
+        #[cfg(not(feature = "solutions"))]
+        {
+            let _ = a;
+            todo!("ch08 Onb::transform: a.x u + a.y v + a.z w")
+        }
+    }
+}
+
+/// The basis under test, as a function of w.
+pub trait FromW: Fn(DVec3) -> Onb {}
+impl<F: Fn(DVec3) -> Onb> FromW for F {}
+
+fn orthonormal_right_handed(w: DVec3, b: Onb) -> CheckResult {
+    let what = format!("Onb::from_w({w})");
+    let fail = |why: &str| Err(format!("{what} = {b:?}: {why}"));
+    if !(b.u.is_finite() && b.v.is_finite() && b.w.is_finite()) {
+        return fail("not finite");
+    }
+    if (b.w - w).length() > 1e-15 {
+        return fail("w is not the vector given");
+    }
+    for (name, x) in [("|u|", b.u.length()), ("|v|", b.v.length())] {
+        if (x - 1.0).abs() > 1e-12 {
+            return fail(&format!("{name} = {x}, not 1"));
+        }
+    }
+    for (name, x) in [
+        ("u.v", b.u.dot(b.v)),
+        ("u.w", b.u.dot(b.w)),
+        ("v.w", b.v.dot(b.w)),
+    ] {
+        if x.abs() > 1e-12 {
+            return fail(&format!("{name} = {x:e}, not 0"));
+        }
+    }
+    if (b.u.cross(b.v) - b.w).length() > 1e-12 {
+        return fail(&format!(
+            "u x v = {} is not w: the basis is not right-handed",
+            b.u.cross(b.v)
+        ));
+    }
+    Ok(())
+}
+
+/// The axes, the f32 case near -z, and 1000 random unit vectors.
+pub fn check_basis(from_w: impl FromW) -> CheckResult {
+    let mut ws = vec![
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ];
+    // Duff et al.'s example where Frisvad's method fails in f32: normalise it first.
+    ws.push(DVec3::new(0.00038527316, 0.00038460016, -0.99999988079).normalize());
+    ws.push(DVec3::new(1e-9, -2e-9, -1.0).normalize());
+    ws.push(DVec3::new(0.0, 0.0, -1.0 + 1e-16).normalize());
+    let mut rng = check::seeded(80);
+    ws.extend((0..1000).map(|_| check::uniform_direction(&mut rng)));
+    for w in ws {
+        orthonormal_right_handed(w, from_w(w))?;
+    }
+    Ok(())
+}
+
+/// `transform` of the local axes gives u, v, w, and of a general vector the combination.
+pub fn check_transform(transform: impl Fn(&Onb, DVec3) -> DVec3) -> CheckResult {
+    let b = Onb {
+        u: DVec3::new(0.0, 0.0, 1.0),
+        v: DVec3::new(1.0, 0.0, 0.0),
+        w: DVec3::new(0.0, 1.0, 0.0),
+    };
+    let cases = [
+        (DVec3::X, b.u),
+        (DVec3::Y, b.v),
+        (DVec3::Z, b.w),
+        (DVec3::new(0.5, -2.0, 0.25), DVec3::new(-2.0, 0.25, 0.5)),
+    ];
+    for (a, want) in cases {
+        let got = transform(&b, a);
+        if got != want {
+            return Err(format!(
+                "Onb::transform({a}) = {got} in the basis {b:?}, expected {want}"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// All of this exercise's checks.
+pub fn check_onb(from_w: impl FromW, transform: impl Fn(&Onb, DVec3) -> DVec3) -> CheckResult {
+    check_basis(from_w)?;
+    check_transform(transform)
+}
+
+/// This exercise's checks, run on your [`Onb::from_w`] and [`Onb::transform`].
+pub fn check() -> CheckResult {
+    check_onb(Onb::from_w, Onb::transform)
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use super::Onb;
+    use glam::DVec3;
+
+    pub fn from_w(w: DVec3) -> Onb {
+        let s = 1.0_f64.copysign(w.z);
+        let a = -1.0 / (s + w.z);
+        let b = w.x * w.y * a;
+        let u = DVec3::new(1.0 + s * w.x * w.x * a, s * b, -s * w.x);
+        let v = DVec3::new(b, s + w.y * w.y * a, -w.y);
+        Onb { u, v, w }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bases_are_orthonormal_and_right_handed_at_the_axes_near_minus_z_and_at_random() {
+        check_basis(Onb::from_w).unwrap();
+    }
+
+    #[test]
+    fn transform_combines_the_axes() {
+        check_transform(Onb::transform).unwrap();
+    }
+
+    #[test]
+    fn checks_reject_the_books_left_handed_basis_and_frisvads_near_minus_z() {
+        // Wrong: the book's build_from_w: v = w x a, u = w x v, which makes u x v = -w.
+        let book = |w: DVec3| {
+            let a = if w.x.abs() > 0.9 { DVec3::Y } else { DVec3::X };
+            let v = w.cross(a).normalize();
+            let u = w.cross(v);
+            Onb { u, v, w }
+        };
+        let err = check_basis(book).unwrap_err();
+        assert!(err.contains("right-handed"), "{err}");
+        // Wrong: Frisvad (2012), a = -1 / (1 + z), breaks down at and near w = -z.
+        let frisvad = |w: DVec3| {
+            let a = -1.0 / (1.0 + w.z);
+            let b = w.x * w.y * a;
+            Onb {
+                u: DVec3::new(1.0 + w.x * w.x * a, b, -w.x),
+                v: DVec3::new(b, 1.0 + w.y * w.y * a, -w.y),
+                w,
+            }
+        };
+        assert!(check_basis(frisvad).is_err());
+        // Wrong: transform with u and v swapped.
+        assert!(check_transform(|b: &Onb, a: DVec3| a.x * b.v + a.y * b.u + a.z * b.w).is_err());
+    }
+}

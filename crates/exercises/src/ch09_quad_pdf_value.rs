@@ -1,0 +1,261 @@
+//! # Chapter 9, "Sampling Lights Directly": the solid-angle pdf of a quad light
+//!
+//! A point chosen uniformly on a light of area A has density 1/A w.r.t. area. Seen from a point p,
+//! an area element dA at distance r whose normal makes angle theta with the direction subtends a
+//! solid angle d omega = |cos theta| dA / r^2, so the same choice has density w.r.t. solid angle
+//!
+//! p(omega) = r^2 / (|cos theta| A).
+//!
+//! **Task.** Write [`quad_pdf_value`]: for the parallelogram {q + a u + b v : a, b in [0, 1]}, the
+//! origin p and a unit direction d, intersect the ray p + t d (t > 0) with the quad's plane, test the
+//! hit against the parallelogram, and return r^2 / (|cos theta| A) with r = t (d is unit),
+//! cos theta = n . d for the unit normal n, and A = |u x v|. Return 0 when the ray misses: it points
+//! away, it is parallel to the plane, the hit lies outside the parallelogram, or the origin lies in the
+//! plane (t = 0: a pdf of 0, not infinity). The light is two-sided.
+//!
+//! The check: exact values head-on and oblique, the hard cases (origin in the plane, 1e-9 above it,
+//! parallel, behind, from the back side), and a z-test that E[4 pi p(omega)] = 1 over uniform
+//! directions: the density integrates to 1 over the sphere.
+
+use crate::check::{self, CheckResult};
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// A parallelogram light: corner `q`, edges `u` and `v`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quad {
+    pub q: DVec3,
+    pub u: DVec3,
+    pub v: DVec3,
+}
+
+/// The solid-angle density r^2 / (|cos theta| A) of the direction `direction` (unit) from `origin`
+/// towards a uniformly chosen point of `quad`; 0 when the ray misses the quad.
+pub fn quad_pdf_value(quad: &Quad, origin: DVec3, direction: DVec3) -> f64 {
+    #[cfg(feature = "solutions")]
+    return solution::quad_pdf_value(quad, origin, direction);
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = (quad, origin, direction);
+        todo!("ch09 quad_pdf_value: hit the quad, return distance^2 / (|cos| area), 0 on a miss")
+    }
+}
+
+/// The function under test.
+pub trait QuadPdf: Fn(&Quad, DVec3, DVec3) -> f64 {}
+impl<F: Fn(&Quad, DVec3, DVec3) -> f64> QuadPdf for F {}
+
+/// The 2 x 2 square in the plane z = -1 centred under the origin (area 4).
+const SQUARE: Quad = Quad {
+    q: DVec3::new(-1.0, -1.0, -1.0),
+    u: DVec3::new(2.0, 0.0, 0.0),
+    v: DVec3::new(0.0, 2.0, 0.0),
+};
+
+/// Exact values: head-on, oblique, and the misses.
+pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
+    let o = DVec3::ZERO;
+    check::close(
+        "quad_pdf_value head-on at distance 1 (1/A)",
+        pdf(&SQUARE, o, -DVec3::Z),
+        0.25,
+        1e-15,
+    )?;
+    let d = DVec3::new(0.5, 0.25, -1.0);
+    let r2 = d.length_squared(); // hits (0.5, 0.25, -1) at distance |d|, cos theta = 1 / |d|
+    check::close(
+        "quad_pdf_value oblique",
+        pdf(&SQUARE, o, d.normalize()),
+        r2 * r2.sqrt() / 4.0,
+        1e-14,
+    )?;
+    check::close(
+        "quad_pdf_value from the back side",
+        pdf(&SQUARE, DVec3::new(0.0, 0.0, -2.0), DVec3::Z),
+        0.25,
+        1e-15,
+    )?;
+    // A skewed parallelogram: q = (0, 0, 2), u = (1, 0, 0), v = (1, 1, 1); area |u x v| = sqrt 2.
+    let skew = Quad {
+        q: DVec3::new(0.0, 0.0, 2.0),
+        u: DVec3::X,
+        v: DVec3::ONE,
+    };
+    let target = skew.q + 0.5 * skew.u + 0.5 * skew.v; // (1, 0.5, 2.5)
+    let to = target - DVec3::new(0.0, 0.0, 1.0);
+    let n = skew.u.cross(skew.v).normalize();
+    let want = to.length_squared() / (n.dot(to.normalize()).abs() * 2f64.sqrt());
+    check::close(
+        "quad_pdf_value of a skewed parallelogram",
+        pdf(&skew, DVec3::Z, to.normalize()),
+        want,
+        1e-13,
+    )?;
+    let misses = [
+        ("pointing away", o, DVec3::Z),
+        (
+            "beside the square",
+            o,
+            DVec3::new(1.5, 0.0, -1.0).normalize(),
+        ),
+        (
+            "beside a corner",
+            o,
+            DVec3::new(1.01, 1.01, -1.0).normalize(),
+        ),
+        ("parallel to the plane", o, DVec3::X),
+        (
+            "origin in the plane, along it",
+            DVec3::new(0.0, 0.0, -1.0),
+            DVec3::X,
+        ),
+        (
+            "origin in the plane, straight down",
+            DVec3::new(0.0, 0.0, -1.0),
+            -DVec3::Z,
+        ),
+        (
+            "origin in the plane, oblique",
+            DVec3::new(0.0, 0.0, -1.0),
+            DVec3::new(0.6, 0.0, -0.8),
+        ),
+    ];
+    for (what, origin, d) in misses {
+        let got = pdf(&SQUARE, origin, d);
+        if got != 0.0 {
+            return Err(format!(
+                "quad_pdf_value {what} = {got}, expected 0 (a miss)"
+            ));
+        }
+    }
+    let got = pdf(&SQUARE, DVec3::new(0.0, 0.0, -1.0 + 1e-9), -DVec3::Z);
+    if !(got.is_finite() && got > 0.0) {
+        return Err(format!(
+            "quad_pdf_value from 1e-9 above the light = {got}, expected small, finite and > 0"
+        ));
+    }
+    Ok(())
+}
+
+/// E[4 pi p(omega)] = 1 over 1e5 uniform directions (z-test), for the square and a skewed quad.
+pub fn check_normalised(pdf: impl QuadPdf) -> CheckResult {
+    let skew = Quad {
+        q: DVec3::new(-0.5, 1.0, 0.2),
+        u: DVec3::new(1.0, 0.3, 0.0),
+        v: DVec3::new(0.4, 0.5, 1.5),
+    };
+    let mut rng = check::seeded(90);
+    for (what, quad, origin) in [
+        ("square", SQUARE, DVec3::ZERO),
+        ("skewed quad", skew, DVec3::new(0.1, 0.0, 0.4)),
+    ] {
+        let mut values = Vec::with_capacity(100_000);
+        for _ in 0..100_000 {
+            let d = check::uniform_direction(&mut rng);
+            let p = pdf(&quad, origin, d);
+            if !(p >= 0.0 && p.is_finite()) {
+                return Err(format!("quad_pdf_value({quad:?}, {origin}, {d}) = {p}"));
+            }
+            values.push(4.0 * PI * p);
+        }
+        check::z_test_mean(
+            &format!("integral over the sphere of the {what}'s pdf"),
+            values,
+            1.0,
+        )?;
+    }
+    Ok(())
+}
+
+/// All of this exercise's checks.
+pub fn check_quad_pdf(pdf: impl QuadPdf) -> CheckResult {
+    check_values(&pdf)?;
+    check_normalised(&pdf)
+}
+
+/// This exercise's checks, run on your [`quad_pdf_value`].
+pub fn check() -> CheckResult {
+    check_quad_pdf(quad_pdf_value)
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use super::Quad;
+    use glam::DVec3;
+
+    pub fn quad_pdf_value(quad: &Quad, origin: DVec3, direction: DVec3) -> f64 {
+        let n = quad.u.cross(quad.v);
+        let area = n.length();
+        let denom = n.dot(direction);
+        // Parallel (or degenerate): no hit. Relative threshold, so scale does not matter.
+        if denom.abs() <= 1e-12 * area {
+            return 0.0;
+        }
+        let t = n.dot(quad.q - origin) / denom;
+        if !(t > 0.0 && t.is_finite()) {
+            return 0.0;
+        }
+        // Planar coordinates of the hit: p = a u + b v, a = w . (p x v), b = w . (u x p), w = n / n.n.
+        let p = origin + t * direction - quad.q;
+        let w = n / n.length_squared();
+        let (a, b) = (w.dot(p.cross(quad.v)), w.dot(quad.u.cross(p)));
+        if !((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)) {
+            return 0.0;
+        }
+        let cosine = denom.abs() / area;
+        t * t / (cosine * area)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_values_and_misses_including_origin_in_the_plane() {
+        check_values(quad_pdf_value).unwrap();
+    }
+
+    #[test]
+    fn pdf_integrates_to_1_over_the_sphere() {
+        check_normalised(quad_pdf_value).unwrap();
+    }
+
+    /// A correct hit test, returning `(t, |cos theta|, area)` on a hit.
+    fn hit(quad: &Quad, origin: DVec3, d: DVec3) -> Option<(f64, f64, f64)> {
+        let n = quad.u.cross(quad.v);
+        let denom = n.dot(d);
+        if denom == 0.0 {
+            return None;
+        }
+        let t = n.dot(quad.q - origin) / denom;
+        let p = origin + t * d - quad.q;
+        let w = n / n.length_squared();
+        let (a, b) = (w.dot(p.cross(quad.v)), w.dot(quad.u.cross(p)));
+        ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b) && t >= 0.0)
+            .then(|| (t, denom.abs() / n.length(), n.length()))
+    }
+
+    #[test]
+    fn checks_reject_wrong_pdfs() {
+        // Wrong: the area density 1/A, not converted to solid angle.
+        let area_measure =
+            |q: &Quad, o: DVec3, d: DVec3| hit(q, o, d).map_or(0.0, |(_, _, a)| 1.0 / a);
+        assert!(check_values(area_measure).is_err());
+        assert!(check_normalised(area_measure).is_err());
+        // Wrong: forgets the cosine.
+        let no_cos = |q: &Quad, o: DVec3, d: DVec3| hit(q, o, d).map_or(0.0, |(t, _, a)| t * t / a);
+        assert!(check_normalised(no_cos).is_err());
+        // Wrong: counts a hit at t = 0 (origin in the light's plane) and returns infinity for it.
+        let t_zero = |q: &Quad, o: DVec3, d: DVec3| {
+            hit(q, o, d).map_or(0.0, |(t, c, a)| {
+                if t == 0.0 {
+                    f64::INFINITY
+                } else {
+                    t * t / (c * a)
+                }
+            })
+        };
+        assert!(check_values(t_zero).is_err());
+    }
+}
