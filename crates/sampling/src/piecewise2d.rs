@@ -1,0 +1,134 @@
+//! A piecewise-constant density on a rectangle (an image, an environment map): sample a row from
+//! the marginal density `p(y) = ∫ p(x, y) dx`, then a column from the conditional density of that
+//! row, `p(x | y) = p(x, y) / p(y)`. Each is a [`TabulatedCdf`], so the map is an inversion and
+//! `invert` takes a point back to its `(u₁, u₂)`. (pbrt-v4: `PiecewiseConstant2D`.)
+
+use crate::{SamplingError, TabulatedCdf, tabulated::equal_edges};
+
+/// A 2D sample: the point and its density with respect to area.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample2 {
+    pub x: f64,
+    pub y: f64,
+    pub pdf: f64,
+}
+
+/// A piecewise-constant density on `[x₀, x₁] × [y₀, y₁]` with `nx × ny` equal cells.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PiecewiseConstant2D {
+    /// One conditional density over x per row (a uniform one for a row of zero mass, which the
+    /// marginal never selects).
+    rows: Vec<TabulatedCdf>,
+    marginal: TabulatedCdf,
+    nx: usize,
+}
+
+impl PiecewiseConstant2D {
+    // ANCHOR: build
+    /// `weights` holds `ny` rows of `nx` cells, row by row (row `j` covers the `j`-th slice in y).
+    /// Weights must be finite and `>= 0`, not all 0; an error names the bad cell's row and column.
+    pub fn new(
+        weights: &[f64],
+        nx: usize,
+        ny: usize,
+        (x0, x1): (f64, f64),
+        (y0, y1): (f64, f64),
+    ) -> Result<Self, SamplingError> {
+        if weights.len() != nx * ny {
+            return Err(SamplingError::LengthMismatch {
+                what: "weights",
+                got: weights.len(),
+                expected: nx * ny,
+            });
+        }
+        if nx == 0 || ny == 0 {
+            return Err(SamplingError::TooFew {
+                what: "cells per side",
+                min: 1,
+                got: 0,
+            });
+        }
+        if let Some(k) = weights.iter().position(|w| !(w.is_finite() && *w >= 0.0)) {
+            return Err(SamplingError::BadCellWeight {
+                row: k / nx,
+                col: k % nx,
+                value: weights[k],
+            });
+        }
+        let x_edges = equal_edges(x0, x1, nx)?;
+        let y_edges = equal_edges(y0, y1, ny)?;
+        let mut rows = Vec::with_capacity(ny);
+        let mut row_mass = Vec::with_capacity(ny);
+        for row in weights.chunks_exact(nx) {
+            let mass: f64 = row.iter().sum();
+            row_mass.push(mass);
+            rows.push(if mass > 0.0 {
+                TabulatedCdf::from_edges_and_weights(&x_edges, row)?
+            } else {
+                TabulatedCdf::from_edges_and_weights(&x_edges, &vec![1.0; nx])?
+            });
+        }
+        let marginal = TabulatedCdf::from_edges_and_weights(&y_edges, &row_mass).map_err(|e| {
+            match e {
+                SamplingError::AllZero { .. } => SamplingError::AllZero { bins: nx * ny },
+                other => other,
+            }
+        })?;
+        Ok(Self { rows, marginal, nx })
+    }
+    // ANCHOR_END: build
+
+    // ANCHOR: sample
+    /// The point for `(u₁, u₂)`: `u₂` picks the row (and `y`) through the marginal, `u₁` the column
+    /// (and `x`) through that row's conditional; the density is the product `p(y) p(x | y)`.
+    pub fn sample(&self, u1: f64, u2: f64) -> Sample2 {
+        let my = self.marginal.sample(u2);
+        let row = self.marginal.bin(crate::clamp_u(u2));
+        let mx = self.rows[row].sample(u1);
+        Sample2 {
+            x: mx.x,
+            y: my.x,
+            pdf: my.pdf * mx.pdf,
+        }
+    }
+    // ANCHOR_END: sample
+
+    /// The row holding `y` (a row edge belongs to the row above it).
+    fn row_of(&self, y: f64) -> usize {
+        let e = self.marginal.nodes();
+        e[1..e.len() - 1].partition_point(|&v| v <= y)
+    }
+
+    /// The density at `(x, y)` with respect to area, 0 outside the rectangle.
+    pub fn pdf(&self, x: f64, y: f64) -> f64 {
+        let py = self.marginal.pdf(y);
+        if py == 0.0 {
+            return 0.0;
+        }
+        py * self.rows[self.row_of(y)].pdf(x)
+    }
+
+    /// The `(u₁, u₂)` that [`sample`](Self::sample) maps to `(x, y)`.
+    pub fn invert(&self, x: f64, y: f64) -> (f64, f64) {
+        let (y0, y1) = self.marginal.domain();
+        let row = self.row_of(y.clamp(y0, y1));
+        (self.rows[row].invert(x), self.marginal.invert(y))
+    }
+
+    /// Cells per row.
+    pub fn nx(&self) -> usize {
+        self.nx
+    }
+
+    /// The number of rows.
+    pub fn ny(&self) -> usize {
+        self.rows.len()
+    }
+}
+
+impl rand::distr::Distribution<(f64, f64)> for PiecewiseConstant2D {
+    fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> (f64, f64) {
+        let s = PiecewiseConstant2D::sample(self, rng.random(), rng.random());
+        (s.x, s.y)
+    }
+}
