@@ -1,1 +1,50 @@
-//! rtl-pdf (placeholder)
+//! # rtl-pdf: directions on the sphere
+//!
+//! The third layer of the workspace (after `rtl-mc` and `rtl-sampling`), following chapters 4 and 7-10
+//! of "Ray Tracing: The Rest of Your Life":
+//!
+//! - [`warp`]: maps from the unit square to directions (uniform sphere, hemisphere, cosine, cone,
+//!   parallelogram, spherical rectangle), each with its density and inverse;
+//! - [`Onb`]: an orthonormal basis from one vector, to carry local directions to the world;
+//! - [`Pdf`] with [`SpherePdf`], [`HemispherePdf`], [`CosinePdf`], [`HittablePdf`] (towards [`Target`]s
+//!   such as [`SphereTarget`] and [`QuadTarget`]) and [`MixturePdf`];
+//! - [`mis`]: balance and power heuristics for multiple importance sampling;
+//! - [`chi2`]: the chi-square goodness-of-fit test that checks every sampler against its density.
+//!
+//! Everything per sample is static dispatch and allocation-free: `Pdf::generate` is generic over the
+//! random number generator, mixtures are generic over their parts, and lists of targets are borrowed
+//! slices.
+//!
+//! ```
+//! use glam::DVec3;
+//! use rand::SeedableRng;
+//! use rtl_pdf::{CosinePdf, HittablePdf, MixturePdf, Pdf, QuadTarget};
+//! let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
+//! // A point on the floor, a square light above it: the book's mixture of light and cosine sampling.
+//! let light = [QuadTarget::new(DVec3::new(-1.0, 5.0, -1.0), DVec3::X * 2.0, DVec3::Z * 2.0)];
+//! let towards_light = HittablePdf::new(DVec3::ZERO, &light).unwrap();
+//! let pdf = MixturePdf::new(towards_light, CosinePdf::new(DVec3::Y));
+//! let d = pdf.generate(&mut rng);
+//! assert!(d.y > 0.0 && pdf.value(d) > 0.0);
+//! ```
+
+pub mod chi2;
+mod hittable;
+pub mod mis;
+mod mixture;
+mod onb;
+mod pdf;
+mod selection;
+mod target;
+pub mod warp;
+
+pub use hittable::HittablePdf;
+pub use mis::{balance_heuristic, power_heuristic};
+pub use mixture::{MixtureError, MixtureOfPdfs, MixturePdf};
+pub use onb::Onb;
+pub use pdf::{CosinePdf, HemispherePdf, Pdf, SpherePdf};
+pub use selection::{Selection, SelectionError};
+pub use target::{
+    MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE, MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE, QuadSampling,
+    QuadTarget, SphereTarget, SphereView, Target,
+};

@@ -1,0 +1,295 @@
+//! Targets: shapes that can be sampled towards ("lights" in the book, chapter 9), and the two the
+//! book needs, spheres and quads.
+//!
+//! This crate knows nothing of the renderer's shapes. A shape that wants to be sampled towards
+//! implements [`Target`]; [`SphereTarget`] and [`QuadTarget`] hold the geometry and the sampling so that a
+//! renderer's sphere or quad can delegate to them.
+
+use crate::pdf::random_unit_square;
+use crate::{Onb, warp};
+use glam::DVec3;
+use rand::Rng;
+use std::f64::consts::TAU;
+
+// ANCHOR: target_trait
+/// Something that can be sampled towards from a point: the book's `hittable::pdf_value` and
+/// `hittable::random`.
+pub trait Target {
+    /// The density per steradian, seen from `origin`, with which [`Target::random`] picks the unit vector
+    /// `direction`: 0 when the ray `origin + t direction` misses the target.
+    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64;
+    /// A unit direction from `origin` towards the target.
+    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3;
+}
+// ANCHOR_END: target_trait
+
+impl<T: Target + ?Sized> Target for &T {
+    #[inline]
+    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
+        (**self).pdf_value(origin, direction)
+    }
+    #[inline]
+    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3 {
+        (**self).random(origin, rng)
+    }
+}
+
+/// A sphere to sample towards, by the cone of directions it subtends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereTarget {
+    center: DVec3,
+    radius: f64,
+}
+
+/// What a sphere looks like from a point: a cone (axis, `1 - cos theta_max`), or all around.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SphereView {
+    /// The point is outside: the sphere fills the cone about the unit `axis` with this `1 - cos theta_max`.
+    Cone { axis: DVec3, one_minus_cos_max: f64 },
+    /// The point is inside or on the sphere: every direction meets it; sampled uniformly.
+    Surrounding,
+}
+
+impl SphereTarget {
+    /// A sphere of this centre and radius (its absolute value; a negative radius is the book's trick
+    /// for hollow glass and means the same surface here).
+    pub fn new(center: DVec3, radius: f64) -> SphereTarget {
+        SphereTarget {
+            center,
+            radius: radius.abs(),
+        }
+    }
+
+    pub fn center(&self) -> DVec3 {
+        self.center
+    }
+
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    // ANCHOR: sphere_view
+    /// The cone the sphere subtends from `origin`: `sin^2 theta_max = r^2 / d^2`, and
+    /// `1 - cos theta_max = sin^2 / (1 + cos)` (no cancellation for far or small spheres).
+    #[inline]
+    pub fn view(&self, origin: DVec3) -> SphereView {
+        let to_center = self.center - origin;
+        let d2 = to_center.length_squared();
+        let r2 = self.radius * self.radius;
+        if d2 <= r2 || d2 == 0.0 || d2.is_nan() {
+            return SphereView::Surrounding;
+        }
+        SphereView::Cone {
+            axis: to_center / d2.sqrt(),
+            one_minus_cos_max: warp::cone_one_minus_cos(r2 / d2),
+        }
+    }
+    // ANCHOR_END: sphere_view
+
+    /// The solid angle of the directions sampled from `origin`: `2 pi (1 - cos theta_max)` from outside,
+    /// `4 pi` from inside.
+    pub fn solid_angle(&self, origin: DVec3) -> f64 {
+        match self.view(origin) {
+            SphereView::Cone {
+                one_minus_cos_max, ..
+            } => TAU * one_minus_cos_max,
+            SphereView::Surrounding => 2.0 * TAU,
+        }
+    }
+}
+
+// ANCHOR: sphere_target
+impl Target for SphereTarget {
+    /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside. "Inside the cone" is
+    /// the same as "the ray hits the sphere"; it is tested as `|d - axis|^2 / 2 <= 1 - cos theta_max`,
+    /// `1 - cos` of the angle to the axis without cancellation. From inside the sphere: `1 / (4 pi)`.
+    #[inline]
+    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
+        match self.view(origin) {
+            SphereView::Cone {
+                axis,
+                one_minus_cos_max,
+            } => {
+                let one_minus_cos = (direction - axis).length_squared() / 2.0;
+                // a sphere too small to see (1 - cos theta_max underflowed to 0) is never hit
+                if one_minus_cos <= one_minus_cos_max && one_minus_cos_max > 0.0 {
+                    warp::uniform_cone_pdf(one_minus_cos_max)
+                } else {
+                    0.0
+                }
+            }
+            SphereView::Surrounding => warp::uniform_sphere_pdf(),
+        }
+    }
+
+    #[inline]
+    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3 {
+        let u = random_unit_square(rng);
+        match self.view(origin) {
+            SphereView::Cone {
+                axis,
+                one_minus_cos_max,
+            } => Onb::new(axis).transform(warp::sample_uniform_cone(u, one_minus_cos_max)),
+            SphereView::Surrounding => warp::sample_uniform_sphere(u),
+        }
+    }
+}
+// ANCHOR_END: sphere_target
+
+/// How a [`QuadTarget`] picks directions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuadSampling {
+    /// A point uniform on the quad's area, its density converted to solid angle (the book's way).
+    Area,
+    /// Uniform in the solid angle of the rectangle (Urena et al. 2013), where it is worth it.
+    SphericalRectangle,
+}
+
+/// Below this solid angle (steradians) the spherical-rectangle terms lose precision and area sampling
+/// is as good; above the upper limit the rectangle is nearly a hemisphere. The values are pbrt-v4's.
+pub const MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE: f64 = 3e-4;
+/// See [`MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE`].
+pub const MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE: f64 = 6.22;
+
+/// A parallelogram `q + s u + t v`, `(s, t)` in `[0, 1]^2`, to sample towards; two-sided.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QuadTarget {
+    q: DVec3,
+    u: DVec3,
+    v: DVec3,
+    /// unit normal `u x v / |u x v|`
+    normal: DVec3,
+    /// `n / (n . n)` with `n = u x v`, for the plane coordinates of a hit
+    w: DVec3,
+    area: f64,
+    sampling: QuadSampling,
+}
+
+impl QuadTarget {
+    /// The parallelogram with corner `q` and edges `u`, `v`, sampled by area.
+    pub fn new(q: DVec3, u: DVec3, v: DVec3) -> QuadTarget {
+        let n = u.cross(v);
+        let area = n.length();
+        let (normal, w) = if area > 0.0 && area.is_finite() {
+            (n / area, n / (area * area))
+        } else {
+            (DVec3::ZERO, DVec3::ZERO) // degenerate: every pdf_value is 0
+        };
+        QuadTarget {
+            q,
+            u,
+            v,
+            normal,
+            w,
+            area,
+            sampling: QuadSampling::Area,
+        }
+    }
+
+    /// Whether to sample by spherical rectangles. Only a rectangle (`u . v = 0`, to 1e-12 relative) can;
+    /// for other parallelograms this keeps area sampling. Even for a rectangle, the per-origin choice
+    /// falls back to area sampling where the solid angle is outside
+    /// [[`MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE`], [`MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE`]]; `pdf_value`
+    /// always makes the same choice as `random`.
+    pub fn with_spherical_rectangles(mut self, on: bool) -> QuadTarget {
+        self.sampling = if on && self.is_rectangle() {
+            QuadSampling::SphericalRectangle
+        } else {
+            QuadSampling::Area
+        };
+        self
+    }
+
+    /// `u . v = 0` to 1e-12 relative.
+    pub fn is_rectangle(&self) -> bool {
+        self.area > 0.0 && self.u.dot(self.v).abs() <= 1e-12 * self.u.length() * self.v.length()
+    }
+
+    pub fn sampling(&self) -> QuadSampling {
+        self.sampling
+    }
+    pub fn q(&self) -> DVec3 {
+        self.q
+    }
+    pub fn u(&self) -> DVec3 {
+        self.u
+    }
+    pub fn v(&self) -> DVec3 {
+        self.v
+    }
+    pub fn area(&self) -> f64 {
+        self.area
+    }
+    pub fn normal(&self) -> DVec3 {
+        self.normal
+    }
+
+    /// The signed height of `origin` above the quad's plane, or `None` when `origin` lies in the plane
+    /// (to rounding: within 8 ulps of the distances involved), where the quad has no solid angle.
+    #[inline]
+    fn height(&self, origin: DVec3) -> Option<f64> {
+        let rel = origin - self.q;
+        let h = self.normal.dot(rel);
+        let scale =
+            rel.abs().max_element() + self.u.abs().max_element() + self.v.abs().max_element();
+        (h.abs() > 8.0 * f64::EPSILON * scale).then_some(h)
+    }
+
+    /// The spherical rectangle seen from `origin`, if this quad samples by them from there.
+    #[inline]
+    fn spherical_rectangle(&self, origin: DVec3) -> Option<warp::SphericalRectangle> {
+        if self.sampling != QuadSampling::SphericalRectangle {
+            return None;
+        }
+        let sr = warp::SphericalRectangle::new(origin, self.q, self.u, self.v)?;
+        let s = sr.solid_angle();
+        (MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE..=MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE)
+            .contains(&s)
+            .then_some(sr)
+    }
+
+    /// The distance `t` at which the ray `origin + t direction` (unit `direction`) meets the quad, or
+    /// `None` on a miss (and from an origin in the plane).
+    #[inline]
+    pub fn hit(&self, origin: DVec3, direction: DVec3) -> Option<f64> {
+        let h = self.height(origin)?;
+        let denom = self.normal.dot(direction);
+        let t = -h / denom;
+        if !(t > 0.0 && t.is_finite()) {
+            return None;
+        }
+        let p = origin + t * direction - self.q;
+        let a = self.w.dot(p.cross(self.v));
+        let b = self.w.dot(self.u.cross(p));
+        ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some(t)
+    }
+}
+
+// ANCHOR: quad_target
+impl Target for QuadTarget {
+    /// Area sampling: `d^2 / (|cos theta_light| A)` where the ray hits; spherical rectangles: `1 / S`
+    /// where it hits; 0 on a miss and from an origin in the quad's plane.
+    #[inline]
+    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
+        let Some(t) = self.hit(origin, direction) else {
+            return 0.0;
+        };
+        if let Some(sr) = self.spherical_rectangle(origin) {
+            return sr.pdf();
+        }
+        let cos_light = self.normal.dot(direction).abs();
+        let pdf = t * t / (cos_light * self.area);
+        if pdf.is_finite() { pdf } else { 0.0 }
+    }
+
+    #[inline]
+    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3 {
+        let u = random_unit_square(rng);
+        if let Some(sr) = self.spherical_rectangle(origin) {
+            return sr.sample_direction(u);
+        }
+        let p = warp::sample_parallelogram(u, self.q, self.u, self.v);
+        (p - origin).normalize_or(self.normal)
+    }
+}
+// ANCHOR_END: quad_target
