@@ -43,6 +43,21 @@ impl Estimate {
     pub fn ns_per_sample(&self) -> f64 {
         self.elapsed.as_secs_f64() * 1e9 / self.samples.max(1) as f64
     }
+
+    /// One line for the examples' output: the estimate beside the `exact` value, its standard error
+    /// and the time it took.
+    pub fn report(&self, label: &str, exact: f64) -> String {
+        let se = match self.std_error() {
+            Some(se) => format!("{se:.3e}"),
+            None => "n/a (1 unit)".to_string(),
+        };
+        format!(
+            "{label:<26} N = {:>9}  estimate = {:.9}  exact = {exact:.9}  std error = {se:>9}  time = {:.3} ms",
+            self.samples,
+            self.value(),
+            self.elapsed.as_secs_f64() * 1e3
+        )
+    }
 }
 
 /// `Ok(v)` if `v` is finite, otherwise the error naming the estimator and the point.

@@ -1,7 +1,7 @@
 //! Randomised quasi-Monte Carlo: the average of `f` over an Owen-scrambled Sobol point set.
 
 use crate::estimate::{finite, nonzero};
-use crate::sequence::scrambled_sobol;
+use crate::sequence::{ScrambledSobol2, scrambled_sobol};
 use crate::stratified::replicates_ok;
 use crate::{Estimate, Interval, McError, Rect, RunningStats};
 use rand::Rng;
@@ -72,9 +72,8 @@ where
     for _ in 0..replicates {
         let seed = rng.next_u64();
         let mut sum = 0.0;
-        for i in 0..points {
-            let i = i as u32;
-            let p = domain.lerp(scrambled_sobol(i, 0, seed), scrambled_sobol(i, 1, seed));
+        for [s, t] in ScrambledSobol2::new(seed).take(points as usize) {
+            let p = domain.lerp(s, t);
             sum += finite("sobol_2d", p, f(p))?;
         }
         stats.push(domain.area() * sum / points as f64);

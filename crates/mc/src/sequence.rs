@@ -66,6 +66,21 @@ fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The scramble seed of dimension `dim` for the sequence seed `seed`.
+#[inline]
+fn dimension_seed(seed: u64, dim: usize) -> u64 {
+    mix64(seed ^ mix64(dim as u64 + 1))
+}
+
+/// Owen-scrambles the 32-bit Sobol coordinate `bits` and extends it to an `f64` in `[0, 1)` with 21
+/// random low bits.
+#[inline]
+fn scrambled_unit(bits: u32, dim_seed: u64) -> f64 {
+    let high = owen_scramble(bits, dim_seed as u32);
+    let low = mix64(dim_seed ^ u64::from(high)) >> 43; // 21 bits
+    ((u64::from(high) << 21) | low) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
 // ANCHOR: scrambled_sobol
 /// Point `i` of an Owen-scrambled Sobol sequence in dimension `dim` (0 or 1), as an `f64` in `[0, 1)`.
 /// Each `seed` gives an independent scramble; the two dimensions of one seed are scrambled
@@ -80,9 +95,55 @@ fn mix64(mut z: u64) -> u64 {
 /// ```
 #[inline]
 pub fn scrambled_sobol(i: u32, dim: usize, seed: u64) -> f64 {
-    let dim_seed = mix64(seed ^ mix64(dim as u64 + 1));
-    let high = owen_scramble(sobol_bits(i, dim), dim_seed as u32);
-    let low = mix64(dim_seed ^ u64::from(high)) >> 43; // 21 bits
-    ((u64::from(high) << 21) | low) as f64 * (1.0 / (1u64 << 53) as f64)
+    scrambled_unit(sobol_bits(i, dim), dimension_seed(seed, dim))
 }
 // ANCHOR_END: scrambled_sobol
+
+/// The 2D scrambled Sobol points of one seed in Gray-code order (Antonov and Saleev 1979): point `k` is
+/// Sobol point `k ^ (k >> 1)`, so each step XORs in a single direction number instead of one per set
+/// bit. The first `2^m` points are the same set as in natural order, `2^32` points at most.
+///
+/// ```
+/// use rtl_mc::sequence::ScrambledSobol2;
+/// let points: Vec<[f64; 2]> = ScrambledSobol2::new(5).take(16).collect();
+/// assert!(points.iter().all(|p| (0.0..1.0).contains(&p[0]) && (0.0..1.0).contains(&p[1])));
+/// ```
+#[derive(Debug, Clone)]
+pub struct ScrambledSobol2 {
+    seeds: [u64; 2],
+    next: u64,
+    dim1: u32,
+}
+
+impl ScrambledSobol2 {
+    /// The sequence scrambled by `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self {
+            seeds: [dimension_seed(seed, 0), dimension_seed(seed, 1)],
+            next: 0,
+            dim1: 0,
+        }
+    }
+}
+
+impl Iterator for ScrambledSobol2 {
+    type Item = [f64; 2];
+
+    #[inline]
+    fn next(&mut self) -> Option<[f64; 2]> {
+        let k = self.next;
+        if k >= 1 << 32 {
+            return None;
+        }
+        if k > 0 {
+            // gray(k) = gray(k - 1) ^ 2^ctz(k)
+            self.dim1 ^= DIRECTIONS_1[k.trailing_zeros() as usize];
+        }
+        self.next += 1;
+        let gray = (k ^ (k >> 1)) as u32;
+        Some([
+            scrambled_unit(gray.reverse_bits(), self.seeds[0]),
+            scrambled_unit(self.dim1, self.seeds[1]),
+        ])
+    }
+}

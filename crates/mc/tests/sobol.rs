@@ -4,7 +4,7 @@
 mod common;
 
 use common::chi_square_p;
-use rtl_mc::sequence::{owen_scramble, scrambled_sobol, sobol_bits};
+use rtl_mc::sequence::{ScrambledSobol2, owen_scramble, scrambled_sobol, sobol_bits};
 
 /// Checks that points `start .. start + 2^m` put exactly one point in every elementary box of area
 /// `2^-m`, for every split `a + b = m` of the resolution between the axes.
@@ -107,4 +107,20 @@ fn scrambled_points_use_all_53_bits() {
         0,
         "the 21 low bits are random, not all zero (1 in 2^21 chance)"
     );
+}
+
+#[test]
+fn gray_code_order_gives_the_same_point_sets() {
+    for m in [0, 3, 8] {
+        let mut gray: Vec<[u64; 2]> = ScrambledSobol2::new(42)
+            .take(1 << m)
+            .map(|p| p.map(f64::to_bits))
+            .collect();
+        let mut natural: Vec<[u64; 2]> = (0..1u32 << m)
+            .map(|i| [scrambled_sobol(i, 0, 42), scrambled_sobol(i, 1, 42)].map(f64::to_bits))
+            .collect();
+        gray.sort();
+        natural.sort();
+        assert_eq!(gray, natural, "m {m}");
+    }
 }
