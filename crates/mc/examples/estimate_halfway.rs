@@ -12,7 +12,7 @@
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_mc::{Interval, RunningStats, plain};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 use std::time::Instant;
 
 fn f(x: f64) -> f64 {
