@@ -7,13 +7,15 @@
 //! `pdf(direction(x)) * |d omega / dx|`, by adaptive Gauss-Legendre quadrature that refines cells
 //! where the density jumps (at least 16 x 16 points a cell). Cells that the caller's support test
 //! says lie wholly outside the support expect exactly 0 samples, and a single sample there fails the
-//! test outright. Cells expecting fewer than 5 are pooled, and the statistic's p-value comes from the
-//! chi-square distribution (statrs). Callers reject below a Sidak-corrected significance level
-//! ([`sidak_alpha`]), so a run of many tests keeps an overall false-failure rate of `alpha`.
+//! test outright. The statistic itself, with cells expecting fewer than 5 pooled and the p-value from
+//! the chi-square distribution (statrs), is `rtl_sampling::chi_square`'s, shared by every crate.
+//! Callers reject below a Sidak-corrected significance level ([`sidak_alpha`]), so a run of many
+//! tests keeps an overall false-failure rate of `alpha`.
 
 use crate::{Onb, warp};
 use glam::{DVec2, DVec3};
-use statrs::distribution::{ChiSquared, ContinuousCDF};
+pub use rtl_sampling::chi_square::sidak_alpha;
+use rtl_sampling::chi_square::{ChiSquareError, chi_square};
 use std::f64::consts::{PI, TAU};
 use std::fmt;
 
@@ -152,8 +154,8 @@ pub struct Chi2Report {
     /// The sum of the expected counts over `N`: the pdf's integral over the domain (1 if the domain
     /// holds its whole support).
     pub expected_fraction: f64,
-    /// Cells (or pooled groups) that went into the statistic.
-    pub terms: usize,
+    /// How many cells went into the pool of small expectations.
+    pub pooled: usize,
 }
 
 /// Why a chi-square test failed outright, before any p-value.
@@ -172,6 +174,8 @@ pub enum Chi2Failure {
     NotUnit { direction: DVec3 },
     /// Too few cells with enough expectation to test anything.
     NoDegreesOfFreedom,
+    /// The counts were refused by the statistic (a bug in the caller).
+    Statistic(ChiSquareError),
 }
 
 impl fmt::Display for Chi2Failure {
@@ -181,12 +185,6 @@ impl fmt::Display for Chi2Failure {
 }
 
 impl std::error::Error for Chi2Failure {}
-
-/// `1 - (1 - alpha)^(1 / tests)`: the per-test level that keeps the chance of any false rejection in
-/// a run of `tests` independent tests at `alpha` (Sidak).
-pub fn sidak_alpha(alpha: f64, tests: usize) -> f64 {
-    1.0 - (1.0 - alpha).powf(1.0 / tests as f64)
-}
 
 // 4-point Gauss-Legendre nodes and weights on [-1, 1].
 const GL_X: [f64; 4] = [
@@ -209,8 +207,6 @@ pub struct ChiSquareTest {
     pub nx: usize,
     /// cells along y (cos theta, or t)
     pub ny: usize,
-    /// pool cells expecting fewer samples than this
-    pub min_expected: f64,
     /// every cell is split `2^min_depth` ways each way before adaptivity (2: 16 x 16 points a cell)
     pub min_depth: u32,
     /// deepest adaptive split
@@ -222,7 +218,6 @@ impl Default for ChiSquareTest {
         ChiSquareTest {
             nx: 20,
             ny: 20,
-            min_expected: 5.0,
             min_depth: 2,
             max_depth: 7,
         }
@@ -363,46 +358,26 @@ impl ChiSquareTest {
         self.statistic(&observed, &expected, n)
     }
 
-    /// The chi-square statistic of `observed` against `expected` counts, pooling small expectations
-    /// (Mitsuba's scheme: cells in increasing order of expectation are pooled while the pool expects
-    /// fewer than `min_expected`).
+    /// The statistic and p-value of `observed` against `expected` counts: the pooling and the
+    /// p-value are [`rtl_sampling::chi_square::chi_square`]'s (cells expecting fewer than 5 pooled,
+    /// smallest first, until the pool expects at least 5).
     pub fn statistic(
         &self,
         observed: &[u64],
         expected: &[f64],
         n: usize,
     ) -> Result<Chi2Report, Chi2Failure> {
-        let mut order: Vec<usize> = (0..expected.len()).filter(|&i| expected[i] > 0.0).collect();
-        order.sort_by(|&a, &b| expected[a].total_cmp(&expected[b]));
-        let (mut stat, mut terms) = (0.0, 0usize);
-        let (mut pool_obs, mut pool_exp) = (0.0, 0.0);
-        for &i in &order {
-            let (o, e) = (observed[i] as f64, expected[i]);
-            if e < self.min_expected || (pool_exp > 0.0 && pool_exp < self.min_expected) {
-                pool_obs += o;
-                pool_exp += e;
-            } else {
-                stat += (o - e) * (o - e) / e;
-                terms += 1;
-            }
-        }
-        if pool_exp > 0.0 {
-            stat += (pool_obs - pool_exp) * (pool_obs - pool_exp) / pool_exp;
-            terms += 1;
-        }
-        if terms < 2 {
-            return Err(Chi2Failure::NoDegreesOfFreedom);
-        }
-        let dof = terms - 1;
-        let p_value = ChiSquared::new(dof as f64)
-            .map(|c| c.sf(stat))
-            .unwrap_or(0.0);
+        let observed: Vec<f64> = observed.iter().map(|&o| o as f64).collect();
+        let result = chi_square(&observed, expected).map_err(|e| match e {
+            ChiSquareError::TooFewCells { .. } => Chi2Failure::NoDegreesOfFreedom,
+            other => Chi2Failure::Statistic(other),
+        })?;
         Ok(Chi2Report {
-            statistic: stat,
-            dof,
-            p_value,
+            statistic: result.statistic,
+            dof: result.dof,
+            p_value: result.p_value,
             expected_fraction: expected.iter().sum::<f64>() / n as f64,
-            terms,
+            pooled: result.pooled,
         })
     }
 }
@@ -418,7 +393,7 @@ mod tests {
             .statistic(&[50, 50, 3, 3], &[50.0, 50.0, 3.0, 3.0], 106)
             .unwrap();
         assert_eq!(r.statistic, 0.0);
-        assert_eq!(r.terms, 3); // two cells + one pool
+        assert_eq!((r.dof, r.pooled), (2, 2)); // two cells + one pool of two
         assert!((r.p_value - 1.0).abs() < 1e-12);
     }
 

@@ -1,0 +1,465 @@
+//! The hard cases of /work/shared/TESTING.md for directions, orthonormal bases, sphere and quad
+//! lights, the cosine and mixture pdfs, and light lists: each a named test.
+
+use glam::{DVec2, DVec3};
+use rand::{Rng, RngCore, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rtl_pdf::chi2::{ChiSquareTest, ParallelogramDomain};
+use rtl_pdf::warp;
+use rtl_pdf::{
+    CosinePdf, HemispherePdf, HittablePdf, MixtureError, MixturePdf, Onb, Pdf, QuadTarget,
+    Selection, SelectionError, SpherePdf, SphereTarget, Target,
+};
+use std::f64::consts::{PI, TAU};
+
+fn rng(seed: u64) -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(seed)
+}
+
+fn assert_unit(d: DVec3, what: &str) {
+    assert!(d.is_finite(), "{what}: {d} is not finite");
+    assert!(
+        (d.length() - 1.0).abs() < 1e-12,
+        "{what}: |{d}| = {}",
+        d.length()
+    );
+}
+
+/// A generator that always returns the same bits: all zeros gives `u = 0`, all ones `u = 1 - 2^-53`.
+struct ConstRng(u64);
+
+impl RngCore for ConstRng {
+    fn next_u32(&mut self) -> u32 {
+        self.0 as u32
+    }
+    fn next_u64(&mut self) -> u64 {
+        self.0
+    }
+    fn fill_bytes(&mut self, dst: &mut [u8]) {
+        dst.fill(self.0 as u8)
+    }
+}
+
+// ---------------------------------------------------------------- ONB
+
+fn assert_onb(w: DVec3) {
+    let b = Onb::new(w);
+    let (u, v, w) = (b.u(), b.v(), b.w());
+    for (name, x) in [("u", u), ("v", v), ("w", w)] {
+        assert!(
+            (x.length() - 1.0).abs() < 1e-12,
+            "onb of {w}: |{name}| = {}",
+            x.length()
+        );
+    }
+    assert!(
+        u.dot(v).abs() < 1e-12 && u.dot(w).abs() < 1e-12 && v.dot(w).abs() < 1e-12,
+        "onb of {w}: not orthogonal"
+    );
+    assert!(
+        (u.cross(v) - w).length() < 1e-12,
+        "onb of {w}: u x v = {} (left-handed?)",
+        u.cross(v)
+    );
+    let local = DVec3::new(0.3, -0.7, 0.2);
+    assert!(
+        (b.to_local(b.transform(local)) - local).length() < 1e-12,
+        "onb of {w}: to_local does not undo transform"
+    );
+}
+
+#[test]
+fn onb_on_the_six_axes() {
+    for w in [
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ] {
+        assert_onb(w);
+    }
+    // -0.0 in z picks the other branch of the sign
+    assert_onb(DVec3::new(1.0, 0.0, -0.0));
+    assert_onb(DVec3::new(0.0, -1.0, -0.0));
+}
+
+#[test]
+fn onb_nearly_minus_z_f32_case() {
+    // the case that breaks Frisvad's 2012 construction in f32 (Duff et al. 2017, figure 1)
+    assert_onb(DVec3::new(0.000_385_273_16, 0.000_384_600_16, -0.999_999_880_79).normalize());
+    assert_onb(DVec3::new(1e-9, -1e-9, -1.0).normalize());
+    assert_onb(DVec3::new(-1e-300, 0.0, 1.0).normalize());
+}
+
+#[test]
+fn onb_of_1000_random_directions() {
+    let mut r = rng(100);
+    for _ in 0..1000 {
+        assert_onb(warp::sample_uniform_sphere(DVec2::new(
+            r.random(),
+            r.random(),
+        )));
+    }
+}
+
+// ---------------------------------------------------------------- directions
+
+#[test]
+fn directions_sphere_and_cosine_pdfs_at_u_zero_and_u_max_are_unit() {
+    let n = DVec3::new(0.0, 0.6, -0.8);
+    for bits in [0u64, u64::MAX, 1, 1 << 11] {
+        let mut r = ConstRng(bits);
+        let what = format!("rng bits {bits:#x}");
+        assert_unit(SpherePdf.generate(&mut r), &format!("sphere, {what}"));
+        let d = HemispherePdf::new(n).generate(&mut r);
+        assert_unit(d, &format!("hemisphere, {what}"));
+        assert!(d.dot(n) >= -1e-15, "hemisphere below its horizon, {what}");
+        let d = CosinePdf::new(n).generate(&mut r);
+        assert_unit(d, &format!("cosine, {what}"));
+        assert!(d.dot(n) >= -1e-15, "cosine below its horizon, {what}");
+        let s = [SphereTarget::new(DVec3::new(0.0, 0.0, 1e9), 1.0)];
+        assert_unit(
+            HittablePdf::new(DVec3::ZERO, &s).unwrap().generate(&mut r),
+            &format!("far sphere cone, {what}"),
+        );
+    }
+}
+
+#[test]
+fn directions_tiny_inputs_never_underflow() {
+    // u just above 0 (tiny "rejection-sized" inputs) and the largest u below 1
+    let tiny = [f64::MIN_POSITIVE, 1e-300, 5e-324, 1e-17];
+    for &a in &tiny {
+        for u in [
+            DVec2::new(a, a),
+            DVec2::new(a, 0.5),
+            DVec2::new(0.5, a),
+            DVec2::new(1.0 - f64::EPSILON / 2.0, a),
+        ] {
+            assert_unit(warp::sample_uniform_sphere(u), "sphere");
+            let c = warp::sample_cosine_hemisphere(u);
+            assert_unit(c, "cosine");
+            assert!(c.z >= 0.0);
+            let h = warp::sample_uniform_hemisphere(u);
+            assert_unit(h, "hemisphere");
+            assert!(h.z >= 0.0);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- sphere light
+
+#[test]
+fn sphere_light_from_inside_on_and_just_above() {
+    let s = SphereTarget::new(DVec3::new(0.0, 0.0, 0.0), 1.0);
+    let cases = [
+        ("inside", DVec3::new(0.3, -0.2, 0.1)),
+        ("centre", DVec3::ZERO),
+        ("exactly on", DVec3::new(1.0, 0.0, 0.0)),
+        ("1e-4 above", DVec3::new(1.0 + 1e-4, 0.0, 0.0)),
+    ];
+    let mut r = rng(101);
+    for (name, o) in cases {
+        let n = 100_000;
+        let mut positive = 0;
+        for _ in 0..n {
+            let d = s.random(o, &mut r);
+            assert_unit(d, name);
+            let p = s.pdf_value(o, d);
+            assert!(p.is_finite() && p >= 0.0, "{name}: pdf {p}");
+            positive += (p > 0.0) as usize;
+        }
+        // fixed directions too, including away from the sphere
+        for d in [
+            DVec3::X,
+            -DVec3::X,
+            DVec3::Y,
+            DVec3::new(-1.0, 1.0, 0.0).normalize(),
+        ] {
+            let p = s.pdf_value(o, d);
+            assert!(p.is_finite() && p >= 0.0, "{name}: pdf {p} towards {d}");
+        }
+        assert!(
+            positive as f64 >= 0.999 * n as f64,
+            "{name}: only {positive} of {n} directions have pdf > 0"
+        );
+    }
+}
+
+#[test]
+fn sphere_light_far_away_solid_angle_without_cancellation() {
+    for d in [1e2f64, 1e4, 1e6, 1e9] {
+        let o = DVec3::new(0.3, -0.4, 0.0);
+        let s = SphereTarget::new(o + DVec3::new(0.0, 0.0, d), 1.0);
+        // exact: 2 pi (1 - sqrt(1 - x)), x = 1/d^2, by its series x/2 + x^2/8 + x^3/16 + 5 x^4 / 128
+        let x = 1.0 / (d * d);
+        let exact = TAU * (x / 2.0 + x * x / 8.0 + x * x * x / 16.0 + 5.0 * x.powi(4) / 128.0);
+        let got = s.solid_angle(o);
+        assert!(
+            ((got - exact) / exact).abs() < 1e-6,
+            "d = {d}: solid angle {got} vs {exact}"
+        );
+        // the naive formula cancels: at 1e9 it gives 0
+        if d >= 1e9 {
+            assert_eq!(TAU * (1.0 - (1.0 - x).sqrt()), 0.0);
+        }
+        let mut r = rng(102);
+        for _ in 0..1000 {
+            let dir = s.random(o, &mut r);
+            assert_unit(dir, "far sphere");
+            let p = s.pdf_value(o, dir);
+            assert!(p.is_finite() && p > 0.0, "d = {d}: pdf {p}");
+            assert!(((p - 1.0 / exact) * exact).abs() < 1e-6);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- quad light
+
+fn unit_quad() -> QuadTarget {
+    QuadTarget::new(
+        DVec3::new(-1.0, -1.0, 0.0),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(0.0, 2.0, 0.0),
+    )
+}
+
+#[test]
+fn quad_light_origin_in_the_plane_is_a_miss() {
+    let mut r = rng(103);
+    for spherical in [false, true] {
+        let quad = unit_quad().with_spherical_rectangles(spherical);
+        for o in [
+            DVec3::new(3.0, 0.2, 0.0),
+            DVec3::new(0.3, 0.2, 0.0),
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1e6, 0.0, 0.0),
+        ] {
+            for target in [
+                DVec3::ZERO,
+                DVec3::new(0.9, 0.9, 0.0),
+                DVec3::new(-0.5, 0.7, 0.0),
+            ] {
+                let d = (target - o).normalize_or(DVec3::X);
+                assert_eq!(quad.pdf_value(o, d), 0.0, "from {o} towards {target}");
+            }
+            for _ in 0..1000 {
+                let d = quad.random(o, &mut r);
+                assert!(d.is_finite(), "from {o}: {d}");
+                assert_eq!(quad.pdf_value(o, d), 0.0, "from {o} along {d}");
+            }
+        }
+    }
+}
+
+#[test]
+fn quad_light_1e_9_above_the_plane_is_finite() {
+    let mut r = rng(104);
+    for spherical in [false, true] {
+        let quad = unit_quad().with_spherical_rectangles(spherical);
+        for o in [
+            DVec3::new(3.0, 0.2, 1e-9),
+            DVec3::new(0.3, 0.2, 1e-9),
+            DVec3::new(0.3, 0.2, -1e-9),
+        ] {
+            let to_centre = (DVec3::ZERO - o).normalize();
+            let p = quad.pdf_value(o, to_centre);
+            assert!(
+                p.is_finite() && p > 0.0,
+                "from {o}: pdf {p} towards the centre"
+            );
+            for _ in 0..1000 {
+                let d = quad.random(o, &mut r);
+                assert_unit(d, "just above a quad");
+                let p = quad.pdf_value(o, d);
+                assert!(p.is_finite() && p >= 0.0, "from {o}: pdf {p}");
+            }
+        }
+    }
+}
+
+#[test]
+fn quad_light_spherical_rectangles_only_for_rectangles() {
+    let slanted = QuadTarget::new(DVec3::ZERO, DVec3::X, DVec3::new(0.5, 1.0, 0.0))
+        .with_spherical_rectangles(true);
+    assert_eq!(slanted.sampling(), rtl_pdf::QuadSampling::Area);
+    assert_eq!(
+        unit_quad().with_spherical_rectangles(true).sampling(),
+        rtl_pdf::QuadSampling::SphericalRectangle
+    );
+}
+
+#[test]
+fn quad_light_degenerate_quad_is_never_hit() {
+    let q = QuadTarget::new(DVec3::ZERO, DVec3::X, DVec3::X * 2.0);
+    let mut r = rng(105);
+    let o = DVec3::new(0.0, 0.0, 1.0);
+    assert_eq!(q.pdf_value(o, -DVec3::Z), 0.0);
+    assert!(q.random(o, &mut r).is_finite());
+}
+
+// ---------------------------------------------------------------- cosine pdf
+
+#[test]
+fn cosine_pdf_is_exactly_zero_below_the_horizon_and_finite_when_grazing() {
+    let n = DVec3::new(0.0, 0.6, 0.8);
+    let pdf = CosinePdf::new(n);
+    let b = Onb::new(n);
+    for cos in [-1.0f64, -0.5, -1e-12, -1e-300, -0.0, 0.0] {
+        let sin = (1.0 - cos * cos).sqrt();
+        let d = b.transform(DVec3::new(sin, 0.0, cos));
+        let v = pdf.value(d);
+        if d.dot(n) <= 0.0 {
+            assert_eq!(v, 0.0, "cos = {cos}: value {v}");
+        }
+        assert!(v >= 0.0);
+    }
+    // grazing but above: a Lambertian's f cos / p is the albedo, finite
+    for cos in [1e-300f64, 1e-100, 1e-12, 1e-6] {
+        let sin = (1.0 - cos * cos).sqrt();
+        let d = b.transform(DVec3::new(sin, 0.0, cos));
+        let (v, c) = (pdf.value(d), d.dot(n));
+        if c > 0.0 {
+            let ratio = (0.5 / PI) * c / v;
+            assert!(
+                v > 0.0 && ratio.is_finite() && (ratio - 0.5).abs() < 1e-9,
+                "cos = {cos}: f cos/p = {ratio}"
+            );
+        } else {
+            assert_eq!(v, 0.0);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- mixture pdf
+
+#[test]
+fn mixture_value_is_the_weighted_sum_for_any_weight() {
+    let (a, b) = (CosinePdf::new(DVec3::Z), SpherePdf);
+    let mut r = rng(106);
+    for w in [0.0, 1e-12, 0.25, 0.5, 0.9, 1.0] {
+        let m = MixturePdf::with_weight(a, b, w).unwrap();
+        for _ in 0..200 {
+            let d = warp::sample_uniform_sphere(DVec2::new(r.random(), r.random()));
+            let expected = w * a.value(d) + (1.0 - w) * b.value(d);
+            assert!(
+                (m.value(d) - expected).abs() <= 1e-15 * expected.max(1.0),
+                "w = {w}"
+            );
+        }
+        // weight 1: only `a` is sampled, so every direction is above a's horizon
+        if w == 1.0 {
+            for _ in 0..1000 {
+                assert!(m.generate(&mut r).z >= 0.0);
+            }
+        }
+    }
+    assert!(
+        (MixturePdf::new(a, b).weight() - 0.5).abs() == 0.0,
+        "the book's default is 50/50"
+    );
+    for bad in [-0.1, 1.5, f64::NAN] {
+        assert!(matches!(
+            MixturePdf::with_weight(a, b, bad),
+            Err(MixtureError::BadWeight(_))
+        ));
+    }
+}
+
+#[test]
+fn mixture_of_a_part_with_weight_zero_never_evaluates_it() {
+    // a part whose value is NaN must not poison a mixture that never samples it
+    struct Broken;
+    impl Pdf for Broken {
+        fn value(&self, _: DVec3) -> f64 {
+            f64::NAN
+        }
+        fn generate<R: Rng + ?Sized>(&self, _: &mut R) -> DVec3 {
+            DVec3::X
+        }
+    }
+    let m = MixturePdf::with_weight(Broken, SpherePdf, 0.0).unwrap();
+    assert_eq!(m.value(DVec3::Z), 1.0 / (4.0 * PI));
+}
+
+// ---------------------------------------------------------------- light list
+
+#[test]
+fn light_list_empty_is_a_clear_none_or_error() {
+    let none: [QuadTarget; 0] = [];
+    assert!(HittablePdf::new(DVec3::ZERO, &none).is_none());
+    let table = Selection::uniform(1).unwrap();
+    assert_eq!(
+        HittablePdf::with_selection(DVec3::ZERO, &none, &table).err(),
+        Some(SelectionError::Empty)
+    );
+    assert_eq!(Selection::uniform(0).err(), Some(SelectionError::Empty));
+    let one = [unit_quad()];
+    let two = Selection::uniform(2).unwrap();
+    assert_eq!(
+        HittablePdf::with_selection(DVec3::Z, &one, &two).err(),
+        Some(SelectionError::LengthMismatch { table: 2, parts: 1 })
+    );
+}
+
+fn two_quads() -> [QuadTarget; 2] {
+    [
+        QuadTarget::new(
+            DVec3::new(-1.9, -0.83, 1.0),
+            DVec3::new(1.3, 0.0, 0.0),
+            DVec3::new(0.0, 0.9, 0.0),
+        ),
+        QuadTarget::new(
+            DVec3::new(0.55, -0.4, 1.0),
+            DVec3::new(1.1, 0.0, 0.0),
+            DVec3::new(0.0, 1.7, 0.0),
+        ),
+    ]
+}
+
+#[test]
+fn light_list_two_disjoint_quads_value_is_weighted_and_integrates_to_one() {
+    let lights = two_quads();
+    let origin = DVec3::new(0.1, 0.2, 0.0);
+    let table = Selection::from_weights(&[1.0, 3.0]).unwrap();
+    let weighted = HittablePdf::with_selection(origin, &lights, &table).unwrap();
+    let uniform = HittablePdf::new(origin, &lights).unwrap();
+    let mut r = rng(107);
+    for _ in 0..2000 {
+        let d = weighted.generate(&mut r);
+        assert_unit(d, "two quads");
+        let (v0, v1) = (
+            lights[0].pdf_value(origin, d),
+            lights[1].pdf_value(origin, d),
+        );
+        assert!(v0 == 0.0 || v1 == 0.0, "disjoint quads: one of them is hit");
+        assert!((weighted.value(d) - (0.25 * v0 + 0.75 * v1)).abs() <= 1e-15 * weighted.value(d));
+        assert!((uniform.value(d) - (0.5 * v0 + 0.5 * v1)).abs() <= 1e-15 * uniform.value(d));
+        assert!(weighted.value(d) > 0.0);
+    }
+    // the integral over all directions is the sum of the integrals over the directions through each
+    // quad (they are disjoint, and the density is 0 elsewhere), by quadrature over each quad's (s, t)
+    for (name, pdf) in [("weighted", weighted), ("uniform", uniform)] {
+        let total: f64 = lights
+            .iter()
+            .map(|l| {
+                let domain = ParallelogramDomain {
+                    origin,
+                    q: l.q(),
+                    e1: l.u(),
+                    e2: l.v(),
+                };
+                let cells = ChiSquareTest::new(8, 8).expected(
+                    &domain,
+                    |d| pdf.value(d),
+                    |_, _| true,
+                    1_000_000,
+                );
+                cells.unwrap().iter().sum::<f64>()
+            })
+            .sum();
+        assert!((total - 1.0).abs() < 1e-9, "{name}: integrates to {total}");
+    }
+}
