@@ -64,8 +64,8 @@ impl CdfTable {
                 weights.len()
             )));
         }
-        if let Some(i) =
-            (0..weights.len()).find(|&i| !(edges[i] < edges[i + 1]) || !edges[i + 1].is_finite())
+        if let Some(i) = (0..weights.len())
+            .find(|&i| edges[i].is_nan() || edges[i] >= edges[i + 1] || !edges[i + 1].is_finite())
         {
             return Err(CdfError::BadEdges(format!(
                 "edges {i} and {} are not finite and increasing",

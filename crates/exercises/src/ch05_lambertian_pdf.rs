@@ -56,7 +56,7 @@ pub fn check_normalised(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
         for _ in 0..100_000 {
             let d = check::uniform_direction(&mut rng);
             let s = pdf(normal, d);
-            if !(s >= 0.0) {
+            if s.is_nan() || s < 0.0 {
                 return Err(format!(
                     "lambertian_scattering_pdf({normal}, {d}) = {s}, must be >= 0"
                 ));

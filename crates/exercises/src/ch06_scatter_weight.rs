@@ -19,7 +19,7 @@
 
 use crate::check::{self, CheckResult};
 use glam::DVec3;
-use rand::{Rng, RngCore};
+use rand::Rng;
 use std::f64::consts::PI;
 
 /// L_e + A s L_i / p, or `emitted` alone when the densities make the ratio meaningless or infinite.

@@ -47,7 +47,7 @@ pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
         for u2 in [0.0, 0.5, U_MAX] {
             let d = sample(u1, u2);
             check::unit(&format!("random_cosine_direction({u1}, {u2})"), d)?;
-            if !(d.z >= 0.0) {
+            if d.z.is_nan() || d.z < 0.0 {
                 return Err(format!(
                     "random_cosine_direction({u1}, {u2}) = {d} is below the horizon"
                 ));
@@ -89,7 +89,7 @@ pub fn check_pdf(pdf: impl Fn(f64) -> f64) -> CheckResult {
         (-1.0, 0.0),
     ] {
         let got = pdf(c);
-        if !(got >= 0.0) {
+        if got.is_nan() || got < 0.0 {
             return Err(format!(
                 "cosine_pdf_value({c}) = {got}; a density is never negative or NaN"
             ));

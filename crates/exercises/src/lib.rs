@@ -29,6 +29,9 @@ pub mod ch06_scatter_weight;
 pub mod ch07_cosine_direction;
 pub mod ch08_onb;
 pub mod ch09_quad_pdf_value;
+pub mod ch10_mixture_pdf;
+pub mod ch12_nan_guard;
+pub mod ch12_sphere_pdf_value;
 
 /// One exercise: its module, the book's chapter and section that explain it, and its checks.
 #[derive(Clone, Copy, Debug)]
@@ -98,4 +101,53 @@ pub const EXERCISES: &[Exercise] = &[
         chapter: "9 Sampling Lights Directly: Getting the PDF of a Light",
         check: ch09_quad_pdf_value::check,
     },
+    Exercise {
+        name: "ch10_mixture_pdf",
+        chapter: "10 Mixture Densities: The Mixture PDF Class",
+        check: ch10_mixture_pdf::check,
+    },
+    Exercise {
+        name: "ch12_sphere_pdf_value",
+        chapter: "12 Cleaning Up PDF Management: Sampling a Sphere Object",
+        check: ch12_sphere_pdf_value::check,
+    },
+    Exercise {
+        name: "ch12_nan_guard",
+        chapter: "12 Cleaning Up PDF Management: Handling Surface Acne",
+        check: ch12_nan_guard::check,
+    },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::EXERCISES;
+
+    #[test]
+    fn every_exercise_file_is_listed_once_and_every_listed_exercise_has_a_file() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src");
+        let mut files: Vec<String> = std::fs::read_dir(dir)
+            .expect("src is readable")
+            .filter_map(|e| e.ok()?.file_name().into_string().ok())
+            .filter(|n| {
+                n.starts_with("ch")
+                    && n[2..].starts_with(|c: char| c.is_ascii_digit())
+                    && n.ends_with(".rs")
+            })
+            .map(|n| n.trim_end_matches(".rs").to_string())
+            .collect();
+        files.sort();
+        let mut listed: Vec<String> = EXERCISES.iter().map(|e| e.name.to_string()).collect();
+        listed.sort();
+        assert_eq!(files, listed);
+        assert!(EXERCISES.len() >= 12);
+        for e in EXERCISES {
+            let chapter: u32 = e.name[2..4].parse().expect("chNN_ names");
+            assert!(
+                e.chapter.starts_with(&format!("{chapter} ")),
+                "{} is explained in {}",
+                e.name,
+                e.chapter
+            );
+        }
+    }
+}

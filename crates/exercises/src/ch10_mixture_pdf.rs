@@ -1,0 +1,258 @@
+//! # Chapter 10, "Mixture Densities": a mixture pdf whose value is what it generates
+//!
+//! A [`Pdf`] over directions has two halves that must agree: `generate` draws a direction, `value`
+//! says with what density (w.r.t. solid angle). The mixture of densities a and b with weight w,
+//!
+//! p(d) = w a(d) + (1 - w) b(d),
+//!
+//! is sampled by choosing a with probability w (else b) and returning that part's direction.
+//!
+//! **Task.** Implement [`Pdf`] for [`MixturePdf`]: `value` returns the weighted sum, `generate` picks
+//! a part with probability `weight_a` and delegates to it. Weights of exactly 0 or 1 must work (the
+//! unchosen part is then never sampled).
+//!
+//! The check: `value` equals w a + (1 - w) b at 1000 random directions (to rounding), for weights 0,
+//! 0.3, 1; and, for the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
+//! cosine-plus-light mixture), a chi-square test of 1e5 generated directions in 16 x 25 (phi, z) cells
+//! against `n` times the integral of the mixture's own `value` over each cell: whatever `generate`
+//! samples, `value` must be its density.
+
+use crate::check::{self, CheckResult, SphereBins};
+use glam::DVec3;
+use rand::{Rng, RngCore};
+use std::f64::consts::{FRAC_1_PI, PI};
+
+/// A density over directions (per steradian), with a sampler of it.
+pub trait Pdf {
+    /// The density of `direction` (unit) w.r.t. solid angle; never negative.
+    fn value(&self, direction: DVec3) -> f64;
+    /// A unit direction drawn with density [`Pdf::value`].
+    fn generate(&self, rng: &mut dyn RngCore) -> DVec3;
+}
+
+/// The cosine density max(0, z) / pi around +z (given).
+#[derive(Clone, Copy, Debug)]
+pub struct CosinePdf;
+
+impl Pdf for CosinePdf {
+    fn value(&self, d: DVec3) -> f64 {
+        d.z.max(0.0) * FRAC_1_PI
+    }
+    fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+        let (u1, u2): (f64, f64) = (rng.random(), rng.random());
+        let phi = 2.0 * PI * u1;
+        DVec3::new(
+            phi.cos() * u2.sqrt(),
+            phi.sin() * u2.sqrt(),
+            (1.0 - u2).sqrt(),
+        )
+    }
+}
+
+/// The uniform density 1 / (2 pi (1 - cos_max)) on the cone z >= cos_max around +z (given), like
+/// the directions towards a sphere light.
+#[derive(Clone, Copy, Debug)]
+pub struct ConePdf {
+    pub cos_max: f64,
+}
+
+impl Pdf for ConePdf {
+    fn value(&self, d: DVec3) -> f64 {
+        if d.z >= self.cos_max {
+            1.0 / (2.0 * PI * (1.0 - self.cos_max))
+        } else {
+            0.0
+        }
+    }
+    fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+        let (u1, u2): (f64, f64) = (rng.random(), rng.random());
+        let z = 1.0 - u2 * (1.0 - self.cos_max);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = 2.0 * PI * u1;
+        DVec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+/// The mixture `weight_a` a + (1 - `weight_a`) b of two densities, `weight_a` in [0, 1].
+#[derive(Clone, Copy, Debug)]
+pub struct MixturePdf<A, B> {
+    pub a: A,
+    pub b: B,
+    pub weight_a: f64,
+}
+
+impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
+    fn value(&self, direction: DVec3) -> f64 {
+        #[cfg(feature = "solutions")]
+        return solution::value(self, direction);
+        #[cfg(not(feature = "solutions"))]
+        {
+            let _ = direction;
+            todo!("ch10 MixturePdf::value: w a(d) + (1 - w) b(d)")
+        }
+    }
+
+    fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+        #[cfg(feature = "solutions")]
+        return solution::generate(self, rng);
+        #[cfg(not(feature = "solutions"))]
+        {
+            let _ = rng;
+            todo!("ch10 MixturePdf::generate: a's direction with probability w, else b's")
+        }
+    }
+}
+
+/// The cone of the checks: z >= 0.84, a cell edge of the chi-square binning.
+const CONE: ConePdf = ConePdf { cos_max: 0.84 };
+
+/// `value` equals the weighted sum of the parts' values at 1000 random directions.
+pub fn check_value<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckResult {
+    let mut rng = check::seeded(100);
+    for w in [0.0, 0.3, 1.0] {
+        let m = mix(CosinePdf, CONE, w);
+        for k in 0..1000 {
+            // Half the directions inside the cone, where both parts are positive.
+            let d = if k % 2 == 0 {
+                check::uniform_direction(&mut rng)
+            } else {
+                CONE.generate(&mut rng)
+            };
+            let want = w * CosinePdf.value(d) + (1.0 - w) * CONE.value(d);
+            let got = m.value(d);
+            if (got.is_nan() || got < 0.0) || (got - want).abs() > 1e-14 * want.max(1.0) {
+                return Err(format!(
+                    "MixturePdf(weight {w}).value({d}) = {got}, expected {want}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Chi-square: 1e5 generated directions against the mixture's own `value`, for weights 0.3 and 0.
+pub fn check_generate<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckResult {
+    // 25 rings of z: the cone's edge 0.84 is a ring edge; the horizon z = 0 lies inside a ring, where
+    // the cosine lobe is continuous.
+    let bins = SphereBins {
+        n_phi: 16,
+        n_z: 25,
+        z_min: -1.0,
+        z_max: 1.0,
+    };
+    let n = 100_000;
+    let mut rng = check::seeded(101);
+    for w in [0.3, 0.0] {
+        let m = mix(CosinePdf, CONE, w);
+        let mut dirs = Vec::with_capacity(n);
+        for _ in 0..n {
+            let d = m.generate(&mut rng);
+            check::unit(&format!("MixturePdf(weight {w}).generate()"), d)?;
+            dirs.push(d);
+        }
+        let what = format!("MixturePdf(weight {w}): generate against value");
+        let observed = bins.histogram(&what, dirs)?;
+        // The support, decided analytically: the cosine lobe covers z > 0, the cone z >= 0.84.
+        let support =
+            |_z_lo: f64, z_hi: f64| (w > 0.0 && z_hi > 0.0) || (w < 1.0 && z_hi > CONE.cos_max);
+        let expected = bins.expected(n, |d| m.value(d), support, 16);
+        check::chi_square(&what, &observed, &expected)?;
+    }
+    Ok(())
+}
+
+/// All of this exercise's checks.
+pub fn check_mixture<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckResult {
+    check_value(&mix)?;
+    check_generate(&mix)
+}
+
+fn learner(a: CosinePdf, b: ConePdf, weight_a: f64) -> MixturePdf<CosinePdf, ConePdf> {
+    MixturePdf { a, b, weight_a }
+}
+
+/// This exercise's checks, run on your [`MixturePdf`].
+pub fn check() -> CheckResult {
+    check_mixture(learner)
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use super::{MixturePdf, Pdf};
+    use glam::DVec3;
+    use rand::{Rng, RngCore};
+
+    pub fn value<A: Pdf, B: Pdf>(m: &MixturePdf<A, B>, d: DVec3) -> f64 {
+        m.weight_a * m.a.value(d) + (1.0 - m.weight_a) * m.b.value(d)
+    }
+
+    pub fn generate<A: Pdf, B: Pdf>(m: &MixturePdf<A, B>, rng: &mut dyn RngCore) -> DVec3 {
+        // u < w is never true for w = 0 and always for w = 1, as u lies in [0, 1).
+        if rng.random::<f64>() < m.weight_a {
+            m.a.generate(rng)
+        } else {
+            m.b.generate(rng)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn value_is_the_weighted_sum_of_the_parts() {
+        check_value(learner).unwrap();
+    }
+
+    #[test]
+    fn generate_samples_the_density_value_returns() {
+        check_generate(learner).unwrap();
+    }
+
+    /// A mixture that samples with one weight and values with another.
+    struct Inconsistent {
+        sample_weight: f64,
+        value_weight: f64,
+    }
+
+    impl Pdf for Inconsistent {
+        fn value(&self, d: DVec3) -> f64 {
+            self.value_weight * CosinePdf.value(d) + (1.0 - self.value_weight) * CONE.value(d)
+        }
+        fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+            if rng.random::<f64>() < self.sample_weight {
+                CosinePdf.generate(rng)
+            } else {
+                CONE.generate(rng)
+            }
+        }
+    }
+
+    #[test]
+    fn checks_accept_a_consistent_mixture_of_the_given_parts() {
+        let consistent = |_: CosinePdf, _: ConePdf, w: f64| Inconsistent {
+            sample_weight: w,
+            value_weight: w,
+        };
+        check_mixture(consistent).unwrap();
+    }
+
+    #[test]
+    fn checks_reject_a_mixture_whose_value_is_not_what_it_samples() {
+        // Wrong: picks a with probability 1 - w (weights swapped in generate).
+        let swapped = |_: CosinePdf, _: ConePdf, w: f64| Inconsistent {
+            sample_weight: 1.0 - w,
+            value_weight: w,
+        };
+        assert!(check_value(swapped).is_ok(), "value alone is right");
+        assert!(check_generate(swapped).is_err());
+        // Wrong: the book's 50/50 value whatever the weight.
+        let half = |_: CosinePdf, _: ConePdf, w: f64| Inconsistent {
+            sample_weight: w,
+            value_weight: 0.5,
+        };
+        assert!(check_value(half).is_err());
+        assert!(check_generate(half).is_err());
+    }
+}

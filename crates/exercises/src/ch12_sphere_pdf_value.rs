@@ -1,0 +1,327 @@
+//! # Chapter 12, "Sampling a Sphere Object": the pdf of directions towards a sphere light
+//!
+//! From a point at distance d from the centre of a sphere of radius r < d, the sphere fills a cone of
+//! half-angle theta_max with sin^2 theta_max = r^2 / d^2. Sampling directions uniformly in that cone
+//! gives the density 1 / Omega w.r.t. solid angle, with the cone's solid angle
+//!
+//! Omega = 2 pi (1 - cos theta_max).
+//!
+//! Computed as written this cancels catastrophically for a small or distant sphere: at d = 1e9 r,
+//! cos theta_max = sqrt(1 - 1e-18) rounds to exactly 1, Omega to 0 and the pdf to infinity. Multiply
+//! by (1 + cos)/(1 + cos) instead: Omega = 2 pi sin^2 theta_max / (1 + cos theta_max), with no
+//! subtraction of nearly equal numbers.
+//!
+//! **Task.** Write [`sphere_solid_angle`] (that formula for d > r; the whole sphere, 4 pi, when the
+//! point is inside or on the sphere, d <= r) and [`sphere_pdf_value`]: the density 1 / Omega for a
+//! unit direction whose ray from the origin hits the sphere (t > 0), 0 for one that misses; from
+//! inside or on the sphere every direction counts and the density is 1 / (4 pi) (uniform directions).
+//!
+//! The check: the solid angle at distances 1e2 .. 1e9 within 1e-6 relative of a series expansion,
+//! finite positive pdfs far away, inside, on and 1e-4 above the sphere, 0 on a miss, a positive pdf
+//! for at least 99.9% of the directions drawn in the cone from just above, and a z-test that the
+//! density integrates to 1 over the sphere (E[4 pi p] = 1 over uniform directions).
+
+use crate::check::{self, CheckResult};
+use glam::DVec3;
+use rand::Rng;
+use std::f64::consts::PI;
+
+/// The solid angle of a sphere of `radius` seen from `distance` from its centre: 4 pi when
+/// `distance <= radius`, else 2 pi sin^2 theta_max / (1 + cos theta_max), sin^2 = r^2 / d^2.
+pub fn sphere_solid_angle(radius: f64, distance: f64) -> f64 {
+    #[cfg(feature = "solutions")]
+    return solution::sphere_solid_angle(radius, distance);
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = (radius, distance);
+        todo!("ch12 sphere_solid_angle: 2 pi sin^2 / (1 + cos) outside, 4 pi inside")
+    }
+}
+
+/// The density w.r.t. solid angle of the unit `direction` from `origin` towards the sphere
+/// (`center`, `radius`): 1 / [`sphere_solid_angle`] if the ray hits it, else 0.
+pub fn sphere_pdf_value(center: DVec3, radius: f64, origin: DVec3, direction: DVec3) -> f64 {
+    #[cfg(feature = "solutions")]
+    return solution::sphere_pdf_value(center, radius, origin, direction);
+    #[cfg(not(feature = "solutions"))]
+    {
+        let _ = (center, radius, origin, direction);
+        todo!("ch12 sphere_pdf_value: 1 / solid angle on a hit, 0 on a miss")
+    }
+}
+
+/// 1 - sqrt(1 - x) by its series x/2 + x^2/8 + x^3/16 + 5x^4/128 + 7x^5/256 (x <= 1e-4: error < 1e-22).
+fn one_minus_sqrt_series(x: f64) -> f64 {
+    x / 2.0 + x * x / 8.0 + x.powi(3) / 16.0 + 5.0 * x.powi(4) / 128.0 + 7.0 * x.powi(5) / 256.0
+}
+
+/// The solid angle of the unit sphere from distance `d` > 1: by the series far away, where it is
+/// exact, and by the direct formula nearby, where it does not cancel badly.
+fn exact_solid_angle(d: f64) -> f64 {
+    let x = 1.0 / (d * d);
+    2.0 * PI
+        * if x <= 1e-4 {
+            one_minus_sqrt_series(x)
+        } else {
+            1.0 - (1.0 - x).sqrt()
+        }
+}
+
+/// Solid angles: far away (against the series), nearby (against the direct formula), inside and on.
+pub fn check_solid_angle(omega: impl Fn(f64, f64) -> f64) -> CheckResult {
+    for d in [1e2, 1e4, 1e6, 1e9] {
+        let want = exact_solid_angle(d);
+        check::close(
+            &format!("sphere_solid_angle(1, {d:e})"),
+            omega(1.0, d),
+            want,
+            1e-6,
+        )?;
+        // The same geometry scaled: radius 1e-3 at distance 1e-3 d.
+        check::close(
+            &format!("sphere_solid_angle(1e-3, {:e})", d * 1e-3),
+            omega(1e-3, d * 1e-3),
+            want,
+            1e-6,
+        )?;
+    }
+    for d in [2.0, 1.0 + 1e-4] {
+        check::close(
+            &format!("sphere_solid_angle(1, {d})"),
+            omega(1.0, d),
+            exact_solid_angle(d),
+            1e-12,
+        )?;
+    }
+    for (what, d) in [
+        ("inside", 0.5),
+        ("at the centre", 0.0),
+        ("on the sphere", 1.0),
+    ] {
+        check::close(
+            &format!("sphere_solid_angle {what}"),
+            omega(1.0, d),
+            4.0 * PI,
+            1e-15,
+        )?;
+    }
+    Ok(())
+}
+
+/// The function under test.
+pub trait SpherePdf: Fn(DVec3, f64, DVec3, DVec3) -> f64 {}
+impl<F: Fn(DVec3, f64, DVec3, DVec3) -> f64> SpherePdf for F {}
+
+/// A direction uniform in the cone from `origin` around the centre, of half-angle theta_max (the
+/// sampler a sphere light uses; the check's own).
+fn cone_direction(center: DVec3, radius: f64, origin: DVec3, rng: &mut impl Rng) -> DVec3 {
+    let axis = center - origin;
+    let dist = axis.length();
+    let sin2 = (radius / dist).powi(2);
+    let cos_max = (1.0 - sin2).max(0.0).sqrt();
+    let z = 1.0 - rng.random::<f64>() * (1.0 - cos_max);
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * rng.random::<f64>();
+    let w = axis / dist;
+    let (u, v) = w.any_orthonormal_pair();
+    (r * phi.cos() * u + r * phi.sin() * v + z * w).normalize()
+}
+
+/// Hard cases: hits far away, misses, inside, on and just above the sphere.
+pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
+    let c = DVec3::new(0.0, 0.0, 0.0);
+    for d in [3.0, 1e2, 1e4, 1e6, 1e9] {
+        let origin = DVec3::new(0.0, 0.0, -d);
+        let got = pdf(c, 1.0, origin, DVec3::Z);
+        let want = 1.0 / exact_solid_angle(d);
+        check::close(
+            &format!("sphere_pdf_value towards the centre from {d:e}"),
+            got,
+            want,
+            1e-6,
+        )?;
+        let miss = pdf(c, 1.0, origin, DVec3::new(0.0, 0.8, 0.6));
+        let behind = pdf(c, 1.0, origin, -DVec3::Z);
+        if miss != 0.0 || behind != 0.0 {
+            return Err(format!(
+                "sphere_pdf_value from {d:e}: a miss gave {miss}, pointing away {behind}; expected 0"
+            ));
+        }
+    }
+    let mut rng = check::seeded(120);
+    for (what, origin) in [("inside", DVec3::new(0.2, -0.3, 0.1)), ("at the centre", c)] {
+        for _ in 0..100 {
+            let d = check::uniform_direction(&mut rng);
+            let got = pdf(c, 1.0, origin, d);
+            check::close(
+                &format!("sphere_pdf_value from {what} the sphere, towards {d}"),
+                got,
+                1.0 / (4.0 * PI),
+                1e-15,
+            )?;
+        }
+    }
+    // On the sphere (to rounding: |origin| may be 1 +- 1 ulp): finite and >= 0 whichever side.
+    for origin in [
+        DVec3::Z,
+        DVec3::new(0.0, 0.6, 0.8),
+        DVec3::new(0.48, 0.6, 0.64),
+    ] {
+        for _ in 0..100 {
+            let d = check::uniform_direction(&mut rng);
+            let p = pdf(c, 1.0, origin, d);
+            if !(p.is_finite() && p >= 0.0) {
+                return Err(format!(
+                    "sphere_pdf_value from {origin} on the sphere towards {d} = {p}"
+                ));
+            }
+        }
+    }
+    // From 1e-4 above the surface: finite, and > 0 for >= 99.9% of the directions in the cone.
+    let origin = DVec3::new(0.0, 0.0, 1.0 + 1e-4);
+    let mut positive = 0;
+    for _ in 0..10_000 {
+        let d = cone_direction(c, 1.0, origin, &mut rng);
+        let p = pdf(c, 1.0, origin, d);
+        if !(p.is_finite() && p >= 0.0) {
+            return Err(format!(
+                "sphere_pdf_value from 1e-4 above the sphere towards {d} = {p}"
+            ));
+        }
+        positive += usize::from(p > 0.0);
+    }
+    if positive < 9990 {
+        return Err(format!(
+            "sphere_pdf_value from 1e-4 above: only {positive} of 10000 directions in the cone hit"
+        ));
+    }
+    Ok(())
+}
+
+/// E[4 pi p] = 1 over 1e5 uniform directions, from outside (z-test) and inside (exactly).
+pub fn check_normalised(pdf: impl SpherePdf) -> CheckResult {
+    let mut rng = check::seeded(121);
+    let center = DVec3::new(1.0, -2.0, 0.5);
+    for (what, origin) in [
+        ("from outside", center + DVec3::new(2.0, 1.0, -2.0)),
+        ("from inside", center + DVec3::new(0.0, 0.5, 0.0)),
+    ] {
+        let values: Vec<f64> = (0..100_000)
+            .map(|_| 4.0 * PI * pdf(center, 1.0, origin, check::uniform_direction(&mut rng)))
+            .collect();
+        check::z_test_mean(
+            &format!("integral over the sphere of the sphere light's pdf {what}"),
+            values,
+            1.0,
+        )?;
+    }
+    Ok(())
+}
+
+/// All of this exercise's checks.
+pub fn check_sphere_pdf(omega: impl Fn(f64, f64) -> f64, pdf: impl SpherePdf) -> CheckResult {
+    check_solid_angle(omega)?;
+    check_values(&pdf)?;
+    check_normalised(&pdf)
+}
+
+/// This exercise's checks, run on your [`sphere_solid_angle`] and [`sphere_pdf_value`].
+pub fn check() -> CheckResult {
+    check_sphere_pdf(sphere_solid_angle, sphere_pdf_value)
+}
+
+#[cfg(feature = "solutions")]
+mod solution {
+    use glam::DVec3;
+    use std::f64::consts::PI;
+
+    pub fn sphere_solid_angle(radius: f64, distance: f64) -> f64 {
+        if distance <= radius {
+            return 4.0 * PI;
+        }
+        let sin2 = (radius / distance).powi(2);
+        let cos = (1.0 - sin2).sqrt();
+        2.0 * PI * sin2 / (1.0 + cos)
+    }
+
+    pub fn sphere_pdf_value(center: DVec3, radius: f64, origin: DVec3, direction: DVec3) -> f64 {
+        let oc = center - origin;
+        let dist2 = oc.length_squared();
+        if dist2 <= radius * radius {
+            return 1.0 / (4.0 * PI);
+        }
+        // The ray hits iff it points towards the centre and passes within the radius of it.
+        let along = oc.dot(direction);
+        let miss2 = (oc - along * direction).length_squared();
+        if along <= 0.0 || miss2 > radius * radius {
+            return 0.0;
+        }
+        1.0 / sphere_solid_angle(radius, dist2.sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solid_angle_without_cancellation_far_away_and_4_pi_inside() {
+        check_solid_angle(sphere_solid_angle).unwrap();
+    }
+
+    #[test]
+    fn pdf_far_away_inside_on_and_just_above_the_sphere() {
+        check_values(sphere_pdf_value).unwrap();
+    }
+
+    #[test]
+    fn pdf_integrates_to_1_over_the_sphere() {
+        check_normalised(sphere_pdf_value).unwrap();
+    }
+
+    /// Correct apart from the solid angle it divides by.
+    fn pdf_with(omega: impl Fn(f64, f64) -> f64) -> impl SpherePdf {
+        move |c: DVec3, r: f64, o: DVec3, d: DVec3| {
+            let oc = c - o;
+            if oc.length() <= r {
+                return 1.0 / omega(r, oc.length());
+            }
+            let along = oc.dot(d);
+            if along <= 0.0 || (oc - along * d).length() > r {
+                0.0
+            } else {
+                1.0 / omega(r, oc.length())
+            }
+        }
+    }
+
+    #[test]
+    fn checks_reject_the_cancelling_formula_and_a_wrong_inside() {
+        // Wrong: 2 pi (1 - sqrt(1 - r^2/d^2)) as written, which cancels far away.
+        let naive = |r: f64, d: f64| {
+            if d <= r {
+                4.0 * PI
+            } else {
+                2.0 * PI * (1.0 - (1.0 - r * r / (d * d)).sqrt())
+            }
+        };
+        assert!(check_solid_angle(naive).is_err());
+        assert!(check_values(pdf_with(naive)).is_err());
+        // Wrong: from inside the formula is used anyway (sin^2 > 1 gives NaN).
+        let no_inside = |r: f64, d: f64| {
+            let sin2 = (r / d).powi(2);
+            2.0 * PI * sin2 / (1.0 + (1.0 - sin2).sqrt())
+        };
+        assert!(check_solid_angle(no_inside).is_err());
+        assert!(check_values(pdf_with(no_inside)).is_err());
+        // Wrong: the hemisphere 2 pi sin^2 theta_max (drops the 1 / (1 + cos)): does not integrate to 1.
+        let no_cos = |r: f64, d: f64| {
+            if d <= r {
+                4.0 * PI
+            } else {
+                2.0 * PI * (r / d).powi(2)
+            }
+        };
+        assert!(check_normalised(pdf_with(no_cos)).is_err());
+    }
+}
