@@ -1,15 +1,446 @@
-//! `rtl study mc`: placeholder.
+//! `rtl study mc`: how fast each Monte Carlo estimator of the book's integrals converges, in samples and
+//! in time.
+//!
+//! For every integral and estimator, and every N = 2^4 ... 2^24 (`--quick`: ... 2^16), the estimator
+//! runs R = 30 times with independent seeds. The RMS error of those R estimates against the exact
+//! integral, their mean reported standard error, and the time per sample go to `DIR/mc.csv`; the log-log
+//! slopes of error against N go to `DIR/mc_slopes.csv`; each integral gets a plot of error against N and
+//! one of error against time per estimate, with the fitted slope in the legend.
+//!
+//! Jittered and Sobol estimators take their standard error from 4 independent replicates of N/4 samples
+//! each (randomised QMC); all N samples count towards N and the time.
 
+use crate::plot;
+use anyhow::{Context, Result};
 use clap::Args;
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rayon::prelude::*;
+use rtl_mc::densities::{linear_pdf, sample_linear};
+use rtl_mc::{
+    Estimate, Interval, McError, Rect, importance, jittered, jittered_2d, plain, plain_2d, sobol,
+    sobol_2d,
+};
+use std::f64::consts::PI;
+use std::fmt::Write as _;
 use std::path::PathBuf;
+use std::time::Instant;
 
 #[derive(Args)]
 pub struct McArgs {
     /// Directory for the CSV and the plots (created if missing).
     #[arg(long)]
     pub out: PathBuf,
+    /// N up to 2^16 instead of 2^24: seconds instead of minutes.
+    #[arg(long)]
+    pub quick: bool,
 }
 
-pub fn run(_args: McArgs) -> anyhow::Result<()> {
-    anyhow::bail!("not built yet")
+/// Independent repetitions of every estimator at every N.
+const REPETITIONS: u64 = 30;
+/// Replicates inside one jittered or Sobol estimate (its standard error comes from their spread).
+const REPLICATES: u32 = 4;
+const SMALLEST_LOG2_N: u32 = 4;
+
+type Rng64 = Xoshiro256PlusPlus;
+
+/// One estimator of one integral: runs it with `n` samples in all.
+struct Case {
+    integral: &'static str,
+    slug: &'static str,
+    exact: f64,
+    estimator: &'static str,
+    run: fn(u64, &mut Rng64) -> Result<Estimate, McError>,
+}
+
+/// The `nx` by `ny` grid of `cells = 2^m` cells, as square as a power of two allows.
+fn grid(cells: u64) -> (u64, u64) {
+    let m = cells.trailing_zeros();
+    (1 << m.div_ceil(2), 1 << (m / 2))
+}
+
+/// Samples per replicate when `n` samples are split into [`REPLICATES`] replicates.
+fn q(n: u64) -> u64 {
+    n / REPLICATES as u64
+}
+
+fn x_sq(x: f64) -> f64 {
+    x * x
+}
+
+fn zero_two() -> Interval {
+    Interval::new(0.0, 2.0).expect("0 < 2")
+}
+
+fn in_circle(p: [f64; 2]) -> f64 {
+    if p[0] * p[0] + p[1] * p[1] < 1.0 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+fn square() -> Rect {
+    Rect::new(-1.0, 1.0, -1.0, 1.0).expect("a valid square")
+}
+
+fn unit_square() -> Rect {
+    Rect::new(0.0, 1.0, 0.0, 1.0).expect("a valid square")
+}
+
+// The sphere and hemisphere warps of the examples (rtl-pdf has the full set). Each maps the unit square
+// onto directions with a constant or known density, so an integral over directions becomes an integral
+// over the unit square that jittered and Sobol points can stratify.
+
+/// Uniform on the sphere: z = 1 - 2 u2, phi = 2 pi u1; density 1 / 4 pi.
+fn uniform_sphere([u1, u2]: [f64; 2]) -> [f64; 3] {
+    let z = 1.0 - 2.0 * u2;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u1;
+    [r * phi.cos(), r * phi.sin(), z]
+}
+
+/// Uniform on the hemisphere z > 0: z = 1 - u2; density 1 / 2 pi.
+fn uniform_hemisphere([u1, u2]: [f64; 2]) -> [f64; 3] {
+    let z = 1.0 - u2;
+    let r = (u2 * (2.0 - u2)).sqrt();
+    let phi = 2.0 * PI * u1;
+    [r * phi.cos(), r * phi.sin(), z]
+}
+
+/// Cosine-weighted on the hemisphere: z = sqrt(1 - u2); density z / pi.
+fn cosine_hemisphere([u1, u2]: [f64; 2]) -> [f64; 3] {
+    let r = u2.sqrt();
+    let phi = 2.0 * PI * u1;
+    [r * phi.cos(), r * phi.sin(), (1.0 - u2).sqrt()]
+}
+
+fn random_pair(rng: &mut Rng64) -> [f64; 2] {
+    [rng.random::<f64>(), rng.random::<f64>()]
+}
+
+fn cos_sq(d: [f64; 3]) -> f64 {
+    d[2] * d[2]
+}
+
+fn cos_cubed(d: [f64; 3]) -> f64 {
+    d[2] * d[2] * d[2]
+}
+
+/// f/p of cos^3 under cosine sampling, as a function on the unit square.
+fn cos_cubed_over_cosine(u: [f64; 2]) -> f64 {
+    let d = cosine_hemisphere(u);
+    cos_cubed(d) / (d[2] / PI)
+}
+
+fn cases() -> Vec<Case> {
+    const X2: &str = "x^2 over 0..2";
+    const PI_DISC: &str = "pi as the unit disc area";
+    const SPHERE: &str = "cos^2 over the sphere";
+    const HEMI: &str = "cos^3 over the hemisphere";
+    vec![
+        Case {
+            integral: X2,
+            slug: "x_sq",
+            exact: 8.0 / 3.0,
+            estimator: "uniform",
+            run: |n, r| plain(x_sq, zero_two(), n, r),
+        },
+        Case {
+            integral: X2,
+            slug: "x_sq",
+            exact: 8.0 / 3.0,
+            estimator: "importance p = x/2",
+            run: |n, r| {
+                let s = |r: &mut Rng64| sample_linear(r.random::<f64>());
+                importance(x_sq, s, linear_pdf, n, r)
+            },
+        },
+        Case {
+            integral: X2,
+            slug: "x_sq",
+            exact: 8.0 / 3.0,
+            estimator: "jittered",
+            run: |n, r| jittered(x_sq, zero_two(), q(n), REPLICATES, r),
+        },
+        Case {
+            integral: X2,
+            slug: "x_sq",
+            exact: 8.0 / 3.0,
+            estimator: "scrambled Sobol",
+            run: |n, r| sobol(x_sq, zero_two(), q(n), REPLICATES, r),
+        },
+        Case {
+            integral: PI_DISC,
+            slug: "pi",
+            exact: PI,
+            estimator: "uniform",
+            run: |n, r| plain_2d(in_circle, square(), n, r),
+        },
+        Case {
+            integral: PI_DISC,
+            slug: "pi",
+            exact: PI,
+            estimator: "jittered",
+            run: |n, r| jittered_2d(in_circle, square(), grid(q(n)), REPLICATES, r),
+        },
+        Case {
+            integral: PI_DISC,
+            slug: "pi",
+            exact: PI,
+            estimator: "scrambled Sobol",
+            run: |n, r| sobol_2d(in_circle, square(), q(n), REPLICATES, r),
+        },
+        Case {
+            integral: SPHERE,
+            slug: "sphere_cos_sq",
+            exact: 4.0 * PI / 3.0,
+            estimator: "uniform",
+            run: |n, r| {
+                let s = |r: &mut Rng64| uniform_sphere(random_pair(r));
+                importance(cos_sq, s, |_| 1.0 / (4.0 * PI), n, r)
+            },
+        },
+        Case {
+            integral: SPHERE,
+            slug: "sphere_cos_sq",
+            exact: 4.0 * PI / 3.0,
+            estimator: "uniform + jittered",
+            run: |n, r| {
+                let g = |u| 4.0 * PI * cos_sq(uniform_sphere(u));
+                jittered_2d(g, unit_square(), grid(q(n)), REPLICATES, r)
+            },
+        },
+        Case {
+            integral: SPHERE,
+            slug: "sphere_cos_sq",
+            exact: 4.0 * PI / 3.0,
+            estimator: "uniform + scrambled Sobol",
+            run: |n, r| {
+                let g = |u| 4.0 * PI * cos_sq(uniform_sphere(u));
+                sobol_2d(g, unit_square(), q(n), REPLICATES, r)
+            },
+        },
+        Case {
+            integral: HEMI,
+            slug: "hemisphere_cos_cubed",
+            exact: PI / 2.0,
+            estimator: "uniform",
+            run: |n, r| {
+                let s = |r: &mut Rng64| uniform_hemisphere(random_pair(r));
+                importance(cos_cubed, s, |_| 1.0 / (2.0 * PI), n, r)
+            },
+        },
+        Case {
+            integral: HEMI,
+            slug: "hemisphere_cos_cubed",
+            exact: PI / 2.0,
+            estimator: "cosine",
+            run: |n, r| {
+                let s = |r: &mut Rng64| cosine_hemisphere(random_pair(r));
+                importance(cos_cubed, s, |d| d[2] / PI, n, r)
+            },
+        },
+        Case {
+            integral: HEMI,
+            slug: "hemisphere_cos_cubed",
+            exact: PI / 2.0,
+            estimator: "cosine + scrambled Sobol",
+            run: |n, r| sobol_2d(cos_cubed_over_cosine, unit_square(), q(n), REPLICATES, r),
+        },
+    ]
+}
+
+/// One row of mc.csv.
+struct Row {
+    n: u64,
+    rms_error: f64,
+    mean_std_error: f64,
+    ns_per_sample: f64,
+    seconds_per_estimate: f64,
+}
+
+/// A seed that depends only on the case, N and the repetition, so results do not depend on threads.
+fn seed(case: usize, log2_n: u32, rep: u64) -> u64 {
+    ((case as u64) << 48) ^ (u64::from(log2_n) << 40) ^ rep ^ 0x5eed_0000_0000_0000
+}
+
+fn measure(index: usize, case: &Case, log2_n: u32) -> Result<Row> {
+    let n = 1u64 << log2_n;
+    let runs: Vec<Estimate> = (0..REPETITIONS)
+        .into_par_iter()
+        .map(|rep| {
+            let mut rng = Rng64::seed_from_u64(seed(index, log2_n, rep));
+            (case.run)(n, &mut rng)
+        })
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("{} / {} at N = {n}", case.integral, case.estimator))?;
+    let reps = runs.len() as f64;
+    let mse = runs
+        .iter()
+        .map(|e| (e.value() - case.exact).powi(2))
+        .sum::<f64>()
+        / reps;
+    let mean_se = runs.iter().filter_map(Estimate::std_error).sum::<f64>() / reps;
+    let seconds = runs.iter().map(|e| e.elapsed.as_secs_f64()).sum::<f64>() / reps;
+    Ok(Row {
+        n,
+        rms_error: mse.sqrt(),
+        mean_std_error: mean_se,
+        ns_per_sample: seconds * 1e9 / n as f64,
+        seconds_per_estimate: seconds,
+    })
+}
+
+pub fn run(args: McArgs) -> Result<()> {
+    let largest = if args.quick { 16 } else { 24 };
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let cases = cases();
+    println!(
+        "study mc: {} estimators, N = 2^{SMALLEST_LOG2_N} .. 2^{largest}, R = {REPETITIONS} repetitions each, \
+         on {} threads{}",
+        cases.len(),
+        rayon::current_num_threads(),
+        if args.quick {
+            " (--quick)"
+        } else {
+            " (about 2-3 minutes on 2 cores)"
+        }
+    );
+    let start = Instant::now();
+    let mut csv = String::from(
+        "integral,estimator,n,repetitions,rms_error,mean_std_error,ns_per_sample,seconds_per_estimate\n",
+    );
+    let mut results: Vec<(usize, Vec<Row>)> = Vec::new();
+    for (i, case) in cases.iter().enumerate() {
+        let t = Instant::now();
+        let rows = (SMALLEST_LOG2_N..=largest)
+            .map(|k| measure(i, case, k))
+            .collect::<Result<Vec<_>>>()?;
+        for r in &rows {
+            writeln!(
+                csv,
+                "{},{},{},{REPETITIONS},{:.6e},{:.6e},{:.3},{:.6e}",
+                case.integral,
+                case.estimator,
+                r.n,
+                r.rms_error,
+                r.mean_std_error,
+                r.ns_per_sample,
+                r.seconds_per_estimate
+            )?;
+        }
+        eprintln!(
+            "  {:<32} {:<26} {:.1} s",
+            case.integral,
+            case.estimator,
+            t.elapsed().as_secs_f64()
+        );
+        results.push((i, rows));
+    }
+    let csv_path = args.out.join("mc.csv");
+    std::fs::write(&csv_path, csv).with_context(|| format!("writing {}", csv_path.display()))?;
+
+    // Slopes and plots, one pair of plots per integral.
+    let mut slopes =
+        String::from("integral,estimator,slope_error_vs_n,ns_per_sample_at_largest_n\n");
+    println!(
+        "\n| integral | estimator | slope of RMS error vs N | RMS error at N = 2^{largest} | ns/sample |"
+    );
+    println!("|---|---|---|---|---|");
+    let mut slugs: Vec<&str> = cases.iter().map(|c| c.slug).collect();
+    slugs.dedup();
+    for slug in slugs {
+        let mut by_n = Vec::new();
+        let mut by_time = Vec::new();
+        let mut title = "";
+        for (i, rows) in &results {
+            let case = &cases[*i];
+            if case.slug != slug {
+                continue;
+            }
+            title = case.integral;
+            let vs_n: Vec<(f64, f64)> = rows.iter().map(|r| (r.n as f64, r.rms_error)).collect();
+            let slope = plot::loglog_slope(&vs_n).unwrap_or(f64::NAN);
+            let last = rows.last().expect("at least one N");
+            writeln!(
+                slopes,
+                "{},{},{slope:.3},{:.3}",
+                case.integral, case.estimator, last.ns_per_sample
+            )?;
+            println!(
+                "| {} | {} | {slope:.2} | {:.2e} | {:.1} |",
+                case.integral, case.estimator, last.rms_error, last.ns_per_sample
+            );
+            by_n.push(plot::Series {
+                label: case.estimator.to_string(),
+                points: vs_n,
+            });
+            by_time.push(plot::Series {
+                label: case.estimator.to_string(),
+                points: rows
+                    .iter()
+                    .map(|r| (r.seconds_per_estimate, r.rms_error))
+                    .collect(),
+            });
+        }
+        plot::loglog(
+            &args.out.join(format!("mc_{slug}_error_vs_n.png")),
+            &format!("{title}: RMS error against N (R = {REPETITIONS})"),
+            "samples N",
+            "RMS error",
+            &by_n,
+            true,
+        )?;
+        plot::loglog(
+            &args.out.join(format!("mc_{slug}_error_vs_time.png")),
+            &format!("{title}: RMS error against time per estimate"),
+            "seconds per estimate",
+            "RMS error",
+            &by_time,
+            true,
+        )?;
+    }
+    let slopes_path = args.out.join("mc_slopes.csv");
+    std::fs::write(&slopes_path, slopes)
+        .with_context(|| format!("writing {}", slopes_path.display()))?;
+    println!(
+        "\nwrote {} and plots mc_*.png in {} ({:.1} s)",
+        csv_path.display(),
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_need_no_csv_quoting() {
+        for c in cases() {
+            assert!(!c.integral.contains([',', '"']) && !c.estimator.contains([',', '"']));
+        }
+    }
+
+    #[test]
+    fn grids_cover_every_cell_count() {
+        for m in 0..20 {
+            let (nx, ny) = grid(1 << m);
+            assert_eq!(nx * ny, 1 << m);
+            assert!(nx == ny || nx == 2 * ny);
+        }
+    }
+
+    #[test]
+    fn every_case_estimates_its_integral() {
+        for (i, case) in cases().iter().enumerate() {
+            let mut rng = Rng64::seed_from_u64(seed(i, 12, 0));
+            let est = (case.run)(1 << 12, &mut rng).unwrap();
+            let t = rtl_mc::check::mean_test(&est, case.exact, 1e-6);
+            assert!(t.passed, "{} / {}: {:?}", case.integral, case.estimator, t);
+        }
+    }
 }
