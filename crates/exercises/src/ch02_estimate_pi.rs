@@ -13,6 +13,7 @@ use crate::check::{self, CheckResult};
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
 
+// ANCHOR: exercise
 /// Estimate pi from `n` uniform points in [-1, 1]^2: `4 * (points inside the unit circle) / n`,
 /// `None` when `n = 0`.
 pub fn estimate_pi<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
@@ -24,6 +25,7 @@ pub fn estimate_pi<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
         todo!("ch02 estimate_pi: count uniform points of [-1,1]^2 inside the unit circle")
     }
 }
+// ANCHOR_END: exercise
 
 /// The estimator under test: `(n, rng) -> estimate`.
 pub trait PiEstimator: Fn(usize, &mut dyn RngCore) -> Option<f64> {}

@@ -15,6 +15,7 @@ use rand::{Rng, RngCore};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
 
+// ANCHOR: exercise
 /// Estimate pi from one uniform point in each of the `sqrt_n x sqrt_n` cells of [-1, 1]^2;
 /// `None` when `sqrt_n = 0`.
 pub fn jittered_pi<R: Rng + ?Sized>(sqrt_n: usize, rng: &mut R) -> Option<f64> {
@@ -26,6 +27,7 @@ pub fn jittered_pi<R: Rng + ?Sized>(sqrt_n: usize, rng: &mut R) -> Option<f64> {
         todo!("ch02 jittered_pi: one uniform point per cell of a sqrt_n x sqrt_n grid on [-1,1]^2")
     }
 }
+// ANCHOR_END: exercise
 
 /// Unbiased (mean of 400 estimates of 16 x 16 points z-tested against pi) and of variance below
 /// the variance of 256 independent points.

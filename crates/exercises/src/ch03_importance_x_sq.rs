@@ -19,6 +19,7 @@
 use crate::check::{self, CheckResult, ScriptedRng};
 use rand::{Rng, RngCore};
 
+// ANCHOR: exercise
 /// The importance-sampled estimate (1/n) sum f(x_k) / p(x_k), x_k = `sample(u_k)`, counting a sample
 /// with p(x_k) = 0 as 0; `None` when `n = 0`.
 pub fn importance_estimate<R: Rng + ?Sized>(
@@ -36,6 +37,7 @@ pub fn importance_estimate<R: Rng + ?Sized>(
         todo!("ch03 importance_estimate: average f(x)/p(x) over x = sample(u), 0 where p(x) = 0")
     }
 }
+// ANCHOR_END: exercise
 
 type Fx<'a> = &'a dyn Fn(f64) -> f64;
 

@@ -12,6 +12,7 @@
 use crate::check::{self, CheckResult, U_MAX};
 use rand::Rng;
 
+// ANCHOR: exercise
 /// A sample of the density x/2 on [0, 2] from a uniform `u` in [0, 1).
 pub fn sample_linear(u: f64) -> f64 {
     #[cfg(feature = "solutions")]
@@ -33,6 +34,7 @@ pub fn sample_quadratic(u: f64) -> f64 {
         todo!("ch03 sample_quadratic: invert the CDF x^3/8 of the density 3x^2/8 on [0,2]")
     }
 }
+// ANCHOR_END: exercise
 
 /// Exact values, range and monotonicity of a sampler of the density with CDF `cdf`, and a chi-square
 /// test of 1e5 samples in 40 bins of [0, 2].

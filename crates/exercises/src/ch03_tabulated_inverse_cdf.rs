@@ -98,6 +98,7 @@ impl CdfTable {
     }
 }
 
+// ANCHOR: exercise
 /// The sample x = P^-1(u) of the table's piecewise-constant density: the bin i with
 /// c_i <= u < c_(i+1) by binary search, then linear interpolation inside it.
 /// `Err(CdfError::UOutOfRange(u))` unless 0 <= u < 1.
@@ -110,6 +111,7 @@ pub fn invert(table: &CdfTable, u: f64) -> Result<f64, CdfError> {
         todo!("ch03 invert: binary-search the bin with c_i <= u < c_(i+1), interpolate inside it")
     }
 }
+// ANCHOR_END: exercise
 
 /// The lookup under test.
 pub trait Invert: Fn(&CdfTable, f64) -> Result<f64, CdfError> {}

@@ -19,6 +19,7 @@ use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
 
+// ANCHOR: exercise
 /// A direction uniform on the unit sphere, density 1/(4 pi) per steradian, from `u1`, `u2` in [0, 1).
 pub fn uniform_sphere(u1: f64, u2: f64) -> DVec3 {
     #[cfg(feature = "solutions")]
@@ -41,6 +42,7 @@ pub fn estimate_cos_sq<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
         todo!("ch04 estimate_cos_sq: average cos^2 / (1 / (4 pi)) over uniform directions")
     }
 }
+// ANCHOR_END: exercise
 
 /// Unit length at the corners of [0, 1)^2, and a chi-square test of 1e5 directions.
 pub fn check_uniform_sphere(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {

@@ -13,6 +13,7 @@ use crate::check::{self, CheckResult};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
 
+// ANCHOR: exercise
 /// The Lambertian scattering density max(0, n . d) / pi per steradian, for unit `normal` and `direction`.
 pub fn lambertian_scattering_pdf(normal: DVec3, direction: DVec3) -> f64 {
     #[cfg(feature = "solutions")]
@@ -23,6 +24,7 @@ pub fn lambertian_scattering_pdf(normal: DVec3, direction: DVec3) -> f64 {
         todo!("ch05 lambertian_scattering_pdf: max(0, cos theta) / pi")
     }
 }
+// ANCHOR_END: exercise
 
 /// Exact values, including grazing and below the surface.
 pub fn check_values(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {

@@ -22,6 +22,7 @@ use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::PI;
 
+// ANCHOR: exercise
 /// L_e + A s L_i / p, or `emitted` alone when the densities make the ratio meaningless or infinite.
 pub fn scatter_contribution(
     emitted: DVec3,
@@ -46,6 +47,7 @@ pub fn scatter_contribution(
         )
     }
 }
+// ANCHOR_END: exercise
 
 /// The function under test.
 pub trait Contribution: Fn(DVec3, DVec3, f64, f64, DVec3) -> DVec3 {}

@@ -19,6 +19,7 @@ use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
 
+// ANCHOR: exercise
 /// A direction on the hemisphere z >= 0 with density cos theta / pi, from `u1`, `u2` in [0, 1).
 pub fn random_cosine_direction(u1: f64, u2: f64) -> DVec3 {
     #[cfg(feature = "solutions")]
@@ -40,6 +41,7 @@ pub fn cosine_pdf_value(cos_theta: f64) -> f64 {
         todo!("ch07 cosine_pdf_value: max(0, cos theta) / pi")
     }
 }
+// ANCHOR_END: exercise
 
 /// Unit, upper-hemisphere directions at the corners of [0, 1)^2.
 pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {

@@ -29,6 +29,7 @@ pub struct Onb {
     pub w: DVec3,
 }
 
+// ANCHOR: exercise
 impl Onb {
     /// The right-handed basis with third axis `w` (a unit vector), by Duff et al. (2017).
     pub fn from_w(w: DVec3) -> Onb {
@@ -52,6 +53,7 @@ impl Onb {
         }
     }
 }
+// ANCHOR_END: exercise
 
 /// The basis under test, as a function of w.
 pub trait FromW: Fn(DVec3) -> Onb {}

@@ -29,6 +29,7 @@ pub struct Quad {
     pub v: DVec3,
 }
 
+// ANCHOR: exercise
 /// The solid-angle density r^2 / (|cos theta| A) of the direction `direction` (unit) from `origin`
 /// towards a uniformly chosen point of `quad`; 0 when the ray misses the quad.
 pub fn quad_pdf_value(quad: &Quad, origin: DVec3, direction: DVec3) -> f64 {
@@ -40,6 +41,7 @@ pub fn quad_pdf_value(quad: &Quad, origin: DVec3, direction: DVec3) -> f64 {
         todo!("ch09 quad_pdf_value: hit the quad, return distance^2 / (|cos| area), 0 on a miss")
     }
 }
+// ANCHOR_END: exercise
 
 /// The function under test.
 pub trait QuadPdf: Fn(&Quad, DVec3, DVec3) -> f64 {}

@@ -81,6 +81,7 @@ pub struct MixturePdf<A, B> {
     pub weight_a: f64,
 }
 
+// ANCHOR: exercise
 impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
     fn value(&self, direction: DVec3) -> f64 {
         #[cfg(feature = "solutions")]
@@ -102,6 +103,7 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
         }
     }
 }
+// ANCHOR_END: exercise
 
 /// The cone of the checks: z >= 0.84, a cell edge of the chi-square binning.
 const CONE: ConePdf = ConePdf { cos_max: 0.84 };

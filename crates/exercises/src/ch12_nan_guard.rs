@@ -29,6 +29,7 @@ pub struct PixelAccumulator {
     pub dropped: u64,
 }
 
+// ANCHOR: exercise
 impl PixelAccumulator {
     /// An empty accumulator.
     pub fn new() -> Self {
@@ -57,6 +58,7 @@ impl PixelAccumulator {
         todo!("ch12 PixelAccumulator::mean: the running mean, None without finite samples")
     }
 }
+// ANCHOR_END: exercise
 
 /// The accumulator under test: a fold of the samples into `(mean, used, dropped)`.
 pub trait Accumulate: Fn(&[DVec3]) -> (Option<DVec3>, u64, u64) {}

@@ -26,6 +26,7 @@ use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::PI;
 
+// ANCHOR: exercise
 /// The solid angle of a sphere of `radius` seen from `distance` from its centre: 4 pi when
 /// `distance <= radius`, else 2 pi sin^2 theta_max / (1 + cos theta_max), sin^2 = r^2 / d^2.
 pub fn sphere_solid_angle(radius: f64, distance: f64) -> f64 {
@@ -49,6 +50,7 @@ pub fn sphere_pdf_value(center: DVec3, radius: f64, origin: DVec3, direction: DV
         todo!("ch12 sphere_pdf_value: 1 / solid angle on a hit, 0 on a miss")
     }
 }
+// ANCHOR_END: exercise
 
 /// 1 - sqrt(1 - x) by its series x/2 + x^2/8 + x^3/16 + 5x^4/128 + 7x^5/256 (x <= 1e-4: error < 1e-22).
 fn one_minus_sqrt_series(x: f64) -> f64 {

@@ -70,6 +70,12 @@ pub fn mean_and_std_error(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
 
 /// z-test of `estimate` against the exact `truth`, given the estimate's standard error. A standard
 /// error of 0 (a zero-variance estimator) demands the truth to a relative `1e-12`.
+///
+/// ```
+/// use rtl_exercises::check::z_test;
+/// assert!(z_test("one standard error off", 0.51, 0.01, 0.5).is_ok());
+/// assert!(z_test("ten standard errors off", 0.6, 0.01, 0.5).is_err());
+/// ```
 pub fn z_test(what: &str, estimate: f64, std_error: f64, truth: f64) -> CheckResult {
     if !estimate.is_finite() {
         return Err(format!(
