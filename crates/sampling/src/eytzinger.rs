@@ -73,21 +73,26 @@ impl EytzingerCdf {
     }
 
     // ANCHOR: search
-    /// The ends of the bin holding `u`: the last node with `F ≤ u` and the first with `F > u`. The
-    /// descent goes right when `F ≤ u`; a conditional move, not a branch, keeps each end.
+    /// The ends of the bin holding `u`: the last node with `F ≤ u` and the first with `F > u`.
+    /// The descent appends one bit per level to `k`, 1 for "went right" (`F ≤ u`), with no branch
+    /// on the data. At the end the last right turn is the lowest 1 bit of `k` and the last left
+    /// turn the lowest 0 bit: shifting them out gives the two nodes (0 means "none": an end of the
+    /// support).
     #[inline]
     fn bracket(&self, u: f64) -> (Node, Node) {
-        let (mut lo, mut hi) = (self.first, self.last);
         let mut k = 1;
         while k <= self.count {
-            prefetch(&self.lines, 4 * k); // the line of the grandchildren of k's children
-            let node = self.node(k);
-            let right = node.cdf <= u;
-            lo = if right { node } else { lo };
-            hi = if right { hi } else { node };
-            k = 2 * k + right as usize;
+            for l in 0..PREFETCH_LINES {
+                prefetch(&self.lines, PREFETCH_LINES * k + l);
+            }
+            k = 2 * k + (self.node(k).cdf <= u) as usize;
         }
-        (lo, hi)
+        let lo = k >> (k.trailing_zeros() + 1);
+        let hi = k >> (k.trailing_ones() + 1);
+        (
+            if lo == 0 { self.first } else { self.node(lo) },
+            if hi == 0 { self.last } else { self.node(hi) },
+        )
     }
     // ANCHOR_END: search
 
@@ -105,16 +110,16 @@ impl EytzingerCdf {
 
     /// The nodes left and right of `x` (a node belongs to the bin on its right).
     fn bracket_x(&self, x: f64) -> (Node, Node) {
-        let (mut lo, mut hi) = (self.first, self.last);
         let mut k = 1;
         while k <= self.count {
-            let node = self.node(k);
-            let right = node.x <= x;
-            lo = if right { node } else { lo };
-            hi = if right { hi } else { node };
-            k = 2 * k + right as usize;
+            k = 2 * k + (self.node(k).x <= x) as usize;
         }
-        (lo, hi)
+        let lo = k >> (k.trailing_zeros() + 1);
+        let hi = k >> (k.trailing_ones() + 1);
+        (
+            if lo == 0 { self.first } else { self.node(lo) },
+            if hi == 0 { self.last } else { self.node(hi) },
+        )
     }
 
     /// The density at `x`, 0 outside the support.
@@ -144,18 +149,23 @@ impl EytzingerCdf {
     }
 }
 
-/// Asks the processor to start loading the cache line of node `k`, if there is one.
+/// How far ahead the search prefetches: the descendants of node `k` two levels down are nodes
+/// `4k … 4k + 3`, one line (line `k`); four levels down they are nodes `16k … 16k + 15`, lines
+/// `4k … 4k + 3`. `PREFETCH_LINES = L` fetches lines `L k … L k + L - 1`.
+const PREFETCH_LINES: usize = 4;
+
+/// Asks the processor to start loading line `l`, if there is one.
 #[inline(always)]
-fn prefetch(lines: &[Line], k: usize) {
+fn prefetch(lines: &[Line], l: usize) {
     #[cfg(target_arch = "x86_64")]
-    if let Some(line) = lines.get(k / 4) {
+    if let Some(line) = lines.get(l) {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         // SAFETY: SSE is part of every x86_64 target; a prefetch is only a hint (it reads nothing
         // and cannot fault), and `line` is a valid reference anyway.
         unsafe { _mm_prefetch::<_MM_HINT_T0>((line as *const Line).cast::<i8>()) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = (lines, k);
+    let _ = (lines, l);
 }
 
 impl InverseTransform for EytzingerCdf {

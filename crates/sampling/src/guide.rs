@@ -70,15 +70,25 @@ impl GuideTable {
 
     // ANCHOR: bin
     /// The bin `i` with `Fᵢ ≤ u < Fᵢ₊₁` for `u` in `[0, 1)`: the guide narrows the search to the
-    /// bins from `guide[j]` to `guide[j + 1]`, which a binary search finishes.
+    /// bins from `guide[j]` to `guide[j + 1]`: a short scan finishes (a binary search if the
+    /// range is long, so the worst case stays O(log N)).
     #[inline]
     pub fn bin(&self, u: f64) -> usize {
         let m = self.guide.len() - 1;
         let j = ((u * self.cells) as usize).min(m - 1);
         let lo = self.guide[j] as usize;
         let hi = self.guide[j + 1] as usize;
-        let keys = &self.table.cdf_values()[lo + 1..hi + 1];
-        lo + keys.partition_point(|&c| c <= u)
+        let cdf = self.table.cdf_values();
+        if hi - lo <= 8 {
+            // The usual case: a step or two to the right.
+            let mut i = lo;
+            while i < hi && cdf[i + 1] <= u {
+                i += 1;
+            }
+            i
+        } else {
+            lo + cdf[lo + 1..hi + 1].partition_point(|&c| c <= u)
+        }
     }
     // ANCHOR_END: bin
 
