@@ -10,7 +10,8 @@ use std::panic::{self, AssertUnwindSafe};
 enum Status {
     Done,
     Failing(String),
-    NotStarted,
+    /// A `todo!()` was reached; its message names the function still to write.
+    NotStarted(String),
 }
 
 /// Runs `check`, turning a `todo!()` panic into "not started" and any other panic into a failure.
@@ -24,8 +25,8 @@ fn run(check: fn() -> Result<(), String>) -> Status {
                 .cloned()
                 .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
                 .unwrap_or_else(|| "a panic".to_string());
-            if msg.starts_with("not yet implemented") {
-                Status::NotStarted
+            if let Some(rest) = msg.strip_prefix("not yet implemented") {
+                Status::NotStarted(rest.trim_start_matches(": ").to_string())
             } else {
                 Status::Failing(format!("panicked: {msg}"))
             }
@@ -56,9 +57,12 @@ fn main() {
                 done += 1;
                 "done".to_string()
             }
-            Status::NotStarted => {
+            Status::NotStarted(what) => {
                 todo += 1;
-                "not started".to_string()
+                match what.split(':').next() {
+                    Some(f) if !f.is_empty() => format!("not started (todo!: {f})"),
+                    _ => "not started".to_string(),
+                }
             }
             Status::Failing(why) => {
                 failing += 1;
