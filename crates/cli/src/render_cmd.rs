@@ -1,13 +1,322 @@
-//! `rtl render`: placeholder until the renderer lands.
+//! `rtl render`: render a built-in scene or a scene file to PNG (and linear HDR), with a progress bar,
+//! a closing summary, and `--explain` / `--list` / `--stats`.
 
+use anyhow::{Context, Result, bail};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use rtl_render::integrator::Strategy;
+use rtl_render::output::{Transfer, write_linear, write_png};
+use rtl_render::render::{RenderSettings, Renderer};
+use rtl_render::sampler::Stats;
+use rtl_render::scene::Scene;
+use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// A built-in scene name or a path to a scene file.
+    /// A built-in scene name (see `--list`) or a path to a scene file (`.toml`).
     pub scene: Option<String>,
+    /// List the built-in scenes and exit.
+    #[arg(long)]
+    pub list: bool,
+    /// Samples per pixel (exactly this many); default: the scene's.
+    #[arg(long)]
+    pub spp: Option<u64>,
+    /// Image width in pixels; the height follows from the scene's aspect ratio. Default: the book's.
+    #[arg(long)]
+    pub width: Option<usize>,
+    /// Most intersections a path may have. Default: the scene's.
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Seed of every random number: the same seed gives the same image for any thread count.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// How diffuse bounces choose directions.
+    #[arg(long, default_value = "cosine", value_parser = parse_strategy)]
+    pub strategy: Strategy,
+    /// Output PNG (default: `<scene>.png`).
+    #[arg(short = 'o', long = "output")]
+    pub output: Option<PathBuf>,
+    /// Also write the linear mean radiance per pixel: `.pfm` or `.exr`.
+    #[arg(long)]
+    pub linear: Option<PathBuf>,
+    /// Encode the PNG with the sRGB transfer function instead of the book's gamma 2.
+    #[arg(long)]
+    pub srgb: bool,
+    /// Print which effects the scene calls for and which are skipped, then exit.
+    #[arg(long)]
+    pub explain: bool,
+    /// Image for the earth texture (book 2's `earthmap.jpg`), for `earth` and `book2-final`.
+    #[arg(long)]
+    pub texture: Option<PathBuf>,
+    /// Print the render's counters (rays, random numbers, lens/time samples, medium and texture evaluations).
+    #[arg(long)]
+    pub stats: bool,
 }
 
-pub fn run(_args: RenderArgs) -> anyhow::Result<()> {
-    anyhow::bail!("the renderer is not built yet")
+fn parse_strategy(s: &str) -> Result<Strategy, String> {
+    s.parse()
+}
+
+/// A scene to render, whichever way it was named.
+struct Loaded {
+    name: String,
+    description: String,
+    built: Built,
+    width: usize,
+    spp: u64,
+}
+
+fn load(arg: &str, opts: &SceneOptions) -> Result<Loaded> {
+    if arg.ends_with(".toml") || Path::new(arg).is_file() {
+        return load_file(Path::new(arg));
+    }
+    let b: &BuiltIn = find(arg).map_err(anyhow::Error::msg)?;
+    let built = (b.build)(opts).map_err(|e| anyhow::anyhow!("scene {}: {e}", b.name))?;
+    Ok(Loaded {
+        name: b.name.into(),
+        description: b.description.into(),
+        built,
+        width: b.width,
+        spp: b.spp,
+    })
+}
+
+/// A scene file (`.toml`).
+fn load_file(path: &Path) -> Result<Loaded> {
+    let built = rtl_render::scene_file::load(path).map_err(anyhow::Error::msg)?;
+    let name = path
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let description = format!("scene file {}", path.display());
+    Ok(Loaded {
+        name,
+        description,
+        built,
+        width: 400,
+        spp: 100,
+    })
+}
+
+fn list() {
+    println!("Built-in scenes (rtl render NAME):");
+    for b in BUILT_INS {
+        println!(
+            "  {:<18} {} [{} wide, {} spp]",
+            b.name, b.description, b.width, b.spp
+        );
+    }
+}
+
+fn yes_no(on: bool, yes: &str, no: &str) -> String {
+    if on {
+        format!("used    {yes}")
+    } else {
+        format!("skipped {no}")
+    }
+}
+
+fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
+    let f = scene.features;
+    println!("scene {}: {}", l.name, l.description);
+    println!(
+        "  lens / defocus blur : {}",
+        yes_no(
+            f.defocus,
+            "(thin lens: 2 random numbers per camera ray)",
+            "(pinhole camera: no lens samples drawn)"
+        )
+    );
+    println!(
+        "  motion blur / time  : {}",
+        yes_no(
+            f.motion,
+            "(something moves: 1 time sample per camera ray)",
+            "(nothing moves: no time samples drawn)"
+        )
+    );
+    println!(
+        "  participating media : {}",
+        yes_no(
+            f.media > 0,
+            &format!("({} constant media)", f.media),
+            "(no media: nothing tested or sampled for them)"
+        )
+    );
+    println!(
+        "  textures            : {}",
+        yes_no(
+            f.textures > 0,
+            &format!("({} non-constant textures)", f.textures),
+            "(plain colours only: no texture lookups)"
+        )
+    );
+    println!(
+        "  emitters            : {}",
+        if f.emitters == 0 {
+            "none (light comes from the background)".to_string()
+        } else {
+            format!(
+                "{} ({})",
+                f.emitters,
+                if f.one_sided_emitters {
+                    "one-sided"
+                } else {
+                    "two-sided"
+                }
+            )
+        }
+    );
+    println!(
+        "  importance targets  : {}",
+        if f.targets == 0 {
+            "none".to_string()
+        } else {
+            format!(
+                "{} listed; not used by the '{}' strategy (book-2 scattering)",
+                f.targets,
+                settings.strategy.name()
+            )
+        }
+    );
+    println!("  background          : {:?}", scene.background);
+    println!(
+        "  strategy            : {} ({})",
+        settings.strategy.name(),
+        settings.strategy.description()
+    );
+    println!(
+        "  max depth           : {} intersections per path",
+        settings.max_depth
+    );
+    println!(
+        "  image               : {} wide, {spp} samples per pixel, seed {}",
+        settings.width, settings.seed
+    );
+}
+
+pub fn run(args: RenderArgs) -> Result<()> {
+    if args.list {
+        list();
+        return Ok(());
+    }
+    let Some(scene_arg) = args.scene.as_deref() else {
+        bail!("name a scene to render (rtl render --list shows the built-in ones) or a scene file");
+    };
+    let opts = SceneOptions {
+        texture: args.texture.clone(),
+    };
+    let loaded = load(scene_arg, &opts)?;
+    let scene = &loaded.built.scene;
+    let width = args.width.unwrap_or(loaded.width);
+    if width == 0 {
+        bail!("--width must be at least 1");
+    }
+    let spp = args.spp.unwrap_or(loaded.spp);
+    if spp == 0 {
+        bail!("--spp must be at least 1");
+    }
+    let settings = RenderSettings {
+        width,
+        max_depth: args.max_depth.unwrap_or(scene.max_depth),
+        seed: args.seed,
+        strategy: args.strategy,
+    };
+    if args.explain {
+        explain(&loaded, scene, &settings, spp);
+        return Ok(());
+    }
+    for n in &loaded.built.notices {
+        eprintln!("note: {n}");
+    }
+    let threads = args.threads.unwrap_or(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .context("cannot start the thread pool")?;
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
+
+    let renderer = Renderer::new(scene, settings);
+    let mut acc = renderer.accumulator();
+    let (w, h) = (acc.width, acc.height);
+    let bar = ProgressBar::new(h as u64 * spp);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta} {msg}",
+        )
+        .expect("valid progress template"),
+    );
+    bar.set_message(format!("{} {w}x{h} {spp} spp", loaded.name));
+    let start = Instant::now();
+    // Progressive passes of doubling size (1, 1, 2, 4, ... samples, at most 64): the sums are exactly
+    // those of one pass, since each pixel adds its samples in the order of k.
+    let mut stats = Stats::default();
+    let mut k0 = 0u64;
+    let mut pass = 1u64;
+    while k0 < spp {
+        let k1 = (k0 + pass).min(spp);
+        let n = k1 - k0;
+        let on_row = || bar.inc(n);
+        let s = pool.install(|| renderer.render_pass(&mut acc, k0, k1, &on_row));
+        stats = stats + s;
+        k0 = k1;
+        pass = (pass * 2).min(64);
+    }
+    bar.finish_and_clear();
+    let secs = start.elapsed().as_secs_f64();
+
+    let image = acc.image();
+    let transfer = if args.srgb {
+        Transfer::Srgb
+    } else {
+        Transfer::Gamma2
+    };
+    write_png(&output, w, h, &image, transfer).map_err(anyhow::Error::msg)?;
+    if let Some(lin) = &args.linear {
+        write_linear(lin, w, h, &image).map_err(anyhow::Error::msg)?;
+    }
+    let samples = stats.samples as f64;
+    eprintln!(
+        "{}: {w}x{h}, {spp} spp, {} threads, {:.2} s, {:.0}k samples/s, {:.2}M rays/s, {} non-finite samples dropped -> {}{}",
+        loaded.name,
+        pool.current_num_threads(),
+        secs,
+        samples / secs / 1e3,
+        stats.rays as f64 / secs / 1e6,
+        stats.non_finite,
+        output.display(),
+        args.linear
+            .as_ref()
+            .map(|p| format!(", {}", p.display()))
+            .unwrap_or_default()
+    );
+    if args.stats {
+        println!("samples              {}", stats.samples);
+        println!(
+            "rays                 {} ({:.2} per sample)",
+            stats.rays,
+            stats.rays as f64 / samples
+        );
+        println!(
+            "random numbers       {} ({:.2} per sample)",
+            stats.random_numbers,
+            stats.random_numbers as f64 / samples
+        );
+        println!("lens samples         {}", stats.lens_samples);
+        println!("time samples         {}", stats.time_samples);
+        println!("medium evaluations   {}", stats.medium_evaluations);
+        println!("texture evaluations  {}", stats.texture_evaluations);
+        println!("non-finite dropped   {}", stats.non_finite);
+        println!("wall time            {secs:.3} s");
+        println!("samples/s            {:.0}", samples / secs);
+        println!("rays/s               {:.0}", stats.rays as f64 / secs);
+    }
+    Ok(())
 }

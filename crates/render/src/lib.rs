@@ -1,1 +1,38 @@
-//! rtl-render (placeholder)
+//! rtl-render: the renderer of "Ray Tracing in One Weekend" and "The Next Week", the ground the
+//! importance sampling of "The Rest of Your Life" stands on.
+//!
+//! One concept a module, in the books' order: vectors ([`vec`]) and rays ([`ray`]); bounding boxes
+//! ([`aabb`]) and the BVH ([`bvh`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
+//! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
+//! instances and media ([`scene`]); the built-in scenes ([`scenes`]); the integrator ([`integrator`]);
+//! prefix-stable per-sample randomness ([`sampler`]); progressive rendering into an accumulation buffer
+//! ([`render`]); image files ([`output`]).
+//!
+//! ```
+//! use rtl_render::{integrator::Strategy, render::{RenderSettings, render}, scenes};
+//! let built = (scenes::find("cornell").unwrap().build)(&Default::default()).unwrap();
+//! let settings = RenderSettings { width: 8, max_depth: 50, seed: 1, strategy: Strategy::Cosine };
+//! let (image, stats) = render(&built.scene, settings, 2);
+//! assert_eq!(stats.samples, 8 * 8 * 2);
+//! assert!(image.image().iter().all(|c| c.is_finite()));
+//! ```
+
+pub mod aabb;
+pub mod bvh;
+pub mod camera;
+pub mod hit;
+pub mod integrator;
+pub mod material;
+pub mod output;
+pub mod perlin;
+pub mod ray;
+pub mod render;
+pub mod sampler;
+pub mod scene;
+pub mod scene_file;
+pub mod scenes;
+pub mod shapes;
+pub mod texture;
+pub mod vec;
+
+pub use vec::{Color, Point3, Vec3};

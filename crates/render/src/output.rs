@@ -1,0 +1,174 @@
+//! Writing images: 8-bit PNG (the book's gamma 2, or sRGB), and linear HDR as PFM or OpenEXR. Every
+//! file is written to a temporary name beside the target and renamed into place, so an interrupted run
+//! never leaves a half-written image.
+
+use crate::vec::Color;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// How linear radiance becomes an 8-bit value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Transfer {
+    /// The book's `linear_to_gamma`: the square root, clamped to [0, 0.999], times 256.
+    Gamma2,
+    /// The sRGB transfer function (IEC 61966-2-1), rounded.
+    Srgb,
+}
+
+impl Transfer {
+    #[inline]
+    pub fn encode(self, x: f64) -> u8 {
+        let x = if x.is_finite() { x.max(0.0) } else { 0.0 };
+        match self {
+            Transfer::Gamma2 => (256.0 * x.sqrt().clamp(0.0, 0.999)) as u8,
+            Transfer::Srgb => {
+                let x = x.min(1.0);
+                let v = if x <= 0.003_130_8 {
+                    12.92 * x
+                } else {
+                    1.055 * x.powf(1.0 / 2.4) - 0.055
+                };
+                (255.0 * v + 0.5) as u8
+            }
+        }
+    }
+}
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.tmp{}", std::process::id()))
+}
+
+/// Write with `write` to a temporary file, then rename it to `path`.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), String> {
+    let tmp = temp_path(path);
+    if let Err(e) = write(&tmp) {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        format!("{}: cannot rename into place: {e}", path.display())
+    })
+}
+
+/// The 8-bit RGB bytes of an image (rows from the top).
+pub fn to_rgb8(pixels: &[Color], transfer: Transfer) -> Vec<u8> {
+    pixels
+        .iter()
+        .flat_map(|c| {
+            [
+                transfer.encode(c.x),
+                transfer.encode(c.y),
+                transfer.encode(c.z),
+            ]
+        })
+        .collect()
+}
+
+/// Write a PNG.
+pub fn write_png(
+    path: &Path,
+    width: usize,
+    height: usize,
+    pixels: &[Color],
+    transfer: Transfer,
+) -> Result<(), String> {
+    let bytes = to_rgb8(pixels, transfer);
+    write_atomically(path, |tmp| {
+        image::save_buffer_with_format(
+            tmp,
+            &bytes,
+            width as u32,
+            height as u32,
+            image::ColorType::Rgb8,
+            image::ImageFormat::Png,
+        )
+        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+    })
+}
+
+/// The bytes of a colour PFM: header `PF\n<w> <h>\n-1.0\n` (negative scale: little-endian), then
+/// float32 RGB rows from the bottom of the image to the top.
+pub fn pfm_bytes(width: usize, height: usize, pixels: &[Color]) -> Vec<u8> {
+    let mut out = format!("PF\n{width} {height}\n-1.0\n").into_bytes();
+    out.reserve(width * height * 12);
+    for j in (0..height).rev() {
+        for c in &pixels[j * width..(j + 1) * width] {
+            for x in [c.x, c.y, c.z] {
+                out.extend_from_slice(&(x as f32).to_le_bytes());
+            }
+        }
+    }
+    out
+}
+
+/// Write linear radiance: PFM for `.pfm`, OpenEXR (f32 RGB) for `.exr`.
+pub fn write_linear(
+    path: &Path,
+    width: usize,
+    height: usize,
+    pixels: &[Color],
+) -> Result<(), String> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "pfm" => {
+            let bytes = pfm_bytes(width, height, pixels);
+            write_atomically(path, |tmp| {
+                std::fs::File::create(tmp)
+                    .and_then(|mut f| f.write_all(&bytes).and_then(|_| f.sync_all()))
+                    .map_err(|e| format!("{}: cannot write PFM: {e}", path.display()))
+            })
+        }
+        "exr" => {
+            let data: Vec<f32> = pixels
+                .iter()
+                .flat_map(|c| [c.x as f32, c.y as f32, c.z as f32])
+                .collect();
+            let img = image::Rgb32FImage::from_raw(width as u32, height as u32, data)
+                .ok_or_else(|| "image size does not match its pixels".to_string())?;
+            write_atomically(path, |tmp| {
+                image::DynamicImage::ImageRgb32F(img)
+                    .save_with_format(tmp, image::ImageFormat::OpenExr)
+                    .map_err(|e| format!("{}: cannot write OpenEXR: {e}", path.display()))
+            })
+        }
+        _ => Err(format!(
+            "{}: linear output must end in .pfm or .exr",
+            path.display()
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pfm_rows_run_bottom_to_top() {
+        let px = [Color::splat(1.0), Color::splat(2.0)]; // 1 wide, 2 high: top row 1.0, bottom 2.0
+        let b = pfm_bytes(1, 2, &px);
+        let header = b"PF\n1 2\n-1.0\n";
+        assert_eq!(&b[..header.len()], header);
+        let first = f32::from_le_bytes(b[header.len()..header.len() + 4].try_into().unwrap());
+        assert_eq!(first, 2.0);
+    }
+
+    #[test]
+    fn gamma2_matches_the_book() {
+        assert_eq!(Transfer::Gamma2.encode(0.25), 128);
+        assert_eq!(Transfer::Gamma2.encode(4.0), 255);
+        assert_eq!(Transfer::Gamma2.encode(f64::NAN), 0);
+        assert_eq!(Transfer::Srgb.encode(1.0), 255);
+        assert_eq!(Transfer::Srgb.encode(0.0), 0);
+    }
+}

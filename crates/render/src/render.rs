@@ -1,0 +1,175 @@
+//! Rendering in progressive passes over sample ranges `[k0, k1)` into an accumulation buffer.
+//!
+//! Sample `k` of a pixel depends only on `(seed, pixel, k)`, and each pixel's finite samples are summed
+//! in the order of `k`, so rendering `[0, a)` then `[a, b)` gives exactly the sums of `[0, b)`, for any
+//! number of threads (rows are shared out by rayon, but no pixel's sum depends on who computed it).
+
+use crate::camera::Camera;
+use crate::integrator::{Strategy, radiance};
+use crate::sampler::{Ctx, SampleRng, Stats, sample_key};
+use crate::scene::Scene;
+use crate::vec::Color;
+use rayon::prelude::*;
+
+/// Settings that change the image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: usize,
+    pub max_depth: u32,
+    pub seed: u64,
+    pub strategy: Strategy,
+}
+
+/// Per-pixel sums of finite sample values, how many were summed, and how many were dropped as
+/// non-finite.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Accumulator {
+    pub width: usize,
+    pub height: usize,
+    pub sum: Vec<Color>,
+    pub count: Vec<u64>,
+    pub dropped: Vec<u64>,
+    /// Samples per pixel done so far: the range `[0, samples)` when rendered from 0.
+    pub samples: u64,
+}
+
+impl Accumulator {
+    pub fn new(width: usize, height: usize) -> Self {
+        let n = width * height;
+        Accumulator {
+            width,
+            height,
+            sum: vec![Color::ZERO; n],
+            count: vec![0; n],
+            dropped: vec![0; n],
+            samples: 0,
+        }
+    }
+
+    /// Add one sample to pixel `i`: summed if every component is finite, otherwise counted as dropped.
+    /// Returns whether the sample was kept.
+    #[inline]
+    pub fn add(sum: &mut Color, count: &mut u64, dropped: &mut u64, value: Color) -> bool {
+        if value.is_finite() {
+            *sum += value;
+            *count += 1;
+            true
+        } else {
+            *dropped += 1;
+            false
+        }
+    }
+
+    /// The mean of the finite samples of pixel `i` (black if it has none).
+    #[inline]
+    pub fn mean(&self, i: usize) -> Color {
+        if self.count[i] == 0 {
+            Color::ZERO
+        } else {
+            self.sum[i] / self.count[i] as f64
+        }
+    }
+
+    /// The image: every pixel's mean, rows from the top.
+    pub fn image(&self) -> Vec<Color> {
+        (0..self.sum.len()).map(|i| self.mean(i)).collect()
+    }
+
+    /// Total number of non-finite samples dropped.
+    pub fn total_dropped(&self) -> u64 {
+        self.dropped.iter().sum()
+    }
+}
+
+/// A scene with a camera for one image size, ready to trace samples.
+pub struct Renderer<'a> {
+    pub scene: &'a Scene,
+    pub camera: Camera,
+    pub settings: RenderSettings,
+}
+
+impl<'a> Renderer<'a> {
+    pub fn new(scene: &'a Scene, settings: RenderSettings) -> Self {
+        let camera = Camera::new(&scene.camera, settings.width, scene.features.motion);
+        Renderer {
+            scene,
+            camera,
+            settings,
+        }
+    }
+
+    pub fn accumulator(&self) -> Accumulator {
+        Accumulator::new(self.camera.width, self.camera.height)
+    }
+
+    /// The scramble key of a pixel's sub-pixel sequence.
+    #[inline]
+    fn pixel_key(&self, pixel: u64) -> u64 {
+        sample_key(self.settings.seed, pixel, u64::MAX)
+    }
+
+    /// The value of sample `k` of pixel `(i, j)`: a function of `(seed, pixel, k)` only.
+    #[inline]
+    pub fn sample(&self, i: usize, j: usize, k: u64, ctx: &mut Ctx) -> Color {
+        let pixel = (j * self.camera.width + i) as u64;
+        ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
+        let ray = self.camera.ray(i, j, self.pixel_key(pixel), k, ctx);
+        let value = radiance(
+            self.scene,
+            ray,
+            self.settings.max_depth,
+            self.settings.strategy,
+            ctx,
+        );
+        ctx.stats.samples += 1;
+        ctx.stats.random_numbers += ctx.rng.drawn;
+        value
+    }
+
+    /// Add samples `k0..k1` of every pixel to `acc`, in parallel over rows; `on_row` is called after each
+    /// row (for progress). Returns the counters of this pass.
+    pub fn render_pass(
+        &self,
+        acc: &mut Accumulator,
+        k0: u64,
+        k1: u64,
+        on_row: &(dyn Fn() + Sync),
+    ) -> Stats {
+        assert_eq!(
+            (acc.width, acc.height),
+            (self.camera.width, self.camera.height),
+            "accumulator of another size"
+        );
+        let w = acc.width;
+        let stats = acc
+            .sum
+            .par_chunks_mut(w)
+            .zip(acc.count.par_chunks_mut(w))
+            .zip(acc.dropped.par_chunks_mut(w))
+            .enumerate()
+            .map(|(j, ((sum, count), dropped))| {
+                let mut ctx = Ctx::new();
+                for i in 0..w {
+                    for k in k0..k1 {
+                        let v = self.sample(i, j, k, &mut ctx);
+                        if !Accumulator::add(&mut sum[i], &mut count[i], &mut dropped[i], v) {
+                            ctx.stats.non_finite += 1;
+                        }
+                    }
+                }
+                on_row();
+                ctx.stats
+            })
+            .reduce(Stats::default, |a, b| a + b);
+        acc.samples = acc.samples.max(k1);
+        stats
+    }
+}
+
+/// Render samples `[0, spp)` in one go (in the current rayon pool).
+pub fn render(scene: &Scene, settings: RenderSettings, spp: u64) -> (Accumulator, Stats) {
+    let r = Renderer::new(scene, settings);
+    let mut acc = r.accumulator();
+    let stats = r.render_pass(&mut acc, 0, spp, &|| {});
+    (acc, stats)
+}

@@ -1,0 +1,641 @@
+//! A scene: objects grouped into lists, each list with its own BVH (the top level too), instances
+//! that place a list with a rigid transform, constant media, materials, textures, camera and
+//! background. Geometry is a plain enum and every reference is an index, so intersection is static
+//! dispatch over flat arrays.
+
+use crate::aabb::Aabb;
+use crate::bvh::Bvh;
+use crate::camera::CameraSettings;
+use crate::hit::{Hit, REL_ERROR};
+use crate::material::Material;
+use crate::ray::{Interval, Ray};
+use crate::sampler::Ctx;
+use crate::shapes::{Quad, Sphere, box_quads};
+use crate::texture::Texture;
+use crate::vec::{Color, Point3, Vec3};
+use glam::DMat3;
+
+/// A rigid transform `x -> R x + t` (rotation then translation), as book 2's `translate(rotate_y(..))`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    pub rotation: DMat3,
+    pub translation: Vec3,
+}
+
+impl Transform {
+    pub const IDENTITY: Transform = Transform {
+        rotation: DMat3::IDENTITY,
+        translation: Vec3::ZERO,
+    };
+
+    /// Rotation by `degrees` about +y: `x' = cos x + sin z`, `z' = -sin x + cos z`.
+    pub fn rotate_y(degrees: f64) -> Self {
+        Transform {
+            rotation: DMat3::from_rotation_y(degrees.to_radians()),
+            translation: Vec3::ZERO,
+        }
+    }
+
+    pub fn translate(offset: Vec3) -> Self {
+        Transform {
+            rotation: DMat3::IDENTITY,
+            translation: offset,
+        }
+    }
+
+    /// This transform followed by `next`.
+    pub fn then(self, next: Transform) -> Self {
+        Transform {
+            rotation: next.rotation * self.rotation,
+            translation: next.rotation * self.translation + next.translation,
+        }
+    }
+
+    #[inline]
+    pub fn point(&self, p: Point3) -> Point3 {
+        self.rotation * p + self.translation
+    }
+
+    #[inline]
+    pub fn vector(&self, v: Vec3) -> Vec3 {
+        self.rotation * v
+    }
+
+    /// The inverse map of a point (`R^T (p - t)`, rotations being orthogonal).
+    #[inline]
+    pub fn inverse_point(&self, p: Point3) -> Point3 {
+        self.rotation.transpose() * (p - self.translation)
+    }
+
+    #[inline]
+    pub fn inverse_vector(&self, v: Vec3) -> Vec3 {
+        self.rotation.transpose() * v
+    }
+
+    /// The bounding box of a transformed box (its eight transformed corners).
+    pub fn bounds(&self, b: &Aabb) -> Aabb {
+        let mut out = Aabb::EMPTY;
+        for i in 0..8 {
+            let c = Vec3::new(
+                if i & 1 == 0 { b.min.x } else { b.max.x },
+                if i & 2 == 0 { b.min.y } else { b.max.y },
+                if i & 4 == 0 { b.min.z } else { b.max.z },
+            );
+            out = out.include(self.point(c));
+        }
+        out.padded()
+    }
+}
+
+/// Index of a group (a list of objects with its own BVH) in the scene; group 0 is the world.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GroupId(pub u32);
+
+/// Index of a material in the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MaterialId(pub u32);
+
+/// Index of a texture in the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureId(pub u32);
+
+/// A constant-density medium filling a closed boundary (book 2): a ray inside travels a distance drawn
+/// from the exponential distribution of rate `density` before it scatters by the phase function.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConstantMedium {
+    pub boundary: GroupId,
+    pub neg_inv_density: f64,
+    pub phase: u32,
+}
+
+/// Something a ray can hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Object {
+    Sphere(Sphere),
+    Quad(Quad),
+    /// A group placed by a transform.
+    Instance {
+        transform: Transform,
+        group: GroupId,
+    },
+    /// A group in place (a list within a list, with its own BVH).
+    Group(GroupId),
+    Medium(ConstantMedium),
+}
+
+/// A list of objects and the BVH over them (objects stored in leaf order).
+#[derive(Clone, Debug, Default)]
+pub struct Group {
+    pub objects: Vec<Object>,
+    pub bvh: Bvh,
+}
+
+/// The background: what a ray that leaves the scene sees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Background {
+    Solid(Color),
+    /// Book 1's sky: white at the bottom blending to (0.5, 0.7, 1.0) at the top, by the direction's y.
+    Sky,
+}
+
+impl Background {
+    #[inline]
+    pub fn value(&self, ray: &Ray) -> Color {
+        match self {
+            Background::Solid(c) => *c,
+            Background::Sky => {
+                let a = 0.5 * (ray.direction.normalize().y + 1.0);
+                (1.0 - a) * Color::ONE + a * Color::new(0.5, 0.7, 1.0)
+            }
+        }
+    }
+}
+
+/// An importance target of book 3 ("lights"): a shape in world space that scattered rays may be
+/// aimed at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    Quad(Quad),
+    Sphere(Sphere),
+}
+
+/// What a scene calls for, decided once when it is built, so that nothing is simulated that the scene
+/// does not need.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Features {
+    /// The camera has a lens (defocus blur).
+    pub defocus: bool,
+    /// Something moves during the shutter interval (motion blur: rays carry random times).
+    pub motion: bool,
+    /// Number of constant media.
+    pub media: usize,
+    /// Number of textures that are not a plain colour.
+    pub textures: usize,
+    /// Number of emitting objects (primitives with a light material, instanced copies counted once).
+    pub emitters: usize,
+    /// Whether some emitter is one-sided.
+    pub one_sided_emitters: bool,
+    /// Number of importance targets.
+    pub targets: usize,
+}
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub groups: Vec<Group>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub camera: CameraSettings,
+    pub background: Background,
+    /// Most intersections a path may have.
+    pub max_depth: u32,
+    pub targets: Vec<Target>,
+    pub features: Features,
+}
+
+/// Errors in building a scene.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum SceneError {
+    #[error("zero-area or non-finite quad (Q {q}, u {u}, v {v})")]
+    DegenerateQuad { q: Vec3, u: Vec3, v: Vec3 },
+    #[error("sphere with non-positive or non-finite radius {0} or non-finite centre")]
+    BadSphere(f64),
+    #[error("medium density must be positive and finite, got {0}")]
+    BadDensity(f64),
+    #[error("{0}")]
+    Other(String),
+}
+
+/// Builds a scene object by object, the way the books' `main` functions do.
+#[derive(Debug)]
+pub struct SceneBuilder {
+    groups: Vec<Vec<Object>>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub camera: CameraSettings,
+    pub background: Background,
+    pub max_depth: u32,
+    pub targets: Vec<Target>,
+}
+
+impl Default for SceneBuilder {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl SceneBuilder {
+    pub fn new() -> Self {
+        SceneBuilder {
+            groups: vec![Vec::new()],
+            materials: Vec::new(),
+            textures: Vec::new(),
+            camera: CameraSettings::default(),
+            background: Background::Solid(Color::ZERO),
+            max_depth: 50,
+            targets: Vec::new(),
+        }
+    }
+
+    pub fn material(&mut self, m: Material) -> MaterialId {
+        self.materials.push(m);
+        MaterialId(self.materials.len() as u32 - 1)
+    }
+
+    pub fn texture(&mut self, t: Texture) -> TextureId {
+        self.textures.push(t);
+        TextureId(self.textures.len() as u32 - 1)
+    }
+
+    /// A new empty group (a list with its own BVH), to be filled with `add_to` and placed by instances.
+    pub fn group(&mut self) -> GroupId {
+        self.groups.push(Vec::new());
+        GroupId(self.groups.len() as u32 - 1)
+    }
+
+    /// The world: the top-level list.
+    pub fn world(&self) -> GroupId {
+        GroupId(0)
+    }
+
+    pub fn add_to(&mut self, g: GroupId, o: Object) {
+        self.groups[g.0 as usize].push(o);
+    }
+
+    pub fn add(&mut self, o: Object) {
+        self.add_to(GroupId(0), o)
+    }
+
+    /// A sphere into group `g`.
+    pub fn sphere(
+        &mut self,
+        g: GroupId,
+        center: Point3,
+        radius: f64,
+        m: MaterialId,
+    ) -> Result<(), SceneError> {
+        if !(radius.is_finite() && radius > 0.0 && center.is_finite()) {
+            return Err(SceneError::BadSphere(radius));
+        }
+        self.add_to(g, Object::Sphere(Sphere::new(center, radius, m.0)));
+        Ok(())
+    }
+
+    /// A sphere moving from `c0` at time 0 to `c1` at time 1 into group `g`.
+    pub fn moving_sphere(
+        &mut self,
+        g: GroupId,
+        c0: Point3,
+        c1: Point3,
+        radius: f64,
+        m: MaterialId,
+    ) -> Result<(), SceneError> {
+        if !(radius.is_finite() && radius > 0.0 && c0.is_finite() && c1.is_finite()) {
+            return Err(SceneError::BadSphere(radius));
+        }
+        self.add_to(g, Object::Sphere(Sphere::moving(c0, c1, radius, m.0)));
+        Ok(())
+    }
+
+    /// The quad `(Q, u, v)` into group `g`.
+    pub fn quad(
+        &mut self,
+        g: GroupId,
+        q: Point3,
+        u: Vec3,
+        v: Vec3,
+        m: MaterialId,
+    ) -> Result<Quad, SceneError> {
+        let quad = Quad::new(q, u, v, m.0).ok_or(SceneError::DegenerateQuad { q, u, v })?;
+        self.add_to(g, Object::Quad(quad));
+        Ok(quad)
+    }
+
+    /// A new group holding the box with corners `a`, `b` as six quads.
+    pub fn box_group(
+        &mut self,
+        a: Point3,
+        b: Point3,
+        m: MaterialId,
+    ) -> Result<GroupId, SceneError> {
+        let quads = box_quads(a, b, m.0).ok_or(SceneError::DegenerateQuad {
+            q: a,
+            u: b - a,
+            v: Vec3::ZERO,
+        })?;
+        let g = self.group();
+        for q in quads {
+            self.add_to(g, Object::Quad(q));
+        }
+        Ok(g)
+    }
+
+    /// Place group `inner` by `transform` into group `g`.
+    pub fn instance(&mut self, g: GroupId, inner: GroupId, transform: Transform) {
+        self.add_to(
+            g,
+            Object::Instance {
+                transform,
+                group: inner,
+            },
+        );
+    }
+
+    /// Fill the closed shape `boundary` with a medium of `density` and phase material `phase` in group `g`.
+    pub fn medium(
+        &mut self,
+        g: GroupId,
+        boundary: GroupId,
+        density: f64,
+        phase: MaterialId,
+    ) -> Result<(), SceneError> {
+        if !(density.is_finite() && density > 0.0) {
+            return Err(SceneError::BadDensity(density));
+        }
+        self.add_to(
+            g,
+            Object::Medium(ConstantMedium {
+                boundary,
+                neg_inv_density: -1.0 / density,
+                phase: phase.0,
+            }),
+        );
+        Ok(())
+    }
+
+    /// Build every group's BVH (inner groups first, since instances need their bounds) and decide the
+    /// scene's features.
+    pub fn build(self) -> Result<Scene, SceneError> {
+        let n = self.groups.len();
+        let mut built: Vec<Option<Group>> = (0..n).map(|_| None).collect();
+        let mut bounds_of: Vec<Option<Aabb>> = vec![None; n];
+        // Groups reference only groups created after the world and before themselves, except the
+        // world which may reference any: build 1..n in order, then 0.
+        let order: Vec<usize> = (1..n).chain(std::iter::once(0)).collect();
+        for &gi in &order {
+            let objects = &self.groups[gi];
+            let mut bounds = Vec::with_capacity(objects.len());
+            for o in objects {
+                let b = match o {
+                    Object::Sphere(s) => s.bounds(),
+                    Object::Quad(q) => q.bounds(),
+                    Object::Instance { transform, group } => {
+                        let inner = bounds_of[group.0 as usize].ok_or_else(|| {
+                            SceneError::Other(format!(
+                                "group {} is placed before it is complete",
+                                group.0
+                            ))
+                        })?;
+                        transform.bounds(&inner)
+                    }
+                    Object::Group(group) => bounds_of[group.0 as usize].ok_or_else(|| {
+                        SceneError::Other(format!(
+                            "group {} is placed before it is complete",
+                            group.0
+                        ))
+                    })?,
+                    Object::Medium(m) => bounds_of[m.boundary.0 as usize].ok_or_else(|| {
+                        SceneError::Other(format!(
+                            "medium boundary {} is not complete",
+                            m.boundary.0
+                        ))
+                    })?,
+                };
+                bounds.push(b);
+            }
+            let bvh = Bvh::build(&bounds);
+            let objects_in_order = bvh.order.iter().map(|&i| objects[i as usize]).collect();
+            bounds_of[gi] = Some(bvh.bounds());
+            built[gi] = Some(Group {
+                objects: objects_in_order,
+                bvh,
+            });
+        }
+        let groups: Vec<Group> = built
+            .into_iter()
+            .map(|g| g.expect("every group built"))
+            .collect();
+        for (i, m) in self.materials.iter().enumerate() {
+            let bad = match m {
+                Material::Lambertian { albedo }
+                | Material::Isotropic { albedo }
+                | Material::DiffuseLight { emit: albedo, .. } => {
+                    matches!(albedo, crate::material::Albedo::Texture(t) if *t as usize >= self.textures.len())
+                }
+                Material::Metal { albedo, fuzz } => !albedo.is_finite() || !fuzz.is_finite(),
+                Material::Dielectric { ior } => !(ior.is_finite() && *ior > 0.0),
+            };
+            if bad {
+                return Err(SceneError::Other(format!("material {i} is invalid: {m:?}")));
+            }
+        }
+        let mut features = Features {
+            defocus: self.camera.defocus_angle > 0.0,
+            targets: self.targets.len(),
+            textures: self
+                .textures
+                .iter()
+                .filter(|t| !matches!(t, Texture::Solid(_)))
+                .count(),
+            ..Features::default()
+        };
+        for g in &groups {
+            for o in &g.objects {
+                let mat = match o {
+                    Object::Sphere(s) => {
+                        features.motion |= s.is_moving();
+                        Some(s.material)
+                    }
+                    Object::Quad(q) => Some(q.material),
+                    Object::Instance { .. } | Object::Group(_) => None,
+                    Object::Medium(_) => {
+                        features.media += 1;
+                        None
+                    }
+                };
+                if let Some(m) = mat {
+                    let m = self
+                        .materials
+                        .get(m as usize)
+                        .ok_or_else(|| SceneError::Other(format!("unknown material {m}")))?;
+                    if let Material::DiffuseLight { two_sided, .. } = m {
+                        features.emitters += 1;
+                        features.one_sided_emitters |= !two_sided;
+                    }
+                }
+            }
+        }
+        Ok(Scene {
+            groups,
+            materials: self.materials,
+            textures: self.textures,
+            camera: self.camera,
+            background: self.background,
+            max_depth: self.max_depth,
+            targets: self.targets,
+            features,
+        })
+    }
+}
+
+impl Scene {
+    /// The closest hit along `ray` at `t > 0`.
+    #[inline]
+    pub fn hit(&self, ray: &Ray, ctx: &mut Ctx) -> Option<Hit> {
+        self.hit_group(GroupId(0), ray, Interval::FORWARD, ctx)
+    }
+
+    /// The closest hit in group `g` with `t` in the open interval `range`: iterative BVH traversal.
+    pub fn hit_group(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
+        let group = &self.groups[g.0 as usize];
+        let nodes = &group.bvh.nodes;
+        if nodes.is_empty() {
+            return None;
+        }
+        let inv = ray.direction.recip();
+        let neg = [
+            ray.direction.x < 0.0,
+            ray.direction.y < 0.0,
+            ray.direction.z < 0.0,
+        ];
+        let mut closest = range.max;
+        let mut best: Option<Hit> = None;
+        let mut stack = [0u32; 64];
+        let mut sp = 0usize;
+        let mut node = 0usize;
+        loop {
+            let n = &nodes[node];
+            if n.bounds.hit(ray.origin, inv, range.min, closest).is_some() {
+                if n.count > 0 {
+                    let first = n.offset as usize;
+                    for o in &group.objects[first..first + n.count as usize] {
+                        if let Some(h) =
+                            self.hit_object(o, ray, Interval::new(range.min, closest), ctx)
+                        {
+                            closest = h.t;
+                            best = Some(h);
+                        }
+                    }
+                } else {
+                    let (near, far) = if neg[n.axis as usize] {
+                        (n.offset as usize, node + 1)
+                    } else {
+                        (node + 1, n.offset as usize)
+                    };
+                    stack[sp] = far as u32;
+                    sp += 1;
+                    node = near;
+                    continue;
+                }
+            }
+            if sp == 0 {
+                break;
+            }
+            sp -= 1;
+            node = stack[sp] as usize;
+        }
+        best
+    }
+
+    #[inline]
+    fn hit_object(&self, o: &Object, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
+        match o {
+            Object::Sphere(s) => s.hit(ray, range),
+            Object::Quad(q) => q.hit(ray, range),
+            Object::Instance { transform, group } => {
+                self.hit_instance(transform, *group, ray, range, ctx)
+            }
+            Object::Group(group) => self.hit_group(*group, ray, range, ctx),
+            Object::Medium(m) => self.hit_medium(m, ray, range, ctx),
+        }
+    }
+
+    /// Intersect a placed group: move the ray into the group's frame, hit, move the hit back. The
+    /// error bound grows by the rounding of the transform.
+    fn hit_instance(
+        &self,
+        tr: &Transform,
+        group: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let local = Ray::new(
+            tr.inverse_point(ray.origin),
+            tr.inverse_vector(ray.direction),
+            ray.time,
+        );
+        let mut h = self.hit_group(group, &local, range, ctx)?;
+        h.p = tr.point(h.p);
+        h.normal = tr.vector(h.normal);
+        h.err = h.err * 2.0
+            + REL_ERROR * (h.p.abs().max_element() + tr.translation.abs().max_element());
+        Some(h)
+    }
+
+    /// Book 2's constant medium, made robust: find where the ray enters and leaves the boundary (the
+    /// first hit on the whole line, then the next hit beyond it by more than the hit's error bound),
+    /// clip that segment to `range`, and scatter at an exponentially distributed distance if it falls
+    /// inside. A ray that starts inside the medium (its entry lies behind it) travels from its origin.
+    /// The boundary must be closed; a grazing ray whose entry and exit coincide passes through.
+    fn hit_medium(
+        &self,
+        m: &ConstantMedium,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        ctx.stats.medium_evaluations += 1;
+        let enter = self.hit_group(m.boundary, ray, Interval::UNIVERSE, ctx)?;
+        let len = ray.direction.length();
+        let gap = 8.0 * enter.err / len;
+        let exit = self.hit_group(
+            m.boundary,
+            ray,
+            Interval::new(enter.t + gap, f64::INFINITY),
+            ctx,
+        )?;
+        let t0 = enter.t.max(range.min).max(0.0);
+        let t1 = exit.t.min(range.max);
+        if t0 >= t1 || t0.is_nan() || t1.is_nan() {
+            return None;
+        }
+        let inside = (t1 - t0) * len;
+        // 1 - u lies in (0, 1], so the logarithm is finite.
+        let distance = m.neg_inv_density * (1.0 - ctx.uniform()).ln();
+        if distance >= inside {
+            return None;
+        }
+        let t = t0 + distance / len;
+        let p = ray.at(t);
+        Some(Hit {
+            t,
+            p,
+            normal: Vec3::X,
+            front_face: true,
+            err: 0.0,
+            material: m.phase,
+            uv_source: crate::hit::UvSource::Uv(0.0, 0.0),
+        })
+    }
+
+    /// The closest hit by testing every object of group `g` in turn (no BVH): the reference the BVH is
+    /// tested against.
+    pub fn hit_brute_force(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let mut closest = range.max;
+        let mut best = None;
+        for o in &self.groups[g.0 as usize].objects {
+            if let Some(h) = self.hit_object(o, ray, Interval::new(range.min, closest), ctx) {
+                closest = h.t;
+                best = Some(h);
+            }
+        }
+        best
+    }
+}
