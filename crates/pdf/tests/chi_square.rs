@@ -235,6 +235,7 @@ fn chi_square_spherical_rectangle_warp() {
     spherical_rectangle_warp(N);
 }
 
+// ANCHOR: factor_two_bug
 /// The checker must catch a wrong sampler: the cosine warp of the book's first editions multiplied
 /// `x` and `y` by 2 (`x = cos(phi) 2 sqrt(r2)`, fixed in RayTracing/TheRestOfYourLife#70). Even with
 /// the result normalised, its directions are not distributed as `cos theta / pi`.
@@ -269,6 +270,7 @@ fn chi_square_rejects_the_books_old_factor_two_cosine_warp() {
         report.p_value
     );
 }
+// ANCHOR_END: factor_two_bug
 
 /// And a subtler one: a cone sampled as the book's chapter 12 does but with `cos theta_max` computed
 /// by `sqrt(1 - r^2/d^2)` while the sampler used a cone 10% too wide.
@@ -568,6 +570,7 @@ fn chi_square_hittable_pdf_sphere_from_inside() {
 
 // ---------------------------------------------------------------- HittablePdf towards a quad
 
+// ANCHOR: hittable_quad_test
 /// Towards a 2 x 1.5 rectangle in the plane z = 0, binned by the rectangle's (s, t).
 fn hittable_quad(
     origin: DVec3,
@@ -598,6 +601,7 @@ fn hittable_quad(
         || pdf.generate(&mut r),
     )
 }
+// ANCHOR_END: hittable_quad_test
 
 const QUAD_NEAR: DVec3 = DVec3::new(0.2, 0.1, 0.05);
 const QUAD_FAR: DVec3 = DVec3::new(3.0, -40.0, 100.0);

@@ -45,6 +45,7 @@ struct Row {
     variance_per_sample: f64,
 }
 
+// ANCHOR: estimate
 /// The Monte Carlo estimate of `integral f` with `n` directions from `pdf`, and the sample variance
 /// of `f / p`. A direction with `p = 0` (on the boundary of the support) contributes 0.
 fn estimate<P: Pdf>(
@@ -70,6 +71,7 @@ fn estimate<P: Pdf>(
     };
     (mean, var)
 }
+// ANCHOR_END: estimate
 
 #[allow(clippy::too_many_arguments)]
 fn series<P: Pdf>(
