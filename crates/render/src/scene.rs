@@ -363,15 +363,63 @@ impl SceneBuilder {
         Ok(())
     }
 
+    /// The groups a group refers to (by instance, nesting or medium boundary).
+    fn references(objects: &[Object]) -> impl Iterator<Item = usize> + '_ {
+        objects.iter().filter_map(|o| match o {
+            Object::Instance { group, .. } | Object::Group(group) => Some(group.0 as usize),
+            Object::Medium(m) => Some(m.boundary.0 as usize),
+            _ => None,
+        })
+    }
+
+    /// Groups in an order where every group comes after the groups it refers to (depth-first); a
+    /// group that contains itself, directly or not, is an error.
+    fn build_order(&self) -> Result<Vec<usize>, SceneError> {
+        // 0 = not visited, 1 = on the current path, 2 = done.
+        let n = self.groups.len();
+        let mut state = vec![0u8; n];
+        let mut order = Vec::with_capacity(n);
+        for root in 0..n {
+            if state[root] != 0 {
+                continue;
+            }
+            // Explicit stack of (group, next reference index) to avoid deep recursion.
+            let mut stack = vec![(root, 0usize)];
+            state[root] = 1;
+            while let Some(&mut (g, ref mut next)) = stack.last_mut() {
+                let refs: Vec<usize> = Self::references(&self.groups[g]).collect();
+                if let Some(&r) = refs.get(*next) {
+                    *next += 1;
+                    if r >= n {
+                        return Err(SceneError::Other(format!(
+                            "group {g} refers to group {r}, which does not exist"
+                        )));
+                    }
+                    match state[r] {
+                        0 => {
+                            state[r] = 1;
+                            stack.push((r, 0));
+                        }
+                        1 => return Err(SceneError::Other(format!("group {r} contains itself"))),
+                        _ => {}
+                    }
+                } else {
+                    state[g] = 2;
+                    order.push(g);
+                    stack.pop();
+                }
+            }
+        }
+        Ok(order)
+    }
+
     /// Build every group's BVH (inner groups first, since instances need their bounds) and decide the
     /// scene's features.
     pub fn build(self) -> Result<Scene, SceneError> {
         let n = self.groups.len();
         let mut built: Vec<Option<Group>> = (0..n).map(|_| None).collect();
         let mut bounds_of: Vec<Option<Aabb>> = vec![None; n];
-        // Groups reference only groups created after the world and before themselves, except the
-        // world which may reference any: build 1..n in order, then 0.
-        let order: Vec<usize> = (1..n).chain(std::iter::once(0)).collect();
+        let order = self.build_order()?;
         for &gi in &order {
             let objects = &self.groups[gi];
             let mut bounds = Vec::with_capacity(objects.len());
