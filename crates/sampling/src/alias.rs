@@ -57,7 +57,8 @@ impl AliasTable {
         let pmf: Vec<f64> = weights.iter().map(|w| w / total).collect();
         // Scaled probabilities average 1; `small` holds columns below 1, `large` the rest.
         let mut scaled: Vec<f64> = pmf.iter().map(|p| p * n as f64).collect();
-        let (mut small, mut large): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| scaled[i] < 1.0);
+        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
+            (0..n).partition(|&i| scaled[i] < 1.0);
         let mut columns = vec![Column { q: 1.0, alias: 0 }; n];
         while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
             small.pop();
@@ -77,7 +78,10 @@ impl AliasTable {
         let heaviest = (0..n).fold(0, |m, i| if pmf[i] > pmf[m] { i } else { m });
         for i in small.into_iter().chain(large) {
             columns[i] = if pmf[i] > 0.0 {
-                Column { q: 1.0, alias: i as u32 }
+                Column {
+                    q: 1.0,
+                    alias: i as u32,
+                }
             } else {
                 Column {
                     q: 0.0,
@@ -211,7 +215,7 @@ impl AliasPiecewise {
         let (o, start) = if keep { (&c.own, 0.0) } else { (&c.alias, c.q) };
         let v = ((coin - start) * o.stretch).min(ONE_MINUS_EPSILON);
         Sample {
-            x: (o.x0 + v * (o.x1 - o.x0)).min(o.x1.next_down()),
+            x: (o.x0 + v * (o.x1 - o.x0)).min(crate::next_down(o.x1)),
             pdf: o.pdf,
         }
     }

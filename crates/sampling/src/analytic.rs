@@ -67,7 +67,11 @@ pub struct Linear;
 
 impl Linear {
     pub fn pdf(&self, x: f64) -> f64 {
-        if (0.0..=2.0).contains(&x) { x / 2.0 } else { 0.0 }
+        if (0.0..=2.0).contains(&x) {
+            x / 2.0
+        } else {
+            0.0
+        }
     }
     pub fn sample(&self, u: f64) -> Sample {
         let x = 2.0 * clamp_u(u).sqrt();

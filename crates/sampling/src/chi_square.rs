@@ -174,7 +174,10 @@ mod tests {
     #[test]
     fn a_sample_where_none_is_expected_is_rejected() {
         let r = chi_square(&[10.0, 1.0, 10.0], &[10.5, 0.0, 10.5]);
-        assert!(matches!(r, Err(ChiSquareError::SampleOutsideSupport { cell: 1, .. })));
+        assert!(matches!(
+            r,
+            Err(ChiSquareError::SampleOutsideSupport { cell: 1, .. })
+        ));
         // Empty cells outside the support are simply skipped.
         let r = chi_square(&[10.0, 0.0, 11.0], &[10.5, 0.0, 10.5]).unwrap();
         assert_eq!(r.dof, 1);

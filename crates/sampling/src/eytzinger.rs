@@ -10,7 +10,9 @@
 //! Each node stores the pair `(Fₖ, xₖ)`: the search ends knowing the nodes just left and right of
 //! `u`, which are the ends of the bin, so sampling needs no further memory access.
 
-use crate::{InverseTransform, Sample, SamplingError, TabulatedCdf, clamp_u, distribution_by_inversion};
+use crate::{
+    InverseTransform, Sample, SamplingError, TabulatedCdf, clamp_u, distribution_by_inversion,
+};
 
 /// One node of the tree: a CDF value and its `x`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -29,20 +31,34 @@ struct Line([Node; 4]);
 pub struct EytzingerCdf {
     /// Node `k` (1-based) lives at `lines[k / 4].0[k % 4]`; slot 0 is unused.
     lines: Vec<Line>,
-    /// The number of interior nodes, `n - 1`.
-    count: usize,
+    /// The depth `d` of the complete tree of `2ᵈ - 1` nodes.
+    depth: u32,
     first: Node,
     last: Node,
 }
 
 impl EytzingerCdf {
-    /// Reorders the interior nodes `(F₁, x₁) … (Fₙ₋₁, xₙ₋₁)` of `table` breadth-first.
+    /// Reorders the interior nodes `(F₁, x₁) … (Fₙ₋₁, xₙ₋₁)` of `table` breadth-first. The tree is
+    /// padded to a complete one (`2ᵈ - 1` nodes) with copies of the last node `(1, xₙ)`, which sort
+    /// after every interior node: every search then takes exactly `d` steps, and the loop's exit is
+    /// never mispredicted.
     pub fn new(table: &TabulatedCdf) -> Self {
         let (x, cdf) = (table.nodes(), table.cdf_values());
         let n = table.len();
-        let count = n - 1;
+        let last = Node { cdf: 1.0, x: x[n] };
+        let count = n.next_power_of_two() - 1; // the smallest 2ᵈ - 1 >= n - 1
+        let sorted = |i: usize| {
+            if i < n {
+                Node {
+                    cdf: cdf[i],
+                    x: x[i],
+                }
+            } else {
+                last
+            }
+        };
         let mut lines = vec![Line::default(); (count + 1).div_ceil(4)];
-        // An in-order walk of the implicit tree visits the sorted interior nodes in order.
+        // An in-order walk of the implicit tree visits the sorted nodes in order.
         let mut next = 1; // the next sorted node to place
         let mut k = 1usize; // the tree position being visited
         let mut stack = Vec::new();
@@ -52,18 +68,15 @@ impl EytzingerCdf {
                 k *= 2;
             }
             let Some(top) = stack.pop() else { break };
-            lines[top / 4].0[top % 4] = Node {
-                cdf: cdf[next],
-                x: x[next],
-            };
+            lines[top / 4].0[top % 4] = sorted(next);
             next += 1;
             k = 2 * top + 1;
         }
         Self {
             lines,
-            count,
+            depth: (count + 1).trailing_zeros(),
             first: Node { cdf: 0.0, x: x[0] },
-            last: Node { cdf: 1.0, x: x[n] },
+            last,
         }
     }
 
@@ -81,7 +94,7 @@ impl EytzingerCdf {
     #[inline]
     fn bracket(&self, u: f64) -> (Node, Node) {
         let mut k = 1;
-        while k <= self.count {
+        for _ in 0..self.depth {
             for l in 0..PREFETCH_LINES {
                 prefetch(&self.lines, PREFETCH_LINES * k + l);
             }
@@ -103,7 +116,7 @@ impl EytzingerCdf {
         let (lo, hi) = self.bracket(u);
         let t = (u - lo.cdf) / (hi.cdf - lo.cdf);
         Sample {
-            x: (lo.x + t * (hi.x - lo.x)).min(hi.x.next_down()),
+            x: (lo.x + t * (hi.x - lo.x)).min(crate::next_down(hi.x)),
             pdf: (hi.cdf - lo.cdf) / (hi.x - lo.x),
         }
     }
@@ -111,7 +124,7 @@ impl EytzingerCdf {
     /// The nodes left and right of `x` (a node belongs to the bin on its right).
     fn bracket_x(&self, x: f64) -> (Node, Node) {
         let mut k = 1;
-        while k <= self.count {
+        for _ in 0..self.depth {
             k = 2 * k + (self.node(k).x <= x) as usize;
         }
         let lo = k >> (k.trailing_zeros() + 1);
@@ -127,7 +140,7 @@ impl EytzingerCdf {
         if !(self.first.x..=self.last.x).contains(&x) {
             return 0.0;
         }
-        let (lo, hi) = self.bracket_x(x);
+        let (lo, hi) = self.bracket_x(x.min(crate::next_down(self.last.x)));
         (hi.cdf - lo.cdf) / (hi.x - lo.x)
     }
 
@@ -152,7 +165,7 @@ impl EytzingerCdf {
 /// How far ahead the search prefetches: the descendants of node `k` two levels down are nodes
 /// `4k … 4k + 3`, one line (line `k`); four levels down they are nodes `16k … 16k + 15`, lines
 /// `4k … 4k + 3`. `PREFETCH_LINES = L` fetches lines `L k … L k + L - 1`.
-const PREFETCH_LINES: usize = 4;
+const PREFETCH_LINES: usize = 1;
 
 /// Asks the processor to start loading line `l`, if there is one.
 #[inline(always)]

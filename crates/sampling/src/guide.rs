@@ -5,7 +5,9 @@
 //! `guide[j + 1]` are searched. With `M ≈ N` that range holds about one bin on average, so a sample
 //! costs a multiply, two loads and a short search; the worst case stays O(log N).
 
-use crate::{InverseTransform, Sample, SamplingError, TabulatedCdf, clamp_u, distribution_by_inversion};
+use crate::{
+    InverseTransform, Sample, SamplingError, TabulatedCdf, clamp_u, distribution_by_inversion,
+};
 
 /// A [`TabulatedCdf`] with a guide table of `M` cells.
 #[derive(Clone, Debug, PartialEq)]
@@ -49,7 +51,7 @@ impl GuideTable {
         for j in 0..m {
             // Advance to the first bin of positive probability whose largest u, the float just
             // below Fᵢ₊₁, lies in cell j or later.
-            while i + 1 < n && (cdf[i + 1] <= cdf[i] || cell(cdf[i + 1].next_down()) < j) {
+            while i + 1 < n && (cdf[i + 1] <= cdf[i] || cell(crate::next_down(cdf[i + 1])) < j) {
                 i += 1;
             }
             guide.push(i as u32);

@@ -168,8 +168,12 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> NumericInverse<F, P> {
             if g.abs() <= self.tolerance {
                 break;
             }
-            if g < 0.0 { lo = x } else { hi = x }
-            if lo.next_up() >= hi {
+            if g < 0.0 {
+                lo = x
+            } else {
+                hi = x
+            }
+            if crate::next_up(lo) >= hi {
                 break; // two neighbouring floats: nothing left to refine
             }
             let slope = p(x);
@@ -248,11 +252,7 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> NumericInverse<F, P> {
             }
             a = b;
             fa = fb;
-            b += if d.abs() > tol1 {
-                d
-            } else {
-                tol1.copysign(xm)
-            };
+            b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
             fb = self.g(b, u)?;
             evaluations += 1;
         }
@@ -263,7 +263,8 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> rand::distr::Distribution<f64> for Nu
     /// Inverts `u = F(a) + (F(b) - F(a)) U` for a uniform `U`.
     fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> f64 {
         let u = self.fa + (self.fb - self.fa) * rng.random::<f64>();
-        self.invert(u.clamp(self.fa, self.fb)).map_or(f64::NAN, |r| r.x)
+        self.invert(u.clamp(self.fa, self.fb))
+            .map_or(f64::NAN, |r| r.x)
     }
 }
 
@@ -283,8 +284,14 @@ mod tests {
             for k in 0..100 {
                 let u = (k as f64 + 0.5) / 100.0;
                 for (name, r) in [
-                    ("brent", brent.clone().with_tolerance(tol).unwrap().invert(u)),
-                    ("newton", newton.clone().with_tolerance(tol).unwrap().invert(u)),
+                    (
+                        "brent",
+                        brent.clone().with_tolerance(tol).unwrap().invert(u),
+                    ),
+                    (
+                        "newton",
+                        newton.clone().with_tolerance(tol).unwrap().invert(u),
+                    ),
                 ] {
                     let r = r.unwrap();
                     assert!(
@@ -301,7 +308,13 @@ mod tests {
     #[test]
     fn a_flat_cdf_and_a_jump_stay_in_the_bracket() {
         // F jumps from 0.25 to 0.75 at x = 1: u = 0.5 cannot be met; the bracket closes on 1.
-        let step = |x: f64| if x < 1.0 { 0.25 * x } else { 0.75 + 0.25 * (x - 1.0) };
+        let step = |x: f64| {
+            if x < 1.0 {
+                0.25 * x
+            } else {
+                0.75 + 0.25 * (x - 1.0)
+            }
+        };
         let inv = NumericInverse::new(step, 0.0, 2.0).unwrap();
         let r = inv.invert(0.5).unwrap();
         assert!((r.x - 1.0).abs() <= 1e-15, "{r:?}");
@@ -314,17 +327,34 @@ mod tests {
     #[test]
     fn bad_queries_and_bad_cdfs_are_errors() {
         let inv = NumericInverse::new(cdf, 0.0, 2.0).unwrap();
-        assert!(matches!(inv.invert(1.5), Err(SamplingError::OutsideRange { .. })));
-        assert!(matches!(inv.invert(f64::NAN), Err(SamplingError::OutsideRange { .. })));
+        assert!(matches!(
+            inv.invert(1.5),
+            Err(SamplingError::OutsideRange { .. })
+        ));
+        assert!(matches!(
+            inv.invert(f64::NAN),
+            Err(SamplingError::OutsideRange { .. })
+        ));
         assert!(matches!(
             NumericInverse::new(cdf, 2.0, 0.0),
             Err(SamplingError::BadInterval { .. })
         ));
-        let nan_inside = |x: f64| if (0.9..1.1).contains(&x) { f64::NAN } else { x / 2.0 };
+        let nan_inside = |x: f64| {
+            if (0.9..1.1).contains(&x) {
+                f64::NAN
+            } else {
+                x / 2.0
+            }
+        };
         let inv = NumericInverse::new(nan_inside, 0.0, 2.0).unwrap();
-        assert!(matches!(inv.invert(0.5), Err(SamplingError::BadCdfValue { .. })));
         assert!(matches!(
-            NumericInverse::new(cdf, 0.0, 2.0).unwrap().with_tolerance(-1.0),
+            inv.invert(0.5),
+            Err(SamplingError::BadCdfValue { .. })
+        ));
+        assert!(matches!(
+            NumericInverse::new(cdf, 0.0, 2.0)
+                .unwrap()
+                .with_tolerance(-1.0),
             Err(SamplingError::BadTolerance(_))
         ));
     }

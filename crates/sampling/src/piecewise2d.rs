@@ -68,12 +68,11 @@ impl PiecewiseConstant2D {
                 TabulatedCdf::from_edges_and_weights(&x_edges, &vec![1.0; nx])?
             });
         }
-        let marginal = TabulatedCdf::from_edges_and_weights(&y_edges, &row_mass).map_err(|e| {
-            match e {
+        let marginal =
+            TabulatedCdf::from_edges_and_weights(&y_edges, &row_mass).map_err(|e| match e {
                 SamplingError::AllZero { .. } => SamplingError::AllZero { bins: nx * ny },
                 other => other,
-            }
-        })?;
+            })?;
         Ok(Self { rows, marginal, nx })
     }
     // ANCHOR_END: build

@@ -113,7 +113,11 @@ impl TabulatedCdf {
             }
             // Neumaier's compensated sum: `carry` keeps the low bits that `sum + w` rounds away.
             let t = sum + w;
-            carry += if sum.abs() >= w { (sum - t) + w } else { (w - t) + sum };
+            carry += if sum.abs() >= w {
+                (sum - t) + w
+            } else {
+                (w - t) + sum
+            };
             sum = t;
             cdf.push(sum + carry);
         }
@@ -229,7 +233,7 @@ impl TabulatedCdf {
         let (x0, x1) = (self.x[i], self.x[i + 1]);
         let t = (u - c0) / (c1 - c0);
         Sample {
-            x: (x0 + t * (x1 - x0)).min(x1.next_down()),
+            x: (x0 + t * (x1 - x0)).min(crate::next_down(x1)),
             pdf: (c1 - c0) / (x1 - x0),
         }
     }
@@ -248,7 +252,11 @@ impl TabulatedCdf {
     /// positive probability.
     pub fn quantile(&self, u: f64) -> Result<f64, SamplingError> {
         if !(0.0..=1.0).contains(&u) {
-            return Err(SamplingError::OutsideRange { u, lo: 0.0, hi: 1.0 });
+            return Err(SamplingError::OutsideRange {
+                u,
+                lo: 0.0,
+                hi: 1.0,
+            });
         }
         if u == 1.0 {
             return Ok(self.x[self.cdf.partition_point(|&c| c < 1.0)]);

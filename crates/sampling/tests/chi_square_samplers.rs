@@ -128,7 +128,12 @@ fn chi_square_tabulated_from_points() {
 
 #[test]
 fn chi_square_tabulated_binary_search() {
-    check_inverse_transform("binary search", 6, &book_table(), (0.0, std::f64::consts::TAU));
+    check_inverse_transform(
+        "binary search",
+        6,
+        &book_table(),
+        (0.0, std::f64::consts::TAU),
+    );
 }
 
 #[test]
@@ -171,10 +176,7 @@ fn chi_square_alias_discrete() {
     for _ in 0..SAMPLES {
         observed[r.sample(&table)] += 1.0;
     }
-    let expected: Vec<f64> = weights
-        .iter()
-        .map(|w| SAMPLES as f64 * w / total)
-        .collect();
+    let expected: Vec<f64> = weights.iter().map(|w| SAMPLES as f64 * w / total).collect();
     let result = chi_square(&observed, &expected).unwrap();
     assert_fits("alias discrete", result.p_value);
 }
@@ -249,10 +251,11 @@ fn chi_square_numeric_brent() {
 #[test]
 fn chi_square_numeric_newton() {
     let t = BookSinSquared;
-    let inv = NumericInverse::with_density(|x| t.cdf(x), |x| t.density(x), 0.0, std::f64::consts::TAU)
-        .unwrap()
-        .with_tolerance(1e-10)
-        .unwrap();
+    let inv =
+        NumericInverse::with_density(|x| t.cdf(x), |x| t.density(x), 0.0, std::f64::consts::TAU)
+            .unwrap()
+            .with_tolerance(1e-10)
+            .unwrap();
     let p = p_value_1d(
         "numeric inversion (Newton)",
         13,
@@ -275,7 +278,10 @@ fn chi_square_rejects_a_wrong_sampler() {
         (0.0, 2.0),
         50,
     );
-    assert!(p < alpha(), "the checker accepted a uniform sampler for x/2: p = {p}");
+    assert!(
+        p < alpha(),
+        "the checker accepted a uniform sampler for x/2: p = {p}"
+    );
     // And a sampler that is right except for leaving the support is rejected outright.
     let leaky = |u: f64| if u < 1e-3 { 2.5 } else { Linear.sample(u).x };
     let mut r = rng(15);

@@ -53,7 +53,10 @@ fn tabulated_inversion_converges_at_the_promised_rates() {
         })
         .collect();
     for e in &errs {
-        eprintln!("N = {:6}: max u-error {:.3e}, max x-error {:.3e}", e.0, e.1, e.2);
+        eprintln!(
+            "N = {:6}: max u-error {:.3e}, max x-error {:.3e}",
+            e.0, e.1, e.2
+        );
     }
     let su = slope(&errs.iter().map(|e| (e.0, e.1)).collect::<Vec<_>>());
     let sx = slope(&errs.iter().map(|e| (e.0, e.2)).collect::<Vec<_>>());
@@ -64,5 +67,9 @@ fn tabulated_inversion_converges_at_the_promised_rates() {
     // fraction of a bin width there (≈ 0.385 h for a cubic CDF).
     let h = TAU / *ns.last().unwrap() as f64;
     let last = errs.last().unwrap();
-    assert!(last.2 > 0.2 * h && last.2 < 0.5 * h, "x-error {} vs bin width {h}", last.2);
+    assert!(
+        last.2 > 0.2 * h && last.2 < 0.5 * h,
+        "x-error {} vs bin width {h}",
+        last.2
+    );
 }

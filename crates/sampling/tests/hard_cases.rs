@@ -6,7 +6,7 @@ use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_sampling::{
     AliasPiecewise, AliasTable, EytzingerCdf, GuideTable, ONE_MINUS_EPSILON, PiecewiseConstant2D,
-    SamplingError, TabulatedCdf,
+    SamplingError, TabulatedCdf, next_down, next_up,
 };
 
 /// Zero bins at the start, in the middle (two in a row) and at the end.
@@ -19,16 +19,29 @@ fn table() -> TabulatedCdf {
 /// The awkward `u`: both ends, every CDF step and the floats either side of it, and out-of-range
 /// values that must be clamped.
 fn awkward_u(t: &TabulatedCdf) -> Vec<f64> {
-    let mut us = vec![0.0, ONE_MINUS_EPSILON, 1.0, -0.25, 1.5, f64::NAN, f64::MIN_POSITIVE];
+    let mut us = vec![
+        0.0,
+        ONE_MINUS_EPSILON,
+        1.0,
+        -0.25,
+        1.5,
+        f64::NAN,
+        f64::MIN_POSITIVE,
+    ];
     for &c in t.cdf_values() {
-        us.extend([c, c.next_down(), c.next_up()]);
+        us.extend([c, next_down(c), next_up(c)]);
     }
     us
 }
 
 #[test]
 fn bad_weights_are_errors_naming_the_bin() {
-    for (bad, value) in [(3, -0.5), (0, f64::NAN), (7, f64::INFINITY), (11, f64::NEG_INFINITY)] {
+    for (bad, value) in [
+        (3, -0.5),
+        (0, f64::NAN),
+        (7, f64::INFINITY),
+        (11, f64::NEG_INFINITY),
+    ] {
         let mut w = [1.0; 12];
         w[bad] = value;
         for err in [
@@ -63,7 +76,10 @@ fn all_zero_weights_are_an_error() {
         TabulatedCdf::from_weights(0.0, 1.0, &zeros),
         Err(SamplingError::AllZero { bins: 5 })
     ));
-    assert!(matches!(AliasTable::new(&zeros), Err(SamplingError::AllZero { .. })));
+    assert!(matches!(
+        AliasTable::new(&zeros),
+        Err(SamplingError::AllZero { .. })
+    ));
     assert!(matches!(
         PiecewiseConstant2D::new(&[0.0; 6], 3, 2, (0.0, 1.0), (0.0, 1.0)),
         Err(SamplingError::AllZero { bins: 6 })
@@ -80,8 +96,8 @@ fn all_zero_weights_are_an_error() {
 
 #[test]
 fn a_bad_density_value_is_an_error_naming_bin_and_x() {
-    let err = TabulatedCdf::from_density(|x| if x > 0.5 { -1.0 } else { 1.0 }, 0.0, 1.0, 4)
-        .unwrap_err();
+    let err =
+        TabulatedCdf::from_density(|x| if x > 0.5 { -1.0 } else { 1.0 }, 0.0, 1.0, 4).unwrap_err();
     match err {
         SamplingError::BadDensity { bin, x, value } => {
             assert_eq!(bin, 2);
@@ -90,7 +106,10 @@ fn a_bad_density_value_is_an_error_naming_bin_and_x() {
         other => panic!("{other}"),
     }
     let err = TabulatedCdf::from_density(|x| 1.0 / (x - 0.3), 0.0, 1.0, 10).unwrap_err();
-    assert!(matches!(err, SamplingError::BadDensity { bin: 0, .. }), "{err}");
+    assert!(
+        matches!(err, SamplingError::BadDensity { bin: 0, .. }),
+        "{err}"
+    );
 }
 
 #[test]
@@ -129,7 +148,11 @@ fn zero_bins_are_never_returned_by_any_search() {
     let eytzinger = EytzingerCdf::new(&t);
     let alias = AliasPiecewise::from_tabulated(&t).unwrap();
     for u in awkward_u(&t) {
-        let clamped = if u.is_nan() { 0.0 } else { u.clamp(0.0, ONE_MINUS_EPSILON) };
+        let clamped = if u.is_nan() {
+            0.0
+        } else {
+            u.clamp(0.0, ONE_MINUS_EPSILON)
+        };
         let bin = t.bin(clamped);
         assert!(bin < t.len(), "u = {u}: bin {bin} out of range");
         assert!(t.bin_probability(bin) > 0.0, "u = {u}: zero bin {bin}");
@@ -138,15 +161,25 @@ fn zero_bins_are_never_returned_by_any_search() {
             assert_eq!(g.bin(clamped), bin, "guide table at u = {u}");
         }
         let s = t.sample(u);
-        assert!(s.pdf > 0.0 && s.pdf == t.pdf(s.x), "u = {u}: {s:?}, pdf(x) = {}", t.pdf(s.x));
+        assert!(
+            s.pdf > 0.0 && s.pdf == t.pdf(s.x),
+            "u = {u}: {s:?}, pdf(x) = {}",
+            t.pdf(s.x)
+        );
         assert_eq!(eytzinger.sample(u), s, "eytzinger at u = {u}");
         let a = alias.sample(u);
-        assert!(a.pdf > 0.0 && alias.pdf(a.x) == a.pdf, "alias at u = {u}: {a:?}");
+        assert!(
+            a.pdf > 0.0 && alias.pdf(a.x) == a.pdf,
+            "alias at u = {u}: {a:?}"
+        );
     }
     let discrete = AliasTable::new(&WEIGHTS).unwrap();
     for u in awkward_u(&t) {
         let (i, v) = discrete.sample(u);
-        assert!(WEIGHTS[i] > 0.0 && (0.0..1.0).contains(&v), "alias at u = {u}: ({i}, {v})");
+        assert!(
+            WEIGHTS[i] > 0.0 && (0.0..1.0).contains(&v),
+            "alias at u = {u}: ({i}, {v})"
+        );
     }
 }
 
@@ -155,7 +188,13 @@ fn all_searches_agree_on_random_tables() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
     for n in [1, 2, 3, 5, 17, 64, 1000] {
         let weights: Vec<f64> = (0..n)
-            .map(|_| if rng.random::<f64>() < 0.3 { 0.0 } else { rng.random::<f64>().powi(4) })
+            .map(|_| {
+                if rng.random::<f64>() < 0.3 {
+                    0.0
+                } else {
+                    rng.random::<f64>().powi(4)
+                }
+            })
             .chain(std::iter::once(1.0)) // at least one positive weight
             .collect();
         let t = TabulatedCdf::from_weights(0.0, 1.0, &weights).unwrap();
@@ -228,7 +267,8 @@ fn the_classic_inverse_cdf_program_made_right() {
         assert!(matches!(err, SamplingError::OutsideRange { .. }), "{err}");
     }
     // A flat stretch of F (where the classic loop divided 0 by 0) is skipped, never returned.
-    let flat = TabulatedCdf::from_points(&[(0.0, 0.0), (1.0, 0.5), (2.0, 0.5), (3.0, 1.0)]).unwrap();
+    let flat =
+        TabulatedCdf::from_points(&[(0.0, 0.0), (1.0, 0.5), (2.0, 0.5), (3.0, 1.0)]).unwrap();
     assert_eq!(flat.quantile(0.5).unwrap(), 2.0);
     assert_eq!(flat.quantile(1.0).unwrap(), 3.0);
     let trailing = TabulatedCdf::from_points(&[(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)]).unwrap();
@@ -251,13 +291,18 @@ fn round_trips_return_u() {
             assert!((back - u).abs() < 1e-14, "{name}: {u} -> {back}");
         }
     }
-    let weights: Vec<f64> = (0..48).map(|k| if k % 7 == 3 { 0.0 } else { 1.0 + k as f64 }).collect();
+    let weights: Vec<f64> = (0..48)
+        .map(|k| if k % 7 == 3 { 0.0 } else { 1.0 + k as f64 })
+        .collect();
     let map = PiecewiseConstant2D::new(&weights, 8, 6, (0.0, 1.0), (0.0, 2.0)).unwrap();
     for _ in 0..10_000 {
         let (u1, u2): (f64, f64) = (rng.random(), rng.random());
         let s = map.sample(u1, u2);
         let (b1, b2) = map.invert(s.x, s.y);
-        assert!((b1 - u1).abs() < 1e-13 && (b2 - u2).abs() < 1e-13, "({u1}, {u2}) -> ({b1}, {b2})");
+        assert!(
+            (b1 - u1).abs() < 1e-13 && (b2 - u2).abs() < 1e-13,
+            "({u1}, {u2}) -> ({b1}, {b2})"
+        );
     }
 }
 
