@@ -86,6 +86,17 @@ fn pdfs(c: &mut Criterion) {
 
     let mut g = c.benchmark_group("generate");
     g.throughput(Throughput::Elements(BATCH as u64));
+    // the baseline: two uniform numbers from Xoshiro256++, what every `generate` draws first
+    let mut r = Xoshiro256PlusPlus::seed_from_u64(2);
+    g.bench_function("two_uniforms_only", |b| {
+        b.iter(|| {
+            let mut acc = DVec2::ZERO;
+            for _ in 0..BATCH {
+                acc += DVec2::new(r.random(), r.random());
+            }
+            acc
+        })
+    });
     fn gen_bench<P: Pdf>(
         g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
         name: &str,
