@@ -32,6 +32,7 @@ fn edges(a: f64, b: f64, cells: usize) -> Vec<f64> {
         .collect()
 }
 
+// ANCHOR: p_value_1d
 /// Samples `sample(u)` for uniform `u`, checks that each sample's own pdf equals `pdf(x)`, bins
 /// the samples, and returns the chi-square p-value against `pdf` (panics with the reason if the
 /// test cannot be run or a sample leaves the support).
@@ -65,6 +66,7 @@ fn p_value_1d(
     eprintln!("{name}: {result:?}");
     result.p_value
 }
+// ANCHOR_END: p_value_1d
 
 fn assert_fits(name: &str, p: f64) {
     assert!(p >= alpha(), "{name}: p = {p:e} < alpha = {:e}", alpha());
@@ -267,6 +269,7 @@ fn chi_square_numeric_newton() {
     assert_fits("numeric inversion (Newton)", p);
 }
 
+// ANCHOR: wrong_sampler
 #[test]
 fn chi_square_rejects_a_wrong_sampler() {
     // Claims p(x) = x/2 on [0, 2] but returns 2u, which is uniform.
@@ -293,3 +296,4 @@ fn chi_square_rejects_a_wrong_sampler() {
     expected.push(0.0);
     assert!(chi_square(&observed, &expected).is_err());
 }
+// ANCHOR_END: wrong_sampler

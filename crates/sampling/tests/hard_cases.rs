@@ -246,6 +246,7 @@ fn a_cdf_not_ending_at_exactly_one_is_normalised() {
     assert!((t.pdf(0.5) - 0.25 / 0.4999).abs() < 1e-12);
 }
 
+// ANCHOR: classic
 #[test]
 fn the_classic_inverse_cdf_program_made_right() {
     // The seed report's table, F(x) = x³ at x = 0, 0.1, ..., 1, and its query u = 0.5.
@@ -274,6 +275,7 @@ fn the_classic_inverse_cdf_program_made_right() {
     let trailing = TabulatedCdf::from_points(&[(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)]).unwrap();
     assert_eq!(trailing.quantile(1.0).unwrap(), 1.0);
 }
+// ANCHOR_END: classic
 
 #[test]
 fn round_trips_return_u() {
