@@ -1,7 +1,7 @@
 //! Perlin noise with random gradient vectors and Hermite-smoothed trilinear interpolation, and
 //! turbulence (a sum of octaves), as book 2 builds them.
 
-use crate::vec::{Point3, Vec3};
+use crate::vec::{Point3, Vec3, floor_i64};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -57,9 +57,8 @@ impl Perlin {
 
     /// Noise in about [-1, 1] at `p`.
     pub fn noise(&self, p: Point3) -> f64 {
-        let f = p.floor();
-        let (u, v, w) = (p.x - f.x, p.y - f.y, p.z - f.z);
-        let (i, j, k) = (f.x as i64, f.y as i64, f.z as i64);
+        let (i, j, k) = (floor_i64(p.x), floor_i64(p.y), floor_i64(p.z));
+        let (u, v, w) = (p.x - i as f64, p.y - j as f64, p.z - k as f64);
         let uu = u * u * (3.0 - 2.0 * u);
         let vv = v * v * (3.0 - 2.0 * v);
         let ww = w * w * (3.0 - 2.0 * w);

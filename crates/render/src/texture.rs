@@ -3,7 +3,7 @@
 //! nothing for textures.
 
 use crate::perlin::Perlin;
-use crate::vec::{Color, Point3};
+use crate::vec::{Color, Point3, floor_i64};
 use std::path::Path;
 
 /// An image in linear RGB, row 0 at the top.
@@ -38,9 +38,9 @@ impl ImageData {
     }
 
     /// A stand-in for the book's `earthmap.jpg` (which is not shipped): blue oceans, green and brown
-    /// continents from Perlin noise, white polar caps, on a 1024 x 512 longitude-latitude grid.
+    /// continents from Perlin noise, white polar caps, on a 512 x 256 longitude-latitude grid.
     pub fn stand_in_earth() -> Self {
-        let (w, h) = (1024usize, 512usize);
+        let (w, h) = (512usize, 256usize);
         let noise = Perlin::new(0x5eed_ea27);
         let mut pixels = Vec::with_capacity(w * h);
         for j in 0..h {
@@ -127,8 +127,8 @@ impl Texture {
                 even,
                 odd,
             } => {
-                let q = (*inv_scale * p).floor();
-                let sum = q.x as i64 + q.y as i64 + q.z as i64;
+                let q = *inv_scale * p;
+                let sum = floor_i64(q.x) + floor_i64(q.y) + floor_i64(q.z);
                 if sum.rem_euclid(2) == 0 { *even } else { *odd }
             }
             Texture::Image(img) => {

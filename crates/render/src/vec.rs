@@ -10,6 +10,14 @@ pub type Point3 = DVec3;
 /// Linear RGB radiance or reflectance.
 pub type Color = DVec3;
 
+/// `floor(x)` as an integer without a call to libm's `floor` (which x86-64 without SSE4.1 cannot
+/// inline); exact for |x| < 2^63.
+#[inline(always)]
+pub fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    t - ((x < t as f64) as i64)
+}
+
 /// Mirror reflection of `v` about the unit normal `n`: `v - 2 (v . n) n`.
 #[inline]
 pub fn reflect(v: Vec3, n: Vec3) -> Vec3 {
