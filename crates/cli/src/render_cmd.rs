@@ -183,7 +183,11 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             )
         }
     );
-    println!("  background          : {:?}", scene.background);
+    let background = match scene.background {
+        rtl_render::scene::Background::Solid(c) => format!("solid ({}, {}, {})", c.x, c.y, c.z),
+        rtl_render::scene::Background::Sky => "book 1's sky gradient".to_string(),
+    };
+    println!("  background          : {background}");
     println!(
         "  strategy            : {} ({})",
         settings.strategy.name(),
