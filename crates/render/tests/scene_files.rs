@@ -65,6 +65,20 @@ fn cornell_toml_is_the_built_in_cornell_box() {
 }
 
 #[test]
+fn the_book_scene_files_render_like_their_built_ins() {
+    for name in ["cornell-smoke", "simple-light", "quads"] {
+        let file = scene_file::load_file(&scenes_dir().join(format!("{name}.toml"))).unwrap();
+        let builtin = (scenes::find(name).unwrap().build)(&Default::default()).unwrap();
+        let (ours, theirs) = (&file.built.scene, &builtin.scene);
+        assert_eq!(ours.camera, theirs.camera, "{name}");
+        assert_eq!(ours.background, theirs.background, "{name}");
+        assert_eq!(ours.features, theirs.features, "{name}");
+        let st = settings(16, 5, ours.max_depth);
+        assert_eq!(render(ours, st, 2).0, render(theirs, st, 2).0, "{name}");
+    }
+}
+
+#[test]
 fn every_shipped_scene_file_loads_and_renders_finite_pixels() {
     let mut n = 0;
     for entry in std::fs::read_dir(scenes_dir()).unwrap() {
