@@ -88,17 +88,20 @@ fn load(arg: &str, opts: &SceneOptions) -> Result<Loaded> {
 
 /// A scene file (`.toml`).
 fn load_file(path: &Path) -> Result<Loaded> {
-    let built = rtl_render::scene_file::load(path).map_err(anyhow::Error::msg)?;
+    let file = rtl_render::scene_file::load_file(path).map_err(anyhow::Error::msg)?;
     let name = path
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-    let description = format!("scene file {}", path.display());
+    let description = match &file.description {
+        Some(d) => format!("{d} (scene file {})", path.display()),
+        None => format!("scene file {}", path.display()),
+    };
     Ok(Loaded {
         name,
         description,
-        built,
-        width: 400,
-        spp: 100,
+        built: file.built,
+        width: file.width.unwrap_or(400),
+        spp: file.spp.unwrap_or(100),
     })
 }
 

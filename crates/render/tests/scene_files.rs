@@ -1,0 +1,543 @@
+//! Scene files: the shipped examples load and render, `scenes/cornell.toml` is the built-in `cornell`
+//! exactly, and every kind of bad input is an error naming the file, the line and the field.
+
+use rtl_render::integrator::Strategy;
+use rtl_render::render::{RenderSettings, render};
+use rtl_render::scene::{Background, Target};
+use rtl_render::scene_file::{self, SceneFile};
+use rtl_render::scenes;
+use rtl_render::vec::{Point3, Vec3};
+use std::path::{Path, PathBuf};
+
+fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+fn settings(width: usize, seed: u64, max_depth: u32) -> RenderSettings {
+    RenderSettings {
+        width,
+        max_depth,
+        seed,
+        strategy: Strategy::Cosine,
+    }
+}
+
+#[test]
+fn cornell_toml_is_the_built_in_cornell_box() {
+    let file = scene_file::load_file(&scenes_dir().join("cornell.toml")).unwrap();
+    let ours = &file.built.scene;
+    let builtin = (scenes::find("cornell").unwrap().build)(&Default::default()).unwrap();
+    let theirs = &builtin.scene;
+    assert_eq!(ours.camera, theirs.camera);
+    assert_eq!(ours.background, theirs.background);
+    assert_eq!(ours.max_depth, theirs.max_depth);
+    assert_eq!(ours.features, theirs.features);
+    assert_eq!(ours.targets.len(), 2);
+    // The same target shapes (material indices may differ: materials are created in file order).
+    for (a, b) in ours.targets.iter().zip(&theirs.targets) {
+        match (a, b) {
+            (Target::Quad(a), Target::Quad(b)) => {
+                assert_eq!((a.q, a.u, a.v, a.normal), (b.q, b.u, b.v, b.normal))
+            }
+            (Target::Sphere(a), Target::Sphere(b)) => {
+                assert_eq!((a.center, a.radius), (b.center, b.radius))
+            }
+            _ => panic!("targets differ: {a:?} vs {b:?}"),
+        }
+    }
+    assert_eq!(
+        ours.groups
+            .iter()
+            .map(|g| g.objects.len())
+            .collect::<Vec<_>>(),
+        theirs
+            .groups
+            .iter()
+            .map(|g| g.objects.len())
+            .collect::<Vec<_>>()
+    );
+    assert_eq!((file.width, file.spp), (Some(600), Some(100)));
+    // Built in the same order, the two render bit-identical images.
+    let st = settings(24, 11, 50);
+    let (a, _) = render(ours, st, 4);
+    let (b, _) = render(theirs, st, 4);
+    assert_eq!(a, b);
+}
+
+#[test]
+fn the_book_scene_files_render_like_their_built_ins() {
+    for name in ["cornell-smoke", "simple-light", "quads"] {
+        let file = scene_file::load_file(&scenes_dir().join(format!("{name}.toml"))).unwrap();
+        let builtin = (scenes::find(name).unwrap().build)(&Default::default()).unwrap();
+        let (ours, theirs) = (&file.built.scene, &builtin.scene);
+        assert_eq!(ours.camera, theirs.camera, "{name}");
+        assert_eq!(ours.background, theirs.background, "{name}");
+        assert_eq!(ours.features, theirs.features, "{name}");
+        let st = settings(16, 5, ours.max_depth);
+        assert_eq!(render(ours, st, 2).0, render(theirs, st, 2).0, "{name}");
+    }
+}
+
+#[test]
+fn every_shipped_scene_file_loads_and_renders_finite_pixels() {
+    let mut n = 0;
+    for entry in std::fs::read_dir(scenes_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        n += 1;
+        let file = scene_file::load_file(&path).unwrap_or_else(|e| panic!("{e}"));
+        let scene = &file.built.scene;
+        let (acc, stats) = render(scene, settings(16, 1, scene.max_depth), 2);
+        let image = acc.image();
+        assert_eq!(stats.samples, (acc.width * acc.height * 2) as u64);
+        assert!(
+            image.iter().all(|c| c.is_finite()),
+            "{}: non-finite pixels",
+            path.display()
+        );
+        let mean: f64 = image.iter().map(|c| c.element_sum()).sum::<f64>() / image.len() as f64;
+        assert!(mean > 0.0, "{}: black image", path.display());
+    }
+    assert!(
+        n >= 4,
+        "expected at least four example scene files, found {n}"
+    );
+}
+
+#[test]
+fn the_showcase_uses_every_feature() {
+    let file = scene_file::load_file(&scenes_dir().join("showcase.toml")).unwrap();
+    let f = file.built.scene.features;
+    assert!(f.defocus && f.motion, "{f:?}");
+    assert_eq!(f.media, 1);
+    assert_eq!(f.textures, 3, "checker, marble and image");
+    assert_eq!(f.targets, 2);
+    assert!(f.one_sided_emitters);
+    assert_eq!(file.built.scene.background, Background::Sky);
+}
+
+const BASE: &str = r#"[camera]
+lookfrom = [0, 0, 5]
+lookat = [0, 0, 0]
+
+[materials]
+white = { type = "lambertian", albedo = 0.73 }
+
+[[objects]]
+type = "sphere"
+name = "ball"
+center = [0, 0, 0]
+radius = 1
+material = "white"
+"#;
+
+fn load(text: &str) -> Result<SceneFile, String> {
+    scene_file::from_str(Path::new("some/dir/bad.toml"), text)
+}
+
+/// The error for `text`, which must name the file, `line` and `field`, and contain `words`.
+#[track_caller]
+fn error_at(text: &str, line: usize, field: &str, words: &str) {
+    let err = match load(text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e,
+    };
+    let place = format!("some/dir/bad.toml:{line}:");
+    assert!(err.starts_with(&place), "wanted {place}, got: {err}");
+    if !field.is_empty() {
+        assert!(
+            err.contains(&format!("field `{field}`: ")),
+            "wanted field {field}, got: {err}"
+        );
+    }
+    assert!(err.contains(words), "wanted '{words}', got: {err}");
+}
+
+#[test]
+fn the_base_scene_loads() {
+    let f = load(BASE).unwrap();
+    assert_eq!(f.built.scene.groups[0].objects.len(), 1);
+    assert_eq!((f.width, f.spp, f.description), (None, None, None));
+}
+
+#[test]
+fn a_syntax_error_names_the_line() {
+    error_at("not = a [scene\n", 1, "", "");
+    error_at(&format!("{BASE}radius = = 2\n"), 14, "", "");
+}
+
+#[test]
+fn an_unknown_material_lists_the_known_ones() {
+    error_at(
+        &BASE.replace("material = \"white\"", "material = \"whit\""),
+        13,
+        "objects[0].material",
+        "unknown material `whit`; known materials: `white`",
+    );
+}
+
+#[test]
+fn an_unknown_texture_is_an_error() {
+    error_at(
+        &BASE.replace("albedo = 0.73", "albedo = \"tiles\""),
+        6,
+        "materials.white.albedo",
+        "unknown texture `tiles`",
+    );
+}
+
+#[test]
+fn a_negative_or_zero_radius_is_an_error() {
+    for r in ["-1", "0", "-0.0"] {
+        error_at(
+            &BASE.replace("radius = 1", &format!("radius = {r}")),
+            12,
+            "objects[0].radius",
+            "radius must be positive",
+        );
+    }
+}
+
+#[test]
+fn a_zero_area_quad_is_an_error() {
+    let text = format!(
+        "{BASE}\n[[objects]]\ntype = \"quad\"\nq = [0, 0, 0]\nu = [1, 0, 0]\nv = [-2, 0, 0]\nmaterial = \"white\"\n"
+    );
+    error_at(&text, 18, "objects[1].u", "zero-area quad: u x v = 0");
+    let text = text.replace("v = [-2, 0, 0]", "v = [0, 0, 0]");
+    error_at(&text, 19, "objects[1].v", "zero-area quad");
+}
+
+#[test]
+fn nan_and_infinite_values_are_errors() {
+    error_at(
+        &BASE.replace("radius = 1", "radius = nan"),
+        12,
+        "objects[0].radius",
+        "not a finite number",
+    );
+    error_at(
+        &BASE.replace("center = [0, 0, 0]", "center = [0, -inf, 0]"),
+        11,
+        "objects[0].center[1]",
+        "-inf is not a finite number",
+    );
+    error_at(
+        &BASE.replace("albedo = 0.73", "albedo = [0.5, nan, 0.5]"),
+        6,
+        "materials.white.albedo[1]",
+        "not a finite number",
+    );
+}
+
+#[test]
+fn a_missing_texture_file_is_an_error_relative_to_the_scene_file() {
+    let text = BASE.replace(
+        "[materials]",
+        "[textures]\nmap = { type = \"image\", file = \"maps/earth.png\" }\n\n[materials]",
+    );
+    error_at(&text, 6, "textures.map.file", "not found");
+    let err = load(&text).err().unwrap();
+    assert!(
+        err.contains(&format!(
+            "{}",
+            Path::new("some/dir").join("maps/earth.png").display()
+        )),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_image_texture_is_found_next_to_the_scene_file() {
+    let dir = std::env::temp_dir().join(format!("rtl-scene-file-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("maps")).unwrap();
+    let img = image::RgbImage::from_fn(4, 2, |x, _| image::Rgb([x as u8 * 60, 100, 200]));
+    img.save(dir.join("maps/tiny.png")).unwrap();
+    let text = BASE
+        .replace(
+            "[materials]",
+            "[textures]\nmap = { type = \"image\", file = \"maps/tiny.png\" }\n\n[materials]",
+        )
+        .replace("albedo = 0.73", "albedo = \"map\"");
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, &text).unwrap();
+    let file = scene_file::load_file(&path);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let file = file.unwrap();
+    assert_eq!(file.built.scene.features.textures, 1);
+    let (acc, _) = render(&file.built.scene, settings(8, 1, 8), 1);
+    assert!(acc.image().iter().all(|c| c.is_finite()));
+}
+
+#[test]
+fn wrong_types_are_errors() {
+    error_at(
+        &BASE.replace("radius = 1", "radius = \"big\""),
+        12,
+        "objects[0].radius",
+        "invalid type: string \"big\", expected a finite number",
+    );
+    error_at(
+        &BASE.replace("center = [0, 0, 0]", "center = [0, 0]"),
+        11,
+        "objects[0].center",
+        "3 numbers",
+    );
+    error_at(
+        &BASE.replace("lookat = [0, 0, 0]", "lookat = \"origin\""),
+        3,
+        "camera.lookat",
+        "expected a vector [x, y, z]",
+    );
+    error_at(
+        &BASE.replace("material = \"white\"", "material = 3"),
+        13,
+        "objects[0].material",
+        "invalid type",
+    );
+}
+
+#[test]
+fn unknown_object_types_and_fields_are_errors() {
+    error_at(
+        &BASE.replace("type = \"sphere\"", "type = \"cone\""),
+        9,
+        "objects[0].type",
+        "unknown object type `cone`; known types: sphere, moving_sphere, quad, box",
+    );
+    error_at(
+        &BASE.replace("radius = 1", "radius = 1\nradios = 2"),
+        13,
+        "objects[0].radios",
+        "unknown field `radios`",
+    );
+    error_at(
+        &BASE.replace("type = \"lambertian\"", "type = \"lambertain\""),
+        6,
+        "materials.white.type",
+        "unknown material type `lambertain`",
+    );
+    error_at(
+        &format!("{BASE}\n[stuff]\nx = 1\n"),
+        15,
+        "stuff",
+        "unknown field `stuff`",
+    );
+    error_at(
+        &format!("{BASE}lights = [\"ball\"]\n"),
+        14,
+        "objects[0].lights",
+        "top-level keys must come before the first [table]",
+    );
+}
+
+#[test]
+fn missing_fields_are_named() {
+    error_at(
+        &BASE.replace("radius = 1\n", ""),
+        8,
+        "objects[0].radius",
+        "missing field `radius`",
+    );
+    error_at(
+        &BASE.replace("type = \"sphere\"\n", ""),
+        8,
+        "objects[0].type",
+        "missing field `type`",
+    );
+}
+
+#[test]
+fn an_empty_scene_is_an_error() {
+    let without_objects = &BASE[..BASE.find("[[objects]]").unwrap()];
+    error_at(without_objects, 1, "", "the scene has no objects");
+    error_at(
+        &format!("objects = []\n{without_objects}"),
+        1,
+        "objects",
+        "the scene has no objects",
+    );
+}
+
+#[test]
+fn a_bad_camera_is_an_error() {
+    error_at(
+        &BASE.replace("lookat = [0, 0, 0]", "lookat = [0, 0, 5]"),
+        3,
+        "camera.lookat",
+        "lookfrom and lookat are the same point",
+    );
+    error_at(
+        &BASE.replace("lookat = [0, 0, 0]", "lookat = [0, 0, 0]\nvup = [0, 0, -3]"),
+        4,
+        "camera.vup",
+        "parallel to the view direction",
+    );
+    error_at(
+        &BASE.replace("[camera]", "[camera]\nvfov = 180"),
+        2,
+        "camera.vfov",
+        "vfov must lie in (0, 180)",
+    );
+    error_at(
+        &BASE.replace("[camera]", "[camera]\nshutter = [1, 0.5]"),
+        2,
+        "camera.shutter",
+        "closes",
+    );
+    error_at(
+        &BASE.replace("[camera]\n", "[view]\n"),
+        1,
+        "view",
+        "unknown field `view`",
+    );
+    error_at(
+        &BASE.replace("lookfrom = [0, 0, 5]\n", ""),
+        1,
+        "camera.lookfrom",
+        "missing field `lookfrom`",
+    );
+}
+
+#[test]
+fn bad_render_defaults_are_errors() {
+    error_at(
+        &format!("[render]\nspp = 0\n{BASE}"),
+        2,
+        "render.spp",
+        "spp must be at least 1",
+    );
+    error_at(
+        &format!("[render]\nwidth = -4\n{BASE}"),
+        2,
+        "render.width",
+        "invalid value",
+    );
+    error_at(
+        &format!("[render]\naspect = \"16:0\"\n{BASE}"),
+        2,
+        "render.aspect",
+        "ratio",
+    );
+    error_at(
+        &format!("[render]\nbackground = \"dusk\"\n{BASE}"),
+        2,
+        "render.background",
+        "\"sky\" or a colour",
+    );
+}
+
+#[test]
+fn bad_references_between_objects_are_errors() {
+    error_at(
+        &format!("lights = [\"lamp\"]\n{BASE}"),
+        1,
+        "lights[0]",
+        "no object is named `lamp`; known named spheres and quads: `ball`",
+    );
+    error_at(
+        &format!("{BASE}\n[[objects]]\ntype = \"instance\"\nof = \"ball\"\n"),
+        17,
+        "objects[1].of",
+        "`ball` is not a group or box",
+    );
+    error_at(
+        &format!(
+            "{BASE}\n[[objects]]\ntype = \"sphere\"\nname = \"ball\"\ncenter = [3, 0, 0]\nradius = 1\nmaterial = \"white\"\n"
+        ),
+        17,
+        "objects[1].name",
+        "the name `ball` is already used",
+    );
+    error_at(
+        &format!("{BASE}\n[[objects]]\ntype = \"group\"\n"),
+        15,
+        "objects[1]",
+        "a group needs at least one object",
+    );
+    error_at(
+        &format!("{BASE}\n[[objects]]\ntype = \"medium\"\ndensity = 1\nalbedo = 1\n"),
+        15,
+        "objects[1].boundary",
+        "missing field `boundary`",
+    );
+    error_at(
+        &format!(
+            "{BASE}\n[[objects]]\ntype = \"medium\"\ndensity = 0\nalbedo = 1\nboundary = {{ type = \"sphere\", center = [0, 0, 0], radius = 1, material = \"white\" }}\n"
+        ),
+        17,
+        "objects[1].density",
+        "density must be positive",
+    );
+    error_at(
+        &format!(
+            "{BASE}\n[[objects]]\ntype = \"box\"\na = [0, 0, 0]\nb = [1, 0, 1]\nmaterial = \"white\"\n"
+        ),
+        18,
+        "objects[1].b",
+        "the box is flat",
+    );
+    error_at(
+        &format!("{BASE}transform = [{{ rotate_w = 3 }}]\n"),
+        14,
+        "objects[0].transform[0].rotate_w",
+        "unknown variant `rotate_w`",
+    );
+}
+
+#[test]
+fn transforms_apply_in_order_and_reach_the_importance_targets() {
+    let text = BASE.replace(
+        "[[objects]]",
+        "[[objects]]\ntype = \"quad\"\nname = \"lamp\"\nq = [1, 0, 0]\nu = [1, 0, 0]\nv = [0, 0, 1]\nmaterial = \"white\"\ntransform = [{ rotate_y = 90 }, { translate = [0, 5, 0] }]\n\n[[objects]]",
+    );
+    let text = format!("lights = [\"lamp\", \"ball\"]\n{text}");
+    let scene = load(&text).unwrap().built.scene;
+    let Target::Quad(q) = scene.targets[0] else {
+        panic!("{:?}", scene.targets[0])
+    };
+    // rotate_y(90) takes x to -z; then up by 5.
+    let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-12;
+    assert!(close(q.q, Point3::new(0.0, 5.0, -1.0)), "{:?}", q.q);
+    assert!(close(q.u, Vec3::new(0.0, 0.0, -1.0)), "{:?}", q.u);
+    assert!(close(q.v, Vec3::new(1.0, 0.0, 0.0)), "{:?}", q.v);
+    assert!(matches!(scene.targets[1], Target::Sphere(s) if s.radius == 1.0));
+}
+
+#[test]
+fn the_shutter_maps_motion_onto_the_cameras_time_interval() {
+    let moving = BASE.replace(
+        "type = \"sphere\"\nname = \"ball\"\ncenter = [0, 0, 0]",
+        "type = \"moving_sphere\"\ncenter0 = [0, 0, 0]\ncenter1 = [2, 0, 0]",
+    );
+    let scene = load(&moving).unwrap().built.scene;
+    assert!(scene.features.motion);
+    // Open for no time at all: nothing moves, and no time samples are drawn.
+    let still = moving.replace("[camera]", "[camera]\nshutter = [0.5, 0.5]");
+    let scene = load(&still).unwrap().built.scene;
+    assert!(!scene.features.motion);
+    let half = moving.replace("[camera]", "[camera]\nshutter = [0.5, 1]");
+    let scene = load(&half).unwrap().built.scene;
+    let rtl_render::scene::Object::Sphere(s) = scene.groups[0].objects[0] else {
+        panic!()
+    };
+    assert_eq!(s.center_at(0.0), Point3::new(1.0, 0.0, 0.0));
+    assert_eq!(s.center_at(1.0), Point3::new(2.0, 0.0, 0.0));
+}
+
+#[test]
+fn no_error_panics_on_garbage() {
+    // Every prefix of a valid file either loads or is an error naming the file.
+    let text = std::fs::read_to_string(scenes_dir().join("showcase.toml")).unwrap();
+    let path = scenes_dir().join("showcase.toml");
+    for end in (0..text.len()).step_by(7) {
+        if !text.is_char_boundary(end) {
+            continue;
+        }
+        if let Err(e) = scene_file::from_str(&path, &text[..end]) {
+            assert!(e.starts_with(&path.display().to_string()), "{e}");
+        }
+    }
+}
