@@ -111,7 +111,8 @@ pub struct Plan {
     pub pass_time: Duration,
 }
 
-/// Render passes into `acc` until the plan says stop; returns the counters of the passes kept.
+/// Render passes into `acc` until the plan says stop, saving it between passes; returns the counters of
+/// the passes kept. The caller saves the end state (after writing the image).
 pub fn run(
     renderer: &Renderer,
     pool: &rayon::ThreadPool,
@@ -126,6 +127,10 @@ pub fn run(
     let deadline = plan.budget.map(|b| began + b);
     let h = acc.height as u64;
     let mut stats = Stats::default();
+    // Save once before the first pass, so an unwritable path shows at once, not after the work.
+    if let Some(s) = &plan.saving {
+        s.save(acc, plan.start)?;
+    }
     let mut next = acc.clone();
     let mut last_save = Instant::now();
     // Seconds one sample per pixel takes, measured on the passes so far.
@@ -177,16 +182,15 @@ pub fn run(
             && last_save.elapsed() >= s.every
             && acc.samples < plan.end
         {
-            s.save(acc, plan.start)?;
+            if let Err(e) = s.save(acc, plan.start) {
+                eprintln!("warning: {e:#}");
+            }
             last_save = Instant::now();
         }
         // The next pass: about `pass_time` long, at most twice the last (a cheap start misleads).
         let fit = (plan.pass_time.as_secs_f64() / t.max(1e-12)).floor() as u64;
         n = fit.clamp(1, n.saturating_mul(2));
     };
-    if let Some(s) = &plan.saving {
-        s.save(acc, plan.start)?;
-    }
     Ok((stats, ending))
 }
 

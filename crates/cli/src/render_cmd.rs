@@ -259,7 +259,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         strategy: args.strategy,
     };
     if args.explain {
-        explain(&loaded, scene, &settings, spp);
+        explain(&loaded, scene, &settings, args.spp.unwrap_or(loaded.spp));
         return Ok(());
     }
     for n in &loaded.built.notices {
@@ -324,6 +324,15 @@ pub fn run(args: RenderArgs) -> Result<()> {
         eprintln!("resuming {} at {} spp", path.display(), ck.spp());
         acc = ck.acc;
     }
+    if let Some(c) = &args.checkpoint
+        && c.exists()
+        && args.resume.as_ref() != Some(c)
+    {
+        bail!(
+            "{} exists: continue it with --resume {0}, or remove it to start afresh",
+            c.display()
+        );
+    }
     let saving = args
         .checkpoint
         .clone()
@@ -371,14 +380,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if spp == 0 {
         eprintln!("warning: no pass finished: the image is black");
     }
-    if let Some(s) = &plan.saving {
-        eprintln!(
-            "checkpoint {}: samples {start}..{} ({spp} spp)",
-            s.path.display(),
-            acc.samples
-        );
-    }
 
+    // The checkpoint first (it holds the work; `rtl merge FILE` makes the image again), then the image
+    // even if the checkpoint could not be written.
+    let saved = plan.saving.as_ref().map(|s| s.save(&acc, start));
     let image = acc.image();
     let transfer = if args.srgb {
         Transfer::Srgb
@@ -388,6 +393,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
     write_png(&output, w, h, &image, transfer).map_err(anyhow::Error::msg)?;
     if let Some(lin) = &args.linear {
         write_linear(lin, w, h, &image).map_err(anyhow::Error::msg)?;
+    }
+    if let (Some(s), Some(saved)) = (&plan.saving, saved) {
+        saved?;
+        eprintln!(
+            "checkpoint {}: samples {start}..{} ({spp} spp)",
+            s.path.display(),
+            acc.samples
+        );
     }
     let samples = stats.samples as f64;
     eprintln!(

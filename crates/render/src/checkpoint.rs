@@ -407,9 +407,10 @@ pub struct Merged {
 ///
 /// Counts and dropped counts are exact. The sums are the parts' sums added left to right, so they equal
 /// the sums of one render of the whole range up to rounding: one render adds sample by sample, a merge
-/// adds each part's subtotal, and floating-point addition is not associative. For non-negative
-/// radiance the two differ by at most about `n * 2^-53` relative for `n` samples per pixel (far less in
-/// practice). Merging a single part reproduces it bit for bit.
+/// adds each part's subtotal, and floating-point addition is not associative. For `n` non-negative
+/// samples each way of adding is within `(n - 1) 2^-53` (relative) of the exact sum (Higham's bound for
+/// recursive summation), so the two differ by at most twice that: `1e-12` at `n = 4500`, and in practice
+/// far less. Merging a single part reproduces it bit for bit.
 pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
     let Some((first_name, first)) = parts.first() else {
         return Err("no parts to merge".into());
