@@ -2,6 +2,7 @@
 
 mod merge_cmd;
 mod plot;
+mod progressive;
 mod render_cmd;
 mod study;
 

@@ -1,13 +1,97 @@
-//! `rtl merge`: placeholder until long renders land.
+//! `rtl merge`: add partial renders (parts) of one render into the image one process would have made.
+//!
+//! Each part holds samples `[K, K+N)` of every pixel (`rtl render ... --sample-offset K --spp N --part
+//! FILE`). Parts must be of the same scene and settings and their sample ranges must not overlap; they
+//! are added in the order of their ranges, whatever the order they are named in.
 
+use anyhow::{Result, bail};
 use clap::Args;
+use rtl_render::checkpoint::{Checkpoint, merge};
+use rtl_render::output::{Transfer, write_linear, write_png};
+use std::path::PathBuf;
 
 #[derive(Args)]
 pub struct MergeArgs {
-    /// Partial renders to merge.
-    pub parts: Vec<std::path::PathBuf>,
+    /// Parts (or checkpoints) of one render with disjoint sample ranges.
+    #[arg(required = true, value_name = "PART")]
+    pub parts: Vec<PathBuf>,
+    /// Output PNG.
+    #[arg(short = 'o', long = "output", default_value = "merged.png")]
+    pub output: PathBuf,
+    /// Also write the linear mean radiance per pixel: `.pfm` or `.exr`.
+    #[arg(long)]
+    pub linear: Option<PathBuf>,
+    /// Encode the PNG with the sRGB transfer function instead of the book's gamma 2.
+    #[arg(long)]
+    pub srgb: bool,
+    /// Also save the merged accumulation as one part (to merge further, or to extend with
+    /// `rtl render ... --resume`).
+    #[arg(long, value_name = "FILE")]
+    pub part: Option<PathBuf>,
+    /// Merge even if some sample ranges between the parts are missing (say, a job that failed): the
+    /// image is then the mean of the samples there are.
+    #[arg(long)]
+    pub allow_gaps: bool,
 }
 
-pub fn run(_args: MergeArgs) -> anyhow::Result<()> {
-    anyhow::bail!("merging is not built yet")
+pub fn run(args: MergeArgs) -> Result<()> {
+    let mut parts = Vec::with_capacity(args.parts.len());
+    for p in &args.parts {
+        parts.push((p.display().to_string(), Checkpoint::read(p)?));
+    }
+    let merged = merge(&parts).map_err(anyhow::Error::msg)?;
+    let ck = &merged.checkpoint;
+    if !merged.gaps.is_empty() {
+        let gaps: Vec<String> = merged
+            .gaps
+            .iter()
+            .map(|(a, b)| format!("{a}..{b}"))
+            .collect();
+        if !args.allow_gaps {
+            bail!(
+                "no part holds samples {} (render them, or merge anyway with --allow-gaps)",
+                gaps.join(", ")
+            );
+        }
+        if args.part.is_some() {
+            bail!(
+                "a merge with gaps cannot be saved as one part (--part): its samples are not one range"
+            );
+        }
+        eprintln!("note: samples {} are missing", gaps.join(", "));
+    }
+    let (w, h) = (ck.acc.width, ck.acc.height);
+    let image = ck.acc.image();
+    let transfer = if args.srgb {
+        Transfer::Srgb
+    } else {
+        Transfer::Gamma2
+    };
+    write_png(&args.output, w, h, &image, transfer).map_err(anyhow::Error::msg)?;
+    if let Some(lin) = &args.linear {
+        write_linear(lin, w, h, &image).map_err(anyhow::Error::msg)?;
+    }
+    if let Some(p) = &args.part {
+        ck.write(p)
+            .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", p.display()))?;
+    }
+    let spp: u64 = parts.iter().map(|(_, p)| p.spp()).sum();
+    eprintln!(
+        "merged {} part(s) of {} ({w}x{h}): samples {}..{}, {spp} spp, {} non-finite samples dropped -> {}{}{}",
+        parts.len(),
+        ck.identity.scene,
+        ck.start,
+        ck.acc.samples,
+        ck.acc.total_dropped(),
+        args.output.display(),
+        args.linear
+            .as_ref()
+            .map(|p| format!(", {}", p.display()))
+            .unwrap_or_default(),
+        args.part
+            .as_ref()
+            .map(|p| format!(", {}", p.display()))
+            .unwrap_or_default()
+    );
+    Ok(())
 }

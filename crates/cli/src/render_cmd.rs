@@ -1,17 +1,18 @@
 //! `rtl render`: render a built-in scene or a scene file to PNG (and linear HDR), with a progress bar,
 //! a closing summary, and `--explain` / `--list` / `--stats`.
 
+use crate::progressive::{self, Ending, Plan, Saving};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use rtl_render::checkpoint::{Checkpoint, Identity, scene_hash};
 use rtl_render::integrator::Strategy;
 use rtl_render::output::{Transfer, write_linear, write_png};
 use rtl_render::render::{RenderSettings, Renderer};
-use rtl_render::sampler::Stats;
 use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -56,6 +57,24 @@ pub struct RenderArgs {
     /// Print the render's counters (rays, random numbers, lens/time samples, medium and texture evaluations).
     #[arg(long)]
     pub stats: bool,
+    /// Time budget (`90s`, `2m`, `1h30m`, plain seconds): render as many whole passes as fit, then stop
+    /// and write the image with the samples it has. With `--spp`, stop at whichever comes first.
+    #[arg(long, value_parser = progressive::parse_duration)]
+    pub time: Option<Duration>,
+    /// Save the accumulation (a checkpoint, or a part for `rtl merge`) to FILE every few seconds, on
+    /// Ctrl-C and at the end.
+    #[arg(long, visible_alias = "part", value_name = "FILE")]
+    pub checkpoint: Option<PathBuf>,
+    /// How often to save the checkpoint (`5s`, `1m`, ...).
+    #[arg(long, default_value = "5s", value_parser = progressive::parse_duration)]
+    pub checkpoint_every: Duration,
+    /// Continue the render saved in FILE (same scene and settings; `--spp` is the total wanted). FILE is
+    /// kept up to date unless `--checkpoint` names another.
+    #[arg(long, value_name = "FILE")]
+    pub resume: Option<PathBuf>,
+    /// Render samples K .. K+spp of every pixel (a part of a render split over processes or machines).
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub sample_offset: u64,
 }
 
 fn parse_strategy(s: &str) -> Result<Strategy, String> {
@@ -223,10 +242,19 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if width == 0 {
         bail!("--width must be at least 1");
     }
-    let spp = args.spp.unwrap_or(loaded.spp);
+    // With only a time budget, render until the time is up.
+    let spp = match (args.spp, args.time) {
+        (Some(n), _) => n,
+        (None, Some(_)) => u64::MAX / 2 - args.sample_offset.min(u64::MAX / 2),
+        (None, None) => loaded.spp,
+    };
     if spp == 0 {
         bail!("--spp must be at least 1");
     }
+    let end = args
+        .sample_offset
+        .checked_add(spp)
+        .context("--sample-offset plus --spp is too large")?;
     let settings = RenderSettings {
         width,
         max_depth: args.max_depth.unwrap_or(scene.max_depth),
@@ -234,7 +262,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         strategy: args.strategy,
     };
     if args.explain {
-        explain(&loaded, scene, &settings, spp);
+        explain(&loaded, scene, &settings, args.spp.unwrap_or(loaded.spp));
         return Ok(());
     }
     for n in &loaded.built.notices {
@@ -253,32 +281,112 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let renderer = Renderer::new(scene, settings);
     let mut acc = renderer.accumulator();
     let (w, h) = (acc.width, acc.height);
-    let bar = ProgressBar::new(h as u64 * spp);
+    let identity = Identity {
+        scene: loaded.name.clone(),
+        scene_hash: scene_hash(scene),
+        settings: format!("{settings:?}"),
+        width: w,
+        height: h,
+    };
+    let start = args.sample_offset;
+    acc.samples = start;
+    if let Some(path) = &args.resume {
+        let ck = Checkpoint::read(path)?;
+        let diffs = ck
+            .identity
+            .differences(&identity, "the checkpoint", "this render");
+        if !diffs.is_empty() {
+            bail!(
+                "{} is a checkpoint of another render: {}",
+                path.display(),
+                diffs.join("; ")
+            );
+        }
+        if ck.start != start {
+            bail!(
+                "{} holds samples from {} on, but --sample-offset is {start}",
+                path.display(),
+                ck.start
+            );
+        }
+        if ck.acc.samples > end {
+            bail!(
+                "{} already holds {} spp, more than the {spp} asked for (--spp is the total)",
+                path.display(),
+                ck.spp()
+            );
+        }
+        if ck.rtl_version != env!("CARGO_PKG_VERSION") {
+            eprintln!(
+                "note: {} was written by rtl {}, this is {}",
+                path.display(),
+                ck.rtl_version,
+                env!("CARGO_PKG_VERSION")
+            );
+        }
+        eprintln!("resuming {} at {} spp", path.display(), ck.spp());
+        acc = ck.acc;
+    }
+    if let Some(c) = &args.checkpoint
+        && c.exists()
+        && args.resume.as_ref() != Some(c)
+    {
+        bail!(
+            "{} exists: continue it with --resume {0}, or remove it to start afresh",
+            c.display()
+        );
+    }
+    let saving = args
+        .checkpoint
+        .clone()
+        .or_else(|| args.resume.clone())
+        .map(|path| Saving {
+            path,
+            every: args.checkpoint_every,
+            identity: identity.clone(),
+        });
+    let plan = Plan {
+        start,
+        end,
+        budget: args.time,
+        pass_time: args
+            .checkpoint_every
+            .clamp(Duration::from_millis(20), Duration::from_secs(1)),
+        saving,
+    };
+    let bar = match args.time {
+        Some(t) if args.spp.is_none() => ProgressBar::new(t.as_millis() as u64),
+        _ => {
+            let b = ProgressBar::new(h as u64 * spp);
+            b.set_position(h as u64 * (acc.samples - start));
+            b
+        }
+    };
     bar.set_style(
         ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta} {msg}",
+            "{spinner} {prefix} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta} {msg}",
         )
         .expect("valid progress template"),
     );
-    bar.set_message(format!("{} {w}x{h} {spp} spp", loaded.name));
-    let start = Instant::now();
-    // Progressive passes of doubling size (1, 1, 2, 4, ... samples, at most 64): the sums are exactly
-    // those of one pass, since each pixel adds its samples in the order of k.
-    let mut stats = Stats::default();
-    let mut k0 = 0u64;
-    let mut pass = 1u64;
-    while k0 < spp {
-        let k1 = (k0 + pass).min(spp);
-        let n = k1 - k0;
-        let on_row = || bar.inc(n);
-        let s = pool.install(|| renderer.render_pass(&mut acc, k0, k1, &on_row));
-        stats = stats + s;
-        k0 = k1;
-        pass = (pass * 2).min(64);
-    }
+    bar.set_prefix(format!("{} {w}x{h}", loaded.name));
+    progressive::catch_interrupts()?;
+    let start_time = Instant::now();
+    let (stats, ending) = progressive::run(&renderer, &pool, &mut acc, &plan, &bar)?;
     bar.finish_and_clear();
-    let secs = start.elapsed().as_secs_f64();
+    let secs = start_time.elapsed().as_secs_f64();
+    let spp = acc.samples - start;
+    match ending {
+        Ending::Done => {}
+        Ending::OutOfTime => eprintln!("time budget spent: stopping at {spp} spp"),
+        Ending::Interrupted => eprintln!("stopped at {spp} spp (whole passes only)"),
+    }
+    if spp == 0 {
+        eprintln!("warning: no pass finished: the image is black");
+    }
 
+    // The checkpoint first (it holds the work; `rtl merge FILE` makes the image again), then the image
+    // even if the checkpoint could not be written.
+    let saved = plan.saving.as_ref().map(|s| s.save(&acc, start));
     let image = acc.image();
     let transfer = if args.srgb {
         Transfer::Srgb
@@ -289,10 +397,23 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(lin) = &args.linear {
         write_linear(lin, w, h, &image).map_err(anyhow::Error::msg)?;
     }
+    if let (Some(s), Some(saved)) = (&plan.saving, saved) {
+        saved?;
+        eprintln!(
+            "checkpoint {}: samples {start}..{} ({spp} spp)",
+            s.path.display(),
+            acc.samples
+        );
+    }
     let samples = stats.samples as f64;
     eprintln!(
-        "{}: {w}x{h}, {spp} spp, {} threads, {:.2} s, {:.0}k samples/s, {:.2}M rays/s, {} non-finite samples dropped -> {}{}",
+        "{}: {w}x{h}, {spp} spp{}, {} threads, {:.2} s, {:.0}k samples/s, {:.2}M rays/s, {} non-finite samples dropped -> {}{}",
         loaded.name,
+        if start > 0 {
+            format!(" (samples {start}..{})", acc.samples)
+        } else {
+            String::new()
+        },
         pool.current_num_threads(),
         secs,
         samples / secs / 1e3,
@@ -324,6 +445,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         println!("wall time            {secs:.3} s");
         println!("samples/s            {:.0}", samples / secs);
         println!("rays/s               {:.0}", stats.rays as f64 / secs);
+    }
+    if ending == Ending::Interrupted {
+        std::process::exit(130);
     }
     Ok(())
 }

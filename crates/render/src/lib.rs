@@ -6,7 +6,7 @@
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); the integrator ([`integrator`]);
 //! prefix-stable per-sample randomness ([`sampler`]); progressive rendering into an accumulation buffer
-//! ([`render`]); image files ([`output`]).
+//! ([`render`]); checkpoints and parts of long renders ([`checkpoint`]); image files ([`output`]).
 //!
 //! ```
 //! use rtl_render::{integrator::Strategy, render::{RenderSettings, render}, scenes};
@@ -20,6 +20,7 @@
 pub mod aabb;
 pub mod bvh;
 pub mod camera;
+pub mod checkpoint;
 pub mod hit;
 pub mod integrator;
 pub mod material;

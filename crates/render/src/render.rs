@@ -135,6 +135,21 @@ impl<'a> Renderer<'a> {
         k1: u64,
         on_row: &(dyn Fn() + Sync),
     ) -> Stats {
+        self.render_pass_until(acc, k0, k1, on_row, &|| false)
+            .expect("a pass that is never stopped finishes")
+    }
+
+    /// [`Renderer::render_pass`] that gives up as soon as `stop()` is true (asked before each pixel):
+    /// then it returns `None`, and `acc` holds the pass for some pixels only (keep a copy to go back
+    /// to). Whole passes are what a checkpoint or a stopped render keeps.
+    pub fn render_pass_until(
+        &self,
+        acc: &mut Accumulator,
+        k0: u64,
+        k1: u64,
+        on_row: &(dyn Fn() + Sync),
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Stats> {
         assert_eq!(
             (acc.width, acc.height),
             (self.camera.width, self.camera.height),
@@ -150,6 +165,9 @@ impl<'a> Renderer<'a> {
             .map(|(j, ((sum, count), dropped))| {
                 let mut ctx = Ctx::new();
                 for i in 0..w {
+                    if stop() {
+                        return None;
+                    }
                     for k in k0..k1 {
                         let v = self.sample(i, j, k, &mut ctx);
                         if !Accumulator::add(&mut sum[i], &mut count[i], &mut dropped[i], v) {
@@ -158,11 +176,11 @@ impl<'a> Renderer<'a> {
                     }
                 }
                 on_row();
-                ctx.stats
+                Some(ctx.stats)
             })
-            .reduce(Stats::default, |a, b| a + b);
+            .reduce(|| Some(Stats::default()), |a, b| Some(a? + b?))?;
         acc.samples = acc.samples.max(k1);
-        stats
+        Some(stats)
     }
 }
 

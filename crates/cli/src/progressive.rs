@@ -1,0 +1,216 @@
+//! The pass loop of a long render: whole passes of samples per pixel, sized to take about a second,
+//! until the samples asked for are done, the time budget is spent, or Ctrl-C; checkpoints between
+//! passes.
+//!
+//! A pass adds samples `[k0, k1)` to every pixel, each pixel in the order of `k`, so however the samples
+//! are cut into passes (and however often the render is stopped and resumed) the sums are those of one
+//! pass over `[start, end)`. A pass that is stopped half-way is thrown away: the render keeps whole
+//! passes only.
+
+use anyhow::{Context, Result, bail};
+use indicatif::ProgressBar;
+use rtl_render::checkpoint::{Checkpoint, Identity};
+use rtl_render::render::{Accumulator, Renderer};
+use rtl_render::sampler::Stats;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Set by the first Ctrl-C (or SIGTERM/SIGHUP): stop at the end of the current row band.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Catch Ctrl-C: the first asks the render to stop with what it has; the second exits at once.
+pub fn catch_interrupts() -> Result<()> {
+    ctrlc::set_handler(|| {
+        if INTERRUPTED.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted again: exiting without saving");
+            std::process::exit(130);
+        }
+        eprintln!("\ninterrupted: finishing with the passes done (Ctrl-C again to quit at once)");
+    })
+    .context("cannot install the Ctrl-C handler")
+}
+
+fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::Relaxed)
+}
+
+/// A duration such as `90s`, `2m`, `1h30m`, `500ms`, `1.5h` or plain seconds `90`.
+pub fn parse_duration(s: &str) -> Result<Duration, String> {
+    let err = || format!("'{s}' is not a duration (examples: 90s, 2m, 1h30m, 500ms, 45)");
+    let t = s.trim();
+    if t.is_empty() {
+        return Err(err());
+    }
+    if let Ok(secs) = t.parse::<f64>() {
+        return Duration::try_from_secs_f64(secs).map_err(|_| err());
+    }
+    let mut total = 0.0;
+    let mut rest = t;
+    while !rest.is_empty() {
+        let num_end = rest
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .ok_or_else(err)?;
+        let value: f64 = rest[..num_end].parse().map_err(|_| err())?;
+        rest = &rest[num_end..];
+        let unit_end = rest
+            .find(|c: char| !c.is_ascii_alphabetic())
+            .unwrap_or(rest.len());
+        let scale = match &rest[..unit_end] {
+            "ms" => 1e-3,
+            "s" => 1.0,
+            "m" | "min" => 60.0,
+            "h" => 3600.0,
+            "d" => 86400.0,
+            _ => return Err(err()),
+        };
+        total += value * scale;
+        rest = &rest[unit_end..];
+    }
+    Duration::try_from_secs_f64(total).map_err(|_| err())
+}
+
+/// How the loop ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ending {
+    /// Every sample asked for is done.
+    Done,
+    /// The time budget would not fit another pass.
+    OutOfTime,
+    /// Ctrl-C.
+    Interrupted,
+}
+
+/// Where and how often to save the accumulation.
+pub struct Saving {
+    pub path: PathBuf,
+    pub every: Duration,
+    pub identity: Identity,
+}
+
+impl Saving {
+    pub fn save(&self, acc: &Accumulator, start: u64) -> Result<()> {
+        let ck = Checkpoint {
+            identity: self.identity.clone(),
+            rtl_version: env!("CARGO_PKG_VERSION").into(),
+            start,
+            acc: acc.clone(),
+        };
+        ck.write(&self.path)
+            .with_context(|| format!("cannot write the checkpoint {}", self.path.display()))
+    }
+}
+
+/// What to render: samples `[acc.samples, end)`, within `budget` if there is one.
+pub struct Plan {
+    pub start: u64,
+    pub end: u64,
+    pub budget: Option<Duration>,
+    pub saving: Option<Saving>,
+    /// The longest a pass should take (a stopped render loses at most about this much).
+    pub pass_time: Duration,
+}
+
+/// Render passes into `acc` until the plan says stop, saving it between passes; returns the counters of
+/// the passes kept. The caller saves the end state (after writing the image).
+pub fn run(
+    renderer: &Renderer,
+    pool: &rayon::ThreadPool,
+    acc: &mut Accumulator,
+    plan: &Plan,
+    bar: &ProgressBar,
+) -> Result<(Stats, Ending)> {
+    if acc.samples < plan.start {
+        bail!("internal: accumulation before its first sample");
+    }
+    let began = Instant::now();
+    let deadline = plan.budget.map(|b| began + b);
+    let h = acc.height as u64;
+    let mut stats = Stats::default();
+    // Save once before the first pass, so an unwritable path shows at once, not after the work.
+    if let Some(s) = &plan.saving {
+        s.save(acc, plan.start)?;
+    }
+    let mut next = acc.clone();
+    let mut last_save = Instant::now();
+    // Seconds one sample per pixel takes, measured on the passes so far.
+    let mut secs_per_spp: Option<f64> = None;
+    let mut n = 1u64;
+    let stop = || interrupted() || deadline.is_some_and(|d| Instant::now() >= d);
+    let ending = loop {
+        if acc.samples >= plan.end {
+            break Ending::Done;
+        }
+        if interrupted() {
+            break Ending::Interrupted;
+        }
+        if let (Some(d), Some(t)) = (deadline, secs_per_spp) {
+            let left = d.saturating_duration_since(Instant::now()).as_secs_f64();
+            let fit = (left / t).floor() as u64;
+            if fit == 0 {
+                break Ending::OutOfTime;
+            }
+            n = n.min(fit);
+        }
+        let (k0, k1) = (acc.samples, (acc.samples + n).min(plan.end));
+        next.clone_from(acc);
+        let t0 = Instant::now();
+        let on_row = || {
+            if plan.budget.is_some() {
+                bar.set_position(began.elapsed().as_millis() as u64);
+            } else {
+                bar.inc(k1 - k0);
+            }
+        };
+        let pass = pool.install(|| renderer.render_pass_until(&mut next, k0, k1, &on_row, &stop));
+        let Some(s) = pass else {
+            break if interrupted() {
+                Ending::Interrupted
+            } else {
+                Ending::OutOfTime
+            };
+        };
+        std::mem::swap(acc, &mut next);
+        stats = stats + s;
+        let t = t0.elapsed().as_secs_f64() / (k1 - k0) as f64;
+        secs_per_spp = Some(t);
+        bar.set_message(format!("{} spp", acc.samples - plan.start));
+        if plan.budget.is_none() {
+            bar.set_position(h * (acc.samples - plan.start));
+        }
+        if let Some(s) = &plan.saving
+            && last_save.elapsed() >= s.every
+            && acc.samples < plan.end
+        {
+            if let Err(e) = s.save(acc, plan.start) {
+                eprintln!("warning: {e:#}");
+            }
+            last_save = Instant::now();
+        }
+        // The next pass: about `pass_time` long, at most twice the last (a cheap start misleads).
+        let fit = (plan.pass_time.as_secs_f64() / t.max(1e-12)).floor() as u64;
+        n = fit.clamp(1, n.saturating_mul(2));
+    };
+    Ok((stats, ending))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_duration;
+    use std::time::Duration;
+
+    #[test]
+    fn durations() {
+        let s = |x: &str| parse_duration(x).unwrap();
+        assert_eq!(s("90s"), Duration::from_secs(90));
+        assert_eq!(s("90"), Duration::from_secs(90));
+        assert_eq!(s("2m"), Duration::from_secs(120));
+        assert_eq!(s("1h"), Duration::from_secs(3600));
+        assert_eq!(s("1h30m"), Duration::from_secs(5400));
+        assert_eq!(s("1.5s"), Duration::from_millis(1500));
+        assert_eq!(s("250ms"), Duration::from_millis(250));
+        for bad in ["", "s", "5x", "-3", "1h-", "inf"] {
+            assert!(parse_duration(bad).is_err(), "{bad}");
+        }
+    }
+}
