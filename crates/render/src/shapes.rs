@@ -175,9 +175,16 @@ impl Quad {
         if !(0.0..=1.0).contains(&alpha) || !(0.0..=1.0).contains(&beta) {
             return None;
         }
+        Some(self.hit_at(ray, t, alpha, beta))
+    }
+
+    /// The hit record of a hit at parameter `t` and coordinates `(alpha, beta)` found by [`Quad::hit`]
+    /// or [`Quad4::hit`]: built once, for the closest hit only.
+    #[inline]
+    pub fn hit_at(&self, ray: &Ray, t: f64, alpha: f64, beta: f64) -> Hit {
         let p = self.q + alpha * self.u + beta * self.v;
         let (normal, front_face) = Hit::face(ray, self.normal);
-        Some(Hit {
+        Hit {
             t,
             p,
             normal,
@@ -185,7 +192,116 @@ impl Quad {
             err: self.err,
             material: self.material,
             uv_source: UvSource::Uv(alpha, beta),
-        })
+        }
+    }
+}
+
+/// Up to four quads stored coordinate by coordinate (structure of arrays), so that one ray is
+/// intersected with all four in the same vector instructions. The arithmetic is exactly that of
+/// [`Quad::hit`], lane by lane, so a packet finds bit-identical hits. Unused lanes have a zero normal:
+/// their `t` is NaN and never counts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quad4 {
+    q: [[f64; 4]; 3],
+    u: [[f64; 4]; 3],
+    v: [[f64; 4]; 3],
+    w: [[f64; 4]; 3],
+    normal: [[f64; 4]; 3],
+    d: [f64; 4],
+    /// The index of each lane's quad in the group's objects (`u32::MAX` for an unused lane).
+    pub index: [u32; 4],
+}
+
+/// The closest hit in a [`Quad4`]: the lane, its parameter and its coordinates in the quad.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quad4Hit {
+    pub lane: usize,
+    pub t: f64,
+    pub alpha: f64,
+    pub beta: f64,
+}
+
+impl Quad4 {
+    /// A packet of up to four quads, `index[i]` naming quad `i`.
+    pub fn new(quads: &[(Quad, u32)]) -> Self {
+        assert!(quads.len() <= 4);
+        let mut p = Quad4 {
+            q: [[0.0; 4]; 3],
+            u: [[0.0; 4]; 3],
+            v: [[0.0; 4]; 3],
+            w: [[0.0; 4]; 3],
+            normal: [[0.0; 4]; 3],
+            d: [0.0; 4],
+            index: [u32::MAX; 4],
+        };
+        for (i, (quad, index)) in quads.iter().enumerate() {
+            for a in 0..3 {
+                p.q[a][i] = quad.q[a];
+                p.u[a][i] = quad.u[a];
+                p.v[a][i] = quad.v[a];
+                p.w[a][i] = quad.w[a];
+                p.normal[a][i] = quad.normal[a];
+            }
+            p.d[i] = quad.d;
+            p.index[i] = *index;
+        }
+        p
+    }
+
+    /// The closest hit among the four quads with `t` in the open interval `range` (on equal `t`, the
+    /// lowest lane, as testing the quads one after the other would find).
+    #[inline(always)]
+    pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Quad4Hit> {
+        let o = ray.origin;
+        let dir = ray.direction;
+        let mut t = [0.0; 4];
+        let mut alpha = [0.0; 4];
+        let mut beta = [0.0; 4];
+        let mut ok = [false; 4];
+        let [nx, ny, nz] = &self.normal;
+        let [qx, qy, qz] = &self.q;
+        let [ux, uy, uz] = &self.u;
+        let [vx, vy, vz] = &self.v;
+        let [wx, wy, wz] = &self.w;
+        for i in 0..4 {
+            let denom = (nx[i] * dir.x) + (ny[i] * dir.y) + (nz[i] * dir.z);
+            let no = (nx[i] * o.x) + (ny[i] * o.y) + (nz[i] * o.z);
+            let ti = (self.d[i] - no) / denom;
+            // planar = ray.at(t) - q
+            let px = (o.x + ti * dir.x) - qx[i];
+            let py = (o.y + ti * dir.y) - qy[i];
+            let pz = (o.z + ti * dir.z) - qz[i];
+            // alpha = w . (planar x v), beta = w . (u x planar)
+            let cx = py * vz[i] - vy[i] * pz;
+            let cy = pz * vx[i] - vz[i] * px;
+            let cz = px * vy[i] - vx[i] * py;
+            let a = (wx[i] * cx) + (wy[i] * cy) + (wz[i] * cz);
+            let ex = uy[i] * pz - py * uz[i];
+            let ey = uz[i] * px - pz * ux[i];
+            let ez = ux[i] * py - px * uy[i];
+            let b = (wx[i] * ex) + (wy[i] * ey) + (wz[i] * ez);
+            t[i] = ti;
+            alpha[i] = a;
+            beta[i] = b;
+            ok[i] = range.min < ti
+                && ti < range.max
+                && (0.0..=1.0).contains(&a)
+                && (0.0..=1.0).contains(&b);
+        }
+        let mut best: Option<Quad4Hit> = None;
+        let mut closest = range.max;
+        for i in 0..4 {
+            if ok[i] && t[i] < closest {
+                closest = t[i];
+                best = Some(Quad4Hit {
+                    lane: i,
+                    t: t[i],
+                    alpha: alpha[i],
+                    beta: beta[i],
+                });
+            }
+        }
+        best
     }
 }
 
@@ -205,4 +321,112 @@ pub fn box_quads(a: Point3, b: Point3, material: u32) -> Option<[Quad; 6]> {
         Quad::new(Point3::new(min.x, max.y, max.z), dx, -dz, material)?, // top
         Quad::new(Point3::new(min.x, min.y, min.z), dx, dz, material)?, // bottom
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_xoshiro::Xoshiro256PlusPlus;
+
+    fn unit<R: Rng>(rng: &mut R) -> Vec3 {
+        loop {
+            let v = Vec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            );
+            if v.length_squared() > 1e-6 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    /// The scalar tests of the quads one after the other, as the packet claims to do them.
+    fn one_by_one(quads: &[Quad], ray: &Ray, range: Interval) -> Option<(usize, Hit)> {
+        let mut best = None;
+        let mut closest = range.max;
+        for (i, q) in quads.iter().enumerate() {
+            if let Some(h) = q.hit(ray, Interval::new(range.min, closest)) {
+                closest = h.t;
+                best = Some((i, h));
+            }
+        }
+        best
+    }
+
+    fn check(quads: &[Quad], ray: &Ray, range: Interval) -> bool {
+        let indexed: Vec<(Quad, u32)> = quads.iter().map(|q| (*q, 7)).collect();
+        let packet = Quad4::new(&indexed);
+        let fast = packet.hit(ray, range);
+        let slow = one_by_one(quads, ray, range);
+        match (fast, slow) {
+            (None, None) => false,
+            (Some(f), Some((i, h))) => {
+                assert_eq!(f.lane, i, "{ray:?}");
+                assert_eq!(f.t.to_bits(), h.t.to_bits());
+                let built = quads[f.lane].hit_at(ray, f.t, f.alpha, f.beta);
+                assert_eq!(built.p, h.p);
+                assert_eq!(built.normal, h.normal);
+                assert!(f.t.is_finite() && f.alpha.is_finite() && f.beta.is_finite());
+                true
+            }
+            (f, s) => panic!("packet {f:?} but one by one {s:?} for {ray:?}"),
+        }
+    }
+
+    #[test]
+    fn a_packet_finds_the_same_hits_as_the_quads_one_by_one() {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+        let mut hits = 0;
+        for _ in 0..2_000 {
+            let n = rng.random_range(1..=4);
+            let quads: Vec<Quad> = (0..n)
+                .map(|_| {
+                    let q = unit(&mut rng) * rng.random_range(0.0..3.0);
+                    let u = unit(&mut rng) * rng.random_range(0.1..3.0);
+                    let v = unit(&mut rng) * rng.random_range(0.1..3.0);
+                    Quad::new(q, u, v, 0).unwrap()
+                })
+                .collect();
+            for _ in 0..20 {
+                // Aimed at a random point of a random quad, or exactly at an edge or a corner.
+                let q = &quads[rng.random_range(0..n)];
+                let (a, b) = match rng.random_range(0..3) {
+                    0 => (rng.random::<f64>(), rng.random::<f64>()),
+                    1 => (rng.random::<f64>(), [0.0, 1.0][rng.random_range(0..2)]),
+                    _ => (
+                        [0.0, 1.0][rng.random_range(0..2)],
+                        [0.0, 1.0][rng.random_range(0..2)],
+                    ),
+                };
+                let target = q.q + a * q.u + b * q.v;
+                let origin = target + unit(&mut rng) * rng.random_range(0.5..10.0);
+                let ray = Ray::new(origin, target - origin, 0.0);
+                hits += check(&quads, &ray, Interval::FORWARD) as u32;
+                // A range that ends before some hits.
+                hits += check(&quads, &ray, Interval::new(0.0, rng.random_range(0.0..1.5))) as u32;
+                // Grazing: a ray in the quad's own plane (denominator 0 or nearly).
+                let grazing = Ray::new(q.q - q.u, q.u + 1e-17 * q.v, 0.0);
+                check(&quads, &grazing, Interval::FORWARD);
+                check(&quads, &grazing, Interval::UNIVERSE);
+            }
+        }
+        assert!(hits > 20_000, "{hits}");
+    }
+
+    #[test]
+    fn equal_distances_go_to_the_first_lane_and_unused_lanes_never_hit() {
+        let q = Quad::new(Vec3::ZERO, Vec3::X, Vec3::Z, 0).unwrap();
+        let packet = Quad4::new(&[(q, 3), (q, 4)]);
+        let ray = Ray::new(Point3::new(0.5, 1.0, 0.5), Vec3::new(0.0, -1.0, 0.0), 0.0);
+        let h = packet.hit(&ray, Interval::FORWARD).unwrap();
+        assert_eq!((h.lane, packet.index[h.lane], h.t), (0, 3, 1.0));
+        // The unused lanes' NaN parameters count nowhere, even over the whole line.
+        let empty = Quad4::new(&[]);
+        assert_eq!(empty.hit(&ray, Interval::UNIVERSE), None);
+        // And a ray parallel to every lane hits nothing.
+        let parallel = Ray::new(Point3::new(0.5, 0.0, 0.5), Vec3::X, 0.0);
+        assert_eq!(packet.hit(&parallel, Interval::UNIVERSE), None);
+    }
 }
