@@ -45,6 +45,10 @@ pub struct RenderArgs {
     /// `mis` with area sampling of rectangular lights instead of spherical rectangles.
     #[arg(long)]
     pub no_sph_rect: bool,
+    /// `mis` with spherical-rectangle sampling of rectangular lights (off by default: it does not pay
+    /// on the Cornell box).
+    #[arg(long, conflicts_with = "no_sph_rect")]
+    pub sph_rect: bool,
     /// `mis` with independent random numbers instead of low-discrepancy samples.
     #[arg(long)]
     pub no_lds: bool,
@@ -251,7 +255,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
         strategy: match args.strategy {
             Strategy::Mis(mut o) => {
                 o.russian_roulette &= !args.no_rr;
-                o.spherical_rectangles &= !args.no_sph_rect;
+                o.spherical_rectangles =
+                    (o.spherical_rectangles || args.sph_rect) && !args.no_sph_rect;
                 o.low_discrepancy &= !args.no_lds;
                 Strategy::Mis(o)
             }
