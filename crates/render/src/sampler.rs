@@ -51,9 +51,10 @@ fn sobol0(i: u32) -> u32 {
     i.reverse_bits()
 }
 
-/// Sobol dimension 1 (generator matrix: Pascal's triangle mod 2) of index `i`, as 32-bit fixed point.
-#[inline]
-fn sobol1(mut i: u32) -> u32 {
+/// Sobol dimension 1 (generator matrix: Pascal's triangle mod 2) of index `i`, as 32-bit fixed point:
+/// the XOR of the matrix columns of `i`'s set bits, bit by bit.
+#[cfg(test)]
+fn sobol1_by_bits(mut i: u32) -> u32 {
     let mut v = 1u32 << 31;
     let mut r = 0;
     while i != 0 {
@@ -64,6 +65,47 @@ fn sobol1(mut i: u32) -> u32 {
         v ^= v >> 1;
     }
     r
+}
+
+/// The same product as [`sobol1_by_bits`], a byte of the index at a time: `SOBOL1_BYTES[b][x]` is the
+/// XOR of the columns of the bits of `x << 8b` (the product is linear over GF(2)).
+const SOBOL1_BYTES: [[u32; 256]; 4] = {
+    let mut t = [[0u32; 256]; 4];
+    let mut b = 0;
+    while b < 4 {
+        let mut x = 0;
+        while x < 256 {
+            // columns of bits 8b .. 8b + 7
+            let mut v = 1u32 << 31;
+            let mut k = 0;
+            while k < 8 * b {
+                v ^= v >> 1;
+                k += 1;
+            }
+            let mut r = 0u32;
+            let mut bit = 0;
+            while bit < 8 {
+                if x & (1 << bit) != 0 {
+                    r ^= v;
+                }
+                v ^= v >> 1;
+                bit += 1;
+            }
+            t[b][x] = r;
+            x += 1;
+        }
+        b += 1;
+    }
+    t
+};
+
+/// Sobol dimension 1 of index `i` by four table lookups.
+#[inline]
+fn sobol1(i: u32) -> u32 {
+    SOBOL1_BYTES[0][(i & 0xff) as usize]
+        ^ SOBOL1_BYTES[1][((i >> 8) & 0xff) as usize]
+        ^ SOBOL1_BYTES[2][((i >> 16) & 0xff) as usize]
+        ^ SOBOL1_BYTES[3][(i >> 24) as usize]
 }
 
 /// The sub-pixel position of sample `k` of a pixel, in `[0, 1)^2`: point `k` of the pixel's own
@@ -96,7 +138,7 @@ pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
     let i = owen_scramble(k as u32, (h >> 32) as u32);
     let x = owen_scramble(sobol0(i), h as u32);
     let y = owen_scramble(sobol1(i), (h >> 16) as u32 ^ 0x5bd1_e995);
-    let low = mix64(h ^ k);
+    let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
     [
         ((x as u64) << 32) | (low & 0xffff_ffff),
         ((y as u64) << 32) | (low >> 32),
@@ -320,6 +362,16 @@ mod tests {
         }
         // pairs differ from each other
         assert_ne!(padded_sobol_2d(1, 0, 5), padded_sobol_2d(1, 1, 5));
+    }
+
+    #[test]
+    fn sobol1_tables_agree_with_the_bit_loop() {
+        let mut x = 1u32;
+        for i in (0..4096u32).chain([u32::MAX, 1 << 31, 0x8000_0001]) {
+            assert_eq!(sobol1(i), sobol1_by_bits(i), "index {i}");
+            x = x.wrapping_mul(0x9e37_79b9).wrapping_add(7);
+            assert_eq!(sobol1(x), sobol1_by_bits(x), "index {x}");
+        }
     }
 
     #[test]
