@@ -36,9 +36,23 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// How diffuse bounces choose directions.
-    #[arg(long, default_value = "cosine", value_parser = parse_strategy)]
+    /// How diffuse bounces choose directions: uniform, cosine, light (biased), mixture (the book's),
+    /// mis (next-event estimation + MIS, the best we have).
+    #[arg(long, default_value = "mis", value_parser = parse_strategy)]
     pub strategy: Strategy,
+    /// `mis` without Russian roulette.
+    #[arg(long)]
+    pub no_rr: bool,
+    /// `mis` with area sampling of rectangular lights instead of spherical rectangles.
+    #[arg(long)]
+    pub no_sph_rect: bool,
+    /// `mis` with spherical-rectangle sampling of rectangular lights (off by default: it does not pay
+    /// on the Cornell box).
+    #[arg(long, conflicts_with = "no_sph_rect")]
+    pub sph_rect: bool,
+    /// `mis` with independent random numbers instead of low-discrepancy samples.
+    #[arg(long)]
+    pub no_lds: bool,
     /// Output PNG (default: `<scene>.png`).
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
@@ -199,9 +213,19 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             "none".to_string()
         } else {
             format!(
-                "{} listed; not used by the '{}' strategy (book-2 scattering)",
+                "{} listed; {}",
                 f.targets,
-                settings.strategy.name()
+                match settings.strategy {
+                    Strategy::Uniform | Strategy::Cosine => format!(
+                        "not used by the '{}' strategy (book-2 scattering)",
+                        settings.strategy.name()
+                    ),
+                    Strategy::Light => "sampled alone: biased (indirect light is missed)".into(),
+                    Strategy::Mixture => "mixed 50/50 with the material's density".into(),
+                    Strategy::Mis(_) => "emitters by next-event estimation, the others \
+                        mixed with the material's density"
+                        .into(),
+                }
             )
         }
     );
@@ -259,7 +283,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         width,
         max_depth: args.max_depth.unwrap_or(scene.max_depth),
         seed: args.seed,
-        strategy: args.strategy,
+        strategy: match args.strategy {
+            Strategy::Mis(mut o) => {
+                o.russian_roulette &= !args.no_rr;
+                o.spherical_rectangles =
+                    (o.spherical_rectangles || args.sph_rect) && !args.no_sph_rect;
+                o.low_discrepancy &= !args.no_lds;
+                Strategy::Mis(o)
+            }
+            other => other,
+        },
     };
     if args.explain {
         explain(&loaded, scene, &settings, args.spp.unwrap_or(loaded.spp));

@@ -4,7 +4,8 @@
 //! One concept a module, in the books' order: vectors ([`vec`]) and rays ([`ray`]); bounding boxes
 //! ([`aabb`]) and the BVH ([`bvh`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
-//! instances and media ([`scene`]); the built-in scenes ([`scenes`]); the integrator ([`integrator`]);
+//! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);
+//! the integrator and its sampling strategies ([`integrator`]);
 //! prefix-stable per-sample randomness ([`sampler`]); progressive rendering into an accumulation buffer
 //! ([`render`]); checkpoints and parts of long renders ([`checkpoint`]); image files ([`output`]).
 //!
@@ -23,6 +24,7 @@ pub mod camera;
 pub mod checkpoint;
 pub mod hit;
 pub mod integrator;
+pub mod lights;
 pub mod material;
 pub mod output;
 pub mod perlin;

@@ -10,8 +10,11 @@ use crate::hit::Hit;
 use crate::ray::Ray;
 use crate::sampler::Ctx;
 use crate::texture::Texture;
-use crate::vec::{Color, Frame, Vec3, reflect, refract};
-use std::f64::consts::{FRAC_1_PI, PI};
+use crate::vec::{Color, Vec3, reflect, refract};
+use glam::DVec2;
+use rand::Rng;
+use rtl_pdf::{CosinePdf, Pdf, SpherePdf, warp};
+use std::f64::consts::FRAC_1_PI;
 
 /// A reflectance or emission: a plain colour (no texture lookup at all) or a texture of the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,65 +52,38 @@ pub enum Material {
     Isotropic { albedo: Albedo },
 }
 
-/// The density a material samples its scattered directions from.
+// ANCHOR: scatter_pdf
+/// The density a material samples its scattered directions from: the book's `scatter_record::pdf_ptr`,
+/// an enum of rtl-pdf's densities instead of a pointer (static dispatch, nothing allocated).
 #[derive(Clone, Copy, Debug)]
 pub enum ScatterPdf {
-    /// `cos(theta) / pi` about the unit normal, on the normal's hemisphere (solid-angle measure).
-    Cosine(Vec3),
-    /// `1 / (4 pi)` over the whole sphere.
-    Sphere,
+    /// `max(0, cos theta) / pi` about the unit normal (solid-angle measure): Lambertian.
+    Cosine(CosinePdf),
+    /// `1 / (4 pi)` over the whole sphere: the isotropic phase function.
+    Sphere(SpherePdf),
 }
 
-impl ScatterPdf {
-    /// Draw a direction with this density (a unit vector).
+impl Pdf for ScatterPdf {
     #[inline]
-    pub fn generate(&self, ctx: &mut Ctx) -> Vec3 {
-        let (u1, u2) = (ctx.uniform(), ctx.uniform());
+    fn value(&self, direction: Vec3) -> f64 {
         match self {
-            ScatterPdf::Cosine(n) => Frame::from_w(*n).to_world(cosine_direction(u1, u2)),
-            ScatterPdf::Sphere => uniform_sphere(u1, u2),
+            ScatterPdf::Cosine(p) => p.value(direction),
+            ScatterPdf::Sphere(p) => p.value(direction),
         }
     }
 
-    /// The density of `direction` (unit), per steradian.
     #[inline]
-    pub fn value(&self, direction: Vec3) -> f64 {
+    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> Vec3 {
         match self {
-            ScatterPdf::Cosine(n) => (n.dot(direction) * FRAC_1_PI).max(0.0),
-            ScatterPdf::Sphere => 0.25 * FRAC_1_PI,
+            ScatterPdf::Cosine(p) => p.generate(rng),
+            ScatterPdf::Sphere(p) => p.generate(rng),
         }
     }
 }
+// ANCHOR_END: scatter_pdf
 
-/// A cosine-distributed direction about +z: `p(omega) = cos(theta) / pi` (Malley's method: a uniform
-/// point on the disk lifted to the hemisphere).
-#[inline]
-pub fn cosine_direction(u1: f64, u2: f64) -> Vec3 {
-    let phi = 2.0 * PI * u1;
-    let r = u2.sqrt();
-    let (s, c) = phi.sin_cos();
-    Vec3::new(r * c, r * s, (1.0 - u2).max(0.0).sqrt())
-}
-
-/// A uniform direction on the unit sphere: `p(omega) = 1 / (4 pi)`.
-#[inline]
-pub fn uniform_sphere(u1: f64, u2: f64) -> Vec3 {
-    let z = 1.0 - 2.0 * u1;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let (s, c) = (2.0 * PI * u2).sin_cos();
-    Vec3::new(r * c, r * s, z)
-}
-
-/// A uniform direction on the hemisphere about +z: `p(omega) = 1 / (2 pi)`.
-#[inline]
-pub fn uniform_hemisphere(u1: f64, u2: f64) -> Vec3 {
-    let z = u1;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let (s, c) = (2.0 * PI * u2).sin_cos();
-    Vec3::new(r * c, r * s, z)
-}
-
-/// The outcome of scattering.
+// ANCHOR: scatter
+/// The outcome of scattering: book 3's `scatter_record`.
 #[derive(Clone, Copy, Debug)]
 pub enum Scatter {
     /// Sample the material's density; the path's weight is `attenuation * s(omega) / p(omega)`.
@@ -115,6 +91,7 @@ pub enum Scatter {
     /// Follow this one direction with weight `attenuation` (a delta distribution: no density).
     Specular { attenuation: Color, direction: Vec3 },
 }
+// ANCHOR_END: scatter
 
 /// Schlick's approximation of the Fresnel reflectance at incidence `cosine` with ratio `ri`.
 #[inline]
@@ -158,16 +135,16 @@ impl Material {
         match self {
             Material::Lambertian { albedo } => Some(Scatter::Diffuse {
                 attenuation: albedo.value(hit, textures, ctx),
-                pdf: ScatterPdf::Cosine(hit.normal),
+                pdf: ScatterPdf::Cosine(CosinePdf::new(hit.normal)),
             }),
             Material::Isotropic { albedo } => Some(Scatter::Diffuse {
                 attenuation: albedo.value(hit, textures, ctx),
-                pdf: ScatterPdf::Sphere,
+                pdf: ScatterPdf::Sphere(SpherePdf),
             }),
             Material::Metal { albedo, fuzz } => {
                 let reflected = reflect(ray.direction, hit.normal).normalize();
                 let direction = if *fuzz > 0.0 {
-                    let d = uniform_sphere(ctx.uniform(), ctx.uniform());
+                    let d = warp::sample_uniform_sphere(DVec2::new(ctx.uniform(), ctx.uniform()));
                     reflected + *fuzz * d
                 } else {
                     reflected

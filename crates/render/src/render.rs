@@ -6,7 +6,8 @@
 
 use crate::camera::Camera;
 use crate::integrator::{Strategy, radiance};
-use crate::sampler::{Ctx, SampleRng, Stats, sample_key};
+use crate::lights::Lights;
+use crate::sampler::{Ctx, Lds, SampleRng, Stats, sample_key};
 use crate::scene::Scene;
 use crate::vec::Color;
 use rayon::prelude::*;
@@ -86,15 +87,22 @@ pub struct Renderer<'a> {
     pub scene: &'a Scene,
     pub camera: Camera,
     pub settings: RenderSettings,
+    /// The scene's importance targets, built once for the strategy.
+    pub lights: Lights,
 }
 
 impl<'a> Renderer<'a> {
     pub fn new(scene: &'a Scene, settings: RenderSettings) -> Self {
         let camera = Camera::new(&scene.camera, settings.width, scene.features.motion);
+        let spherical_rectangles = settings
+            .strategy
+            .mis_options()
+            .is_some_and(|o| o.spherical_rectangles);
         Renderer {
             scene,
             camera,
             settings,
+            lights: Lights::new(scene, spherical_rectangles),
         }
     }
 
@@ -113,9 +121,20 @@ impl<'a> Renderer<'a> {
     pub fn sample(&self, i: usize, j: usize, k: u64, ctx: &mut Ctx) -> Color {
         let pixel = (j * self.camera.width + i) as u64;
         ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
-        let ray = self.camera.ray(i, j, self.pixel_key(pixel), k, ctx);
+        let pixel_key = self.pixel_key(pixel);
+        ctx.lds = Lds {
+            on: self
+                .settings
+                .strategy
+                .mis_options()
+                .is_some_and(|o| o.low_discrepancy),
+            key: pixel_key,
+            index: k,
+        };
+        let ray = self.camera.ray(i, j, pixel_key, k, ctx);
         let value = radiance(
             self.scene,
+            &self.lights,
             ray,
             self.settings.max_depth,
             self.settings.strategy,

@@ -51,9 +51,10 @@ fn sobol0(i: u32) -> u32 {
     i.reverse_bits()
 }
 
-/// Sobol dimension 1 (generator matrix: Pascal's triangle mod 2) of index `i`, as 32-bit fixed point.
-#[inline]
-fn sobol1(mut i: u32) -> u32 {
+/// Sobol dimension 1 (generator matrix: Pascal's triangle mod 2) of index `i`, as 32-bit fixed point:
+/// the XOR of the matrix columns of `i`'s set bits, bit by bit.
+#[cfg(test)]
+fn sobol1_by_bits(mut i: u32) -> u32 {
     let mut v = 1u32 << 31;
     let mut r = 0;
     while i != 0 {
@@ -64,6 +65,47 @@ fn sobol1(mut i: u32) -> u32 {
         v ^= v >> 1;
     }
     r
+}
+
+/// The same product as [`sobol1_by_bits`], a byte of the index at a time: `SOBOL1_BYTES[b][x]` is the
+/// XOR of the columns of the bits of `x << 8b` (the product is linear over GF(2)).
+const SOBOL1_BYTES: [[u32; 256]; 4] = {
+    let mut t = [[0u32; 256]; 4];
+    let mut b = 0;
+    while b < 4 {
+        let mut x = 0;
+        while x < 256 {
+            // columns of bits 8b .. 8b + 7
+            let mut v = 1u32 << 31;
+            let mut k = 0;
+            while k < 8 * b {
+                v ^= v >> 1;
+                k += 1;
+            }
+            let mut r = 0u32;
+            let mut bit = 0;
+            while bit < 8 {
+                if x & (1 << bit) != 0 {
+                    r ^= v;
+                }
+                v ^= v >> 1;
+                bit += 1;
+            }
+            t[b][x] = r;
+            x += 1;
+        }
+        b += 1;
+    }
+    t
+};
+
+/// Sobol dimension 1 of index `i` by four table lookups.
+#[inline]
+fn sobol1(i: u32) -> u32 {
+    SOBOL1_BYTES[0][(i & 0xff) as usize]
+        ^ SOBOL1_BYTES[1][((i >> 8) & 0xff) as usize]
+        ^ SOBOL1_BYTES[2][((i >> 16) & 0xff) as usize]
+        ^ SOBOL1_BYTES[3][(i >> 24) as usize]
 }
 
 /// The sub-pixel position of sample `k` of a pixel, in `[0, 1)^2`: point `k` of the pixel's own
@@ -80,6 +122,84 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
     const SCALE: f64 = 1.0 / 4_294_967_296.0;
     // Add half an ulp of the 32-bit grid so positions are centred in their cells and never exactly 0.
     ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
+}
+
+// ANCHOR: padded_sobol
+/// Two-dimensional point `k` of the integrator's dimension pair `dim` for one pixel, each coordinate as
+/// 64 random-looking bits whose top 32 are the Owen-scrambled Sobol value (so `random::<f64>()` of them
+/// lies in the point's 2^-32 cell): pbrt-v4's *padded* Sobol sampler. Every pair is Sobol dimensions 0
+/// and 1 (a (0,2)-sequence) with its own scramble, and the sample index is shuffled per pair by a nested
+/// uniform scramble of its bits (Burley 2020), which maps the first 2^m indices onto one aligned block
+/// of 2^m, itself a (0,m,2)-net: so every power-of-two prefix stays stratified, pairs are decorrelated,
+/// and point `k` depends only on `(pixel_key, dim, k)` (prefix-stable).
+#[inline]
+pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
+    let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
+    let i = owen_scramble(k as u32, (h >> 32) as u32);
+    let x = owen_scramble(sobol0(i), h as u32);
+    let y = owen_scramble(sobol1(i), (h >> 16) as u32 ^ 0x5bd1_e995);
+    let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    [
+        ((x as u64) << 32) | (low & 0xffff_ffff),
+        ((y as u64) << 32) | (low >> 32),
+    ]
+}
+// ANCHOR_END: padded_sobol
+
+/// Where the integrator's low-discrepancy dimensions come from for the current sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Lds {
+    /// Off: every dimension is drawn from the sample's random number generator.
+    pub on: bool,
+    /// The pixel's scramble key.
+    pub key: u64,
+    /// The sample's index `k` in its pixel.
+    pub index: u64,
+}
+
+/// A random number generator that first hands out a few preset 64-bit values (low-discrepancy
+/// coordinates, say) and then falls back to the sample's generator: a way to feed chosen numbers to a
+/// `Pdf::generate` that takes any `Rng`.
+pub struct Preset<'a> {
+    values: [u64; 3],
+    next: usize,
+    len: usize,
+    rng: &'a mut SampleRng,
+}
+
+impl<'a> Preset<'a> {
+    /// Hands out `values` in order, then numbers from `rng`.
+    #[inline]
+    pub fn new(values: &[u64], rng: &'a mut SampleRng) -> Self {
+        let mut v = [0u64; 3];
+        let len = values.len().min(3);
+        v[..len].copy_from_slice(&values[..len]);
+        Preset {
+            values: v,
+            next: 0,
+            len,
+            rng,
+        }
+    }
+}
+
+impl RngCore for Preset<'_> {
+    #[inline]
+    fn next_u32(&mut self) -> u32 {
+        (self.next_u64() >> 32) as u32
+    }
+    #[inline]
+    fn next_u64(&mut self) -> u64 {
+        if self.next < self.len {
+            self.next += 1;
+            self.values[self.next - 1]
+        } else {
+            self.rng.next_u64()
+        }
+    }
+    fn fill_bytes(&mut self, dst: &mut [u8]) {
+        self.rng.fill_bytes(dst)
+    }
 }
 
 /// Counters of what a render did, kept per thread (plain adds, no atomics) and summed at the end.
@@ -156,6 +276,8 @@ impl RngCore for SampleRng {
 pub struct Ctx {
     pub rng: SampleRng,
     pub stats: Stats,
+    /// Low-discrepancy dimensions of the current sample (used by the `mis` strategy).
+    pub lds: Lds,
 }
 
 impl Ctx {
@@ -163,6 +285,7 @@ impl Ctx {
         Ctx {
             rng: SampleRng::for_sample(0, 0, 0),
             stats: Stats::default(),
+            lds: Lds::default(),
         }
     }
 
@@ -170,6 +293,18 @@ impl Ctx {
     #[inline]
     pub fn uniform(&mut self) -> f64 {
         rand::Rng::random::<f64>(&mut self.rng)
+    }
+
+    /// Two coordinates (as 64-bit values for [`Preset`]) of dimension pair `dim`: low-discrepancy if
+    /// `lds.on`, else two draws of the generator.
+    #[inline]
+    pub fn sample_2d(&mut self, dim: u32) -> [u64; 2] {
+        if self.lds.on {
+            self.stats.random_numbers += 2;
+            padded_sobol_2d(self.lds.key, dim, self.lds.index)
+        } else {
+            [self.rng.next_u64(), self.rng.next_u64()]
+        }
     }
 }
 
@@ -201,6 +336,41 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn padded_sobol_pairs_are_stratified_at_every_power_of_two() {
+        for (key, dim) in [(1u64, 0u32), (0xdead_beef, 3), (42, 17)] {
+            for m in 0..=8u32 {
+                let n = 1u64 << m;
+                for a in 0..=m {
+                    let (nx, ny) = (1u64 << a, 1u64 << (m - a));
+                    let mut seen = vec![false; n as usize];
+                    for k in 0..n {
+                        let [x, y] = padded_sobol_2d(key, dim, k);
+                        let (x, y) = (
+                            (x >> 32) as f64 / 4294967296.0,
+                            (y >> 32) as f64 / 4294967296.0,
+                        );
+                        let cell = (x * nx as f64) as u64 * ny + (y * ny as f64) as u64;
+                        assert!(!seen[cell as usize], "two points in one cell: m {m}, a {a}");
+                        seen[cell as usize] = true;
+                    }
+                }
+            }
+        }
+        // pairs differ from each other
+        assert_ne!(padded_sobol_2d(1, 0, 5), padded_sobol_2d(1, 1, 5));
+    }
+
+    #[test]
+    fn sobol1_tables_agree_with_the_bit_loop() {
+        let mut x = 1u32;
+        for i in (0..4096u32).chain([u32::MAX, 1 << 31, 0x8000_0001]) {
+            assert_eq!(sobol1(i), sobol1_by_bits(i), "index {i}");
+            x = x.wrapping_mul(0x9e37_79b9).wrapping_add(7);
+            assert_eq!(sobol1(x), sobol1_by_bits(x), "index {x}");
         }
     }
 

@@ -2,7 +2,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use rtl_render::material::{Material, uniform_sphere};
+use rtl_render::material::Material;
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
 use rtl_render::scene::{SceneBuilder, Transform};
@@ -10,7 +10,7 @@ use rtl_render::shapes::{Quad, Sphere};
 use rtl_render::vec::{Color, Point3, Vec3};
 
 fn unit<R: Rng>(rng: &mut R) -> Vec3 {
-    uniform_sphere(rng.random(), rng.random())
+    rtl_pdf::warp::sample_uniform_sphere(glam::DVec2::new(rng.random(), rng.random()))
 }
 
 #[test]

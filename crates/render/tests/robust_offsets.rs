@@ -4,7 +4,6 @@
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_render::hit::Hit;
-use rtl_render::material::uniform_sphere;
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
 use rtl_render::scene::{SceneBuilder, Transform};
@@ -14,7 +13,7 @@ use rtl_render::vec::{Point3, Vec3, reflect};
 const SCALES: [f64; 5] = [1e-4, 1e-2, 1.0, 1e2, 1e4];
 
 fn random_unit<R: Rng>(rng: &mut R) -> Vec3 {
-    uniform_sphere(rng.random(), rng.random())
+    rtl_pdf::warp::sample_uniform_sphere(glam::DVec2::new(rng.random(), rng.random()))
 }
 
 /// A random direction on the side of `n` (or against it).

@@ -1,15 +1,548 @@
-//! `rtl study render`: placeholder.
+//! `rtl study render`: what accuracy costs in time for each rendering strategy.
+//!
+//! 1. A converged reference, rendered once with `mis` under another seed and cached in `DIR` as a PFM
+//!    with a `.txt` naming the command and settings that made it.
+//! 2. Every strategy (and `mis` with each extra switched off: the ablation rows) rendered
+//!    progressively at spp = 1, 4, 16, 64, 256 (1024 with `--max-spp 1024`): wall time (all threads;
+//!    the shortest of `--repeat` runs, since the machine is shared),
+//!    RMSE and relative MSE against the reference over every pixel and channel (linear radiance; also
+//!    the RMSE of the displayed range, both clamped to [0, 1]), rays
+//!    per sample -> `DIR/render.csv`, and a log-log plot of RMSE against seconds.
+//! 3. Per-pixel variance of one sample's luminance (a heat map per strategy, common log scale).
+//! 4. Crops side by side at equal spp and at equal time (PNG, the book's gamma 2).
+//! 5. An extrapolation to 600 x 600: the samples and seconds each strategy needs for an RMSE of 0.010,
+//!    assuming RMSE ~ c / sqrt(spp) (fitted on the two largest spp) and time ~ pixels x spp (the
+//!    per-sample cost measured here) -> `DIR/render-600.csv`.
 
+use crate::plot::{Series, loglog};
+use anyhow::{Context, Result, bail};
 use clap::Args;
-use std::path::PathBuf;
+use rayon::prelude::*;
+use rtl_render::Color;
+use rtl_render::integrator::{MisOptions, Strategy};
+use rtl_render::output::{Transfer, to_rgb8, write_linear};
+use rtl_render::render::{Accumulator, RenderSettings, Renderer};
+use rtl_render::sampler::Ctx;
+use rtl_render::scene::Scene;
+use rtl_render::scenes::find;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Directory for the CSV and the plots (created if missing).
+    /// Directory for the CSV, the plots and the cached reference (created if missing).
     #[arg(long)]
     pub out: PathBuf,
+    /// Built-in scene to study.
+    #[arg(long, default_value = "cornell")]
+    pub scene: String,
+    /// Image width (default 128; 48 with --quick).
+    #[arg(long)]
+    pub width: Option<usize>,
+    /// Samples per pixel of the reference (default 8192; 1024 with --quick).
+    #[arg(long)]
+    pub reference_spp: Option<u64>,
+    /// Largest spp of the sweep (a power of 4 times 1; default 256, 16 with --quick).
+    #[arg(long)]
+    pub max_spp: Option<u64>,
+    /// Render each sweep this many times and keep the shortest time of each step (the machine is shared:
+    /// the minimum is the least disturbed). Default 2; 1 with --quick.
+    #[arg(long)]
+    pub repeat: Option<u32>,
+    /// A small, fast look: about a minute.
+    #[arg(long)]
+    pub quick: bool,
 }
 
-pub fn run(_args: RenderArgs) -> anyhow::Result<()> {
-    anyhow::bail!("not built yet")
+/// The strategies of the study and their labels (`mis-no-*`: one extra switched off).
+fn strategies() -> Vec<(String, Strategy)> {
+    let all = MisOptions::default();
+    let mut v: Vec<(String, Strategy)> = [
+        Strategy::Uniform,
+        Strategy::Cosine,
+        Strategy::Light,
+        Strategy::Mixture,
+        Strategy::Mis(all),
+    ]
+    .iter()
+    .map(|s| (s.name().to_string(), *s))
+    .collect();
+    let toggle = |name: &str, on: bool| {
+        if on {
+            format!("mis-no-{name}")
+        } else {
+            format!("mis+{name}")
+        }
+    };
+    for (label, o) in [
+        (
+            toggle("rr", all.russian_roulette),
+            MisOptions {
+                russian_roulette: !all.russian_roulette,
+                ..all
+            },
+        ),
+        (
+            toggle("sph-rect", all.spherical_rectangles),
+            MisOptions {
+                spherical_rectangles: !all.spherical_rectangles,
+                ..all
+            },
+        ),
+        (
+            toggle("lds", all.low_discrepancy),
+            MisOptions {
+                low_discrepancy: !all.low_discrepancy,
+                ..all
+            },
+        ),
+        (
+            "mis-plain".to_string(),
+            MisOptions {
+                russian_roulette: false,
+                spherical_rectangles: false,
+                low_discrepancy: false,
+            },
+        ),
+    ] {
+        v.push((label.to_string(), Strategy::Mis(o)));
+    }
+    v
+}
+
+fn settings(width: usize, scene: &Scene, seed: u64, strategy: Strategy) -> RenderSettings {
+    RenderSettings {
+        width,
+        max_depth: scene.max_depth,
+        seed,
+        strategy,
+    }
+}
+
+/// Read a colour PFM as written by `write_linear` (rows bottom to top, little-endian).
+fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
+    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+    let mut fields = Vec::new();
+    let mut pos = 0;
+    while fields.len() < 4 {
+        while pos < bytes.len() && bytes[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        let start = pos;
+        while pos < bytes.len() && !bytes[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        if start == pos {
+            bail!("{}: truncated PFM header", path.display());
+        }
+        fields.push(String::from_utf8_lossy(&bytes[start..pos]).into_owned());
+    }
+    pos += 1;
+    if fields[0] != "PF" {
+        bail!("{}: not a colour PFM", path.display());
+    }
+    let w: usize = fields[1].parse().context("PFM width")?;
+    let h: usize = fields[2].parse().context("PFM height")?;
+    let data = &bytes[pos..];
+    if data.len() < w * h * 12 {
+        bail!("{}: PFM data too short", path.display());
+    }
+    let f = |i: usize| f32::from_le_bytes(data[4 * i..4 * i + 4].try_into().unwrap()) as f64;
+    let mut px = vec![Color::ZERO; w * h];
+    for row in 0..h {
+        let j = h - 1 - row;
+        for i in 0..w {
+            let k = 3 * (row * w + i);
+            px[j * w + i] = Color::new(f(k), f(k + 1), f(k + 2));
+        }
+    }
+    Ok((w, h, px))
+}
+
+/// The cached reference, or a new one.
+fn reference(dir: &Path, name: &str, scene: &Scene, width: usize, spp: u64) -> Result<Vec<Color>> {
+    let path = dir.join(format!("render-reference-{name}-{width}-{spp}.pfm"));
+    if path.exists() {
+        let (w, _, px) = read_pfm(&path)?;
+        if w == width {
+            eprintln!("reference: cached {}", path.display());
+            return Ok(px);
+        }
+    }
+    let strategy = Strategy::Mis(MisOptions::default());
+    eprintln!("reference: {name} {width} wide, {spp} spp with mis (seed 999) ...");
+    let start = Instant::now();
+    let r = Renderer::new(scene, settings(width, scene, 999, strategy));
+    let mut acc = r.accumulator();
+    let mut k = 0;
+    while k < spp {
+        let k1 = (k + 256).min(spp);
+        r.render_pass(&mut acc, k, k1, &|| {});
+        k = k1;
+        eprint!("\r  {k}/{spp} spp ");
+    }
+    eprintln!();
+    let img = acc.image();
+    write_linear(&path, acc.width, acc.height, &img).map_err(anyhow::Error::msg)?;
+    std::fs::write(
+        path.with_extension("txt"),
+        format!(
+            "Reference for `rtl study render`: `rtl render {name} --width {width} --spp {spp} \
+             --strategy mis --seed 999 --linear {}` (linear radiance, {} s on {} threads).\n",
+            path.file_name().unwrap().to_string_lossy(),
+            start.elapsed().as_secs(),
+            rayon::current_num_threads()
+        ),
+    )?;
+    Ok(img)
+}
+
+/// RMSE and relative MSE (`(x - r)^2 / (r^2 + 0.01)`, pbrt's guard) over every pixel and channel.
+fn errors(img: &[Color], reference: &[Color]) -> (f64, f64) {
+    let (mut se, mut rel) = (0.0, 0.0);
+    for (x, r) in img.iter().zip(reference) {
+        let d = *x - *r;
+        se += d.length_squared();
+        rel += (d * d / (*r * *r + Color::splat(0.01))).element_sum();
+    }
+    let n = 3.0 * img.len() as f64;
+    ((se / n).sqrt(), rel / n)
+}
+
+fn luminance(c: Color) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// Per-pixel variance of one sample's luminance from `spp` samples (its own loop over samples, in
+/// parallel over rows).
+fn pixel_variance(r: &Renderer, spp: u64) -> Vec<f64> {
+    let (w, h) = (r.camera.width, r.camera.height);
+    (0..h)
+        .into_par_iter()
+        .flat_map_iter(|j| {
+            let mut ctx = Ctx::new();
+            (0..w)
+                .map(|i| {
+                    let (mut s, mut s2, mut n) = (0.0, 0.0, 0.0);
+                    for k in 0..spp {
+                        let v = r.sample(i, j, k, &mut ctx);
+                        if v.is_finite() {
+                            let y = luminance(v);
+                            s += y;
+                            s2 += y * y;
+                            n += 1.0;
+                        }
+                    }
+                    if n > 1.0 {
+                        ((s2 - s * s / n) / (n - 1.0)).max(0.0)
+                    } else {
+                        0.0
+                    }
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// A colour map from 0 (dark blue) through green to 1 (yellow-white).
+fn heat(t: f64) -> [u8; 3] {
+    let t = t.clamp(0.0, 1.0);
+    let stops = [
+        (0.0, [0.05, 0.03, 0.25]),
+        (0.35, [0.2, 0.3, 0.7]),
+        (0.6, [0.1, 0.7, 0.5]),
+        (0.85, [0.9, 0.85, 0.2]),
+        (1.0, [1.0, 1.0, 0.9]),
+    ];
+    let mut c = stops[0].1;
+    for w in stops.windows(2) {
+        let ((t0, a), (t1, b)) = (w[0], w[1]);
+        if t >= t0 && t <= t1 {
+            let f = (t - t0) / (t1 - t0);
+            c = [
+                a[0] + f * (b[0] - a[0]),
+                a[1] + f * (b[1] - a[1]),
+                a[2] + f * (b[2] - a[2]),
+            ];
+        }
+    }
+    [
+        (c[0] * 255.0) as u8,
+        (c[1] * 255.0) as u8,
+        (c[2] * 255.0) as u8,
+    ]
+}
+
+/// Panels side by side with a gap, each `scale` times enlarged (nearest neighbour).
+fn side_by_side(path: &Path, panels: &[(usize, usize, Vec<u8>)], scale: usize) -> Result<()> {
+    let gap = 4;
+    let h = panels.iter().map(|p| p.1).max().unwrap_or(1) * scale;
+    let w: usize = panels.iter().map(|p| p.0 * scale + gap).sum::<usize>() - gap;
+    let mut img = image::RgbImage::from_pixel(w as u32, h as u32, image::Rgb([255, 255, 255]));
+    let mut x0 = 0;
+    for (pw, ph, rgb) in panels {
+        for y in 0..ph * scale {
+            for x in 0..pw * scale {
+                let k = 3 * ((y / scale) * pw + x / scale);
+                img.put_pixel(
+                    (x0 + x) as u32,
+                    y as u32,
+                    image::Rgb([rgb[k], rgb[k + 1], rgb[k + 2]]),
+                );
+            }
+        }
+        x0 += pw * scale + gap;
+    }
+    img.save(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// The crop `[x0, x0 + cw) x [y0, y0 + ch)` of an image as gamma-2 RGB bytes.
+fn crop(img: &[Color], w: usize, (x0, y0, cw, ch): (usize, usize, usize, usize)) -> Vec<u8> {
+    let mut px = Vec::with_capacity(cw * ch);
+    for y in y0..y0 + ch {
+        for x in x0..x0 + cw {
+            px.push(img[y * w + x]);
+        }
+    }
+    to_rgb8(&px, Transfer::Gamma2)
+}
+
+struct Row {
+    label: String,
+    spp: u64,
+    seconds: f64,
+    rmse: f64,
+    rel_mse: f64,
+    rmse_display: f64,
+    rays_per_sample: f64,
+}
+
+pub fn run(args: RenderArgs) -> Result<()> {
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let b = find(&args.scene).map_err(anyhow::Error::msg)?;
+    let scene = (b.build)(&Default::default())
+        .map_err(|e| anyhow::anyhow!("scene {}: {e}", b.name))?
+        .scene;
+    let width = args.width.unwrap_or(if args.quick { 48 } else { 128 });
+    let ref_spp = args
+        .reference_spp
+        .unwrap_or(if args.quick { 1024 } else { 8192 });
+    let max_spp = args.max_spp.unwrap_or(if args.quick { 16 } else { 256 });
+    let repeat = args.repeat.unwrap_or(if args.quick { 1 } else { 2 }).max(1);
+    let threads = rayon::current_num_threads();
+    let reference = reference(&args.out, b.name, &scene, width, ref_spp)?;
+    let mut spps = vec![1u64];
+    while spps.last().unwrap() * 4 <= max_spp {
+        spps.push(spps.last().unwrap() * 4);
+    }
+
+    // 2. The sweep: progressive passes, so the time to N spp is the sum of the passes up to N.
+    let mut rows: Vec<Row> = Vec::new();
+    let mut images: Vec<(String, Vec<Color>)> = Vec::new(); // at 16 spp, for the equal-spp crops
+    for (label, strategy) in strategies() {
+        let r = Renderer::new(&scene, settings(width, &scene, 1, strategy));
+        let mut best: Vec<f64> = vec![f64::INFINITY; spps.len()];
+        let mut rays = vec![0u64; spps.len()];
+        for _ in 0..repeat {
+            let mut acc: Accumulator = r.accumulator();
+            let (mut seconds, mut total_rays, mut k0) = (0.0, 0u64, 0u64);
+            for (n, &spp) in spps.iter().enumerate() {
+                let start = Instant::now();
+                let stats = r.render_pass(&mut acc, k0, spp, &|| {});
+                seconds += start.elapsed().as_secs_f64();
+                total_rays += stats.rays;
+                k0 = spp;
+                best[n] = best[n].min(seconds);
+                rays[n] = total_rays;
+                if spp == 16.min(max_spp) {
+                    images.retain(|(l, _)| l != &label);
+                    images.push((label.clone(), acc.image()));
+                }
+            }
+        }
+        // The images are the same in every repetition (same seed): errors from a fresh pass per step.
+        let mut acc = r.accumulator();
+        let mut k0 = 0;
+        for (n, &spp) in spps.iter().enumerate() {
+            r.render_pass(&mut acc, k0, spp, &|| {});
+            k0 = spp;
+            let img = acc.image();
+            let (rmse, rel_mse) = errors(&img, &reference);
+            let clamp =
+                |v: &[Color]| -> Vec<Color> { v.iter().map(|c| c.min(Color::ONE)).collect() };
+            let rmse_display = errors(&clamp(&img), &clamp(&reference)).0;
+            let samples = (acc.width * acc.height) as u64 * spp;
+            let seconds = best[n];
+            eprintln!("{label:>16} {spp:>5} spp {seconds:>8.3} s  RMSE {rmse:.5}");
+            rows.push(Row {
+                label: label.clone(),
+                spp,
+                seconds,
+                rmse,
+                rel_mse,
+                rmse_display,
+                rays_per_sample: rays[n] as f64 / samples as f64,
+            });
+        }
+    }
+    let mut csv = String::from(
+        "strategy,spp,seconds,rmse,rel_mse,rmse_display,rays_per_sample,width,height,threads,reference_spp\n",
+    );
+    let height = reference.len() / width;
+    for r in &rows {
+        writeln!(
+            csv,
+            "{},{},{:.6},{:.6e},{:.6e},{:.6e},{:.4},{width},{height},{threads},{ref_spp}",
+            r.label, r.spp, r.seconds, r.rmse, r.rel_mse, r.rmse_display, r.rays_per_sample
+        )?;
+    }
+    std::fs::write(args.out.join("render.csv"), csv)?;
+
+    let labels: Vec<String> = strategies().into_iter().map(|(l, _)| l).collect();
+    let series = |filter: &dyn Fn(&str) -> bool| -> Vec<Series> {
+        labels
+            .iter()
+            .filter(|l| filter(l))
+            .map(|l| Series {
+                label: l.clone(),
+                points: rows
+                    .iter()
+                    .filter(|r| &r.label == l)
+                    .map(|r| (r.seconds, r.rmse))
+                    .collect(),
+            })
+            .collect()
+    };
+    loglog(
+        &args.out.join("render-study-rmse-time.png"),
+        &format!(
+            "{} {width}x{height}: RMSE against a {ref_spp}-spp reference ({threads} threads)",
+            b.name
+        ),
+        "seconds",
+        "RMSE (linear radiance)",
+        &series(&|l: &str| !l.starts_with("mis-") && !l.starts_with("mis+")),
+        false,
+    )?;
+    loglog(
+        &args.out.join("render-study-mis-ablation.png"),
+        &format!("{} {width}x{height}: mis with each extra toggled", b.name),
+        "seconds",
+        "RMSE (linear radiance)",
+        &series(&|l: &str| l.starts_with("mis")),
+        false,
+    )?;
+
+    // 3. Per-pixel variance heat maps (uniform, cosine, mixture, mis), one log scale for all.
+    let heat_spp = if args.quick { 16 } else { 64 };
+    let main = [
+        Strategy::Uniform,
+        Strategy::Cosine,
+        Strategy::Mixture,
+        Strategy::Mis(MisOptions::default()),
+    ];
+    let variances: Vec<Vec<f64>> = main
+        .iter()
+        .map(|&s| {
+            pixel_variance(
+                &Renderer::new(&scene, settings(width, &scene, 3, s)),
+                heat_spp,
+            )
+        })
+        .collect();
+    let (lo, hi) = (-4.0f64, 3.0f64); // log10 of the variance
+    let panels: Vec<_> = variances
+        .iter()
+        .map(|v| {
+            let rgb: Vec<u8> = v
+                .iter()
+                .flat_map(|&x| heat(((x.max(1e-12)).log10() - lo) / (hi - lo)))
+                .collect();
+            (width, height, rgb)
+        })
+        .collect();
+    side_by_side(&args.out.join("render-study-variance.png"), &panels, 2)?;
+    let mut vcsv = String::from("strategy,mean_pixel_variance,median_pixel_variance\n");
+    for (s, v) in main.iter().zip(&variances) {
+        let mut sorted = v.clone();
+        sorted.sort_by(f64::total_cmp);
+        writeln!(
+            vcsv,
+            "{},{:.6e},{:.6e}",
+            s.name(),
+            v.iter().sum::<f64>() / v.len() as f64,
+            sorted[sorted.len() / 2]
+        )?;
+    }
+    std::fs::write(args.out.join("render-variance.csv"), vcsv)?;
+
+    // 4. Crops: the lower half (box, sphere, caustic, floor), at equal spp and at equal time.
+    let region = (0, height / 2, width, height / 2);
+    let main_labels = ["uniform", "cosine", "mixture", "mis"];
+    let panels: Vec<_> = main_labels
+        .iter()
+        .map(|l| {
+            let img = &images.iter().find(|(n, _)| n == l).unwrap().1;
+            (region.2, region.3, crop(img, width, region))
+        })
+        .collect();
+    side_by_side(&args.out.join("render-study-equal-spp.png"), &panels, 3)?;
+    // Equal time: the time mis took for 16 spp (or the largest spp in a quick run); each strategy gets
+    // as many samples as fit in it at its measured cost per spp.
+    let budget = rows
+        .iter()
+        .find(|r| r.label == "mis" && r.spp == 16.min(max_spp))
+        .map(|r| r.seconds)
+        .unwrap_or(1.0);
+    let mut panels = Vec::new();
+    let mut note = String::from("strategy,spp_at_equal_time,seconds_budget\n");
+    for l in main_labels {
+        let last = rows.iter().rfind(|r| r.label == l).unwrap();
+        let per_spp = last.seconds / last.spp as f64;
+        let spp = ((budget / per_spp).floor() as u64).max(1);
+        let strategy = strategies().into_iter().find(|(n, _)| n == l).unwrap().1;
+        let r = Renderer::new(&scene, settings(width, &scene, 1, strategy));
+        let mut acc = r.accumulator();
+        r.render_pass(&mut acc, 0, spp, &|| {});
+        panels.push((region.2, region.3, crop(&acc.image(), width, region)));
+        writeln!(note, "{l},{spp},{budget:.4}")?;
+    }
+    side_by_side(&args.out.join("render-study-equal-time.png"), &panels, 3)?;
+    std::fs::write(args.out.join("render-equal-time.csv"), note)?;
+
+    // 5. Extrapolation to 600 x 600 and an RMSE of 0.010.
+    let target = 0.010;
+    let mut table = String::from(
+        "strategy,c_rmse_times_sqrt_spp,spp_for_rmse_0.010,seconds_600x600_2_threads,us_per_sample\n",
+    );
+    println!("To reach RMSE {target} at 600x600 (RMSE ~ c/sqrt(spp), time ~ pixels x spp):");
+    println!(
+        "{:>16} {:>10} {:>12} {:>12}",
+        "strategy", "c", "spp", "seconds"
+    );
+    for l in &labels {
+        let mine: Vec<&Row> = rows.iter().filter(|r| &r.label == l).collect();
+        let tail = &mine[mine.len().saturating_sub(2)..];
+        let c = tail
+            .iter()
+            .map(|r| r.rmse * (r.spp as f64).sqrt())
+            .sum::<f64>()
+            / tail.len() as f64;
+        let last = mine.last().unwrap();
+        let per_sample = last.seconds / ((width * height) as f64 * last.spp as f64);
+        let spp = (c / target).powi(2).ceil();
+        let seconds = per_sample * 600.0 * 600.0 * spp;
+        println!("{l:>16} {c:>10.4} {spp:>12.0} {seconds:>12.1}");
+        writeln!(
+            table,
+            "{l},{c:.5},{spp:.0},{seconds:.2},{:.4}",
+            per_sample * 1e6
+        )?;
+    }
+    std::fs::write(args.out.join("render-600.csv"), table)?;
+    eprintln!("wrote {}", args.out.display());
+    Ok(())
 }
