@@ -439,60 +439,73 @@ fn rotated_box(
     ))
 }
 
-fn cornell_book2(_: &SceneOptions) -> Result<Built, SceneError> {
-    let mut b = SceneBuilder::new();
+/// A quad given as the book writes it: corner `q` and edges `u`, `v`.
+type QuadSpec = ([f64; 3], [f64; 3], [f64; 3]);
+
+/// Adds each quad of `quads` to the world with material `m`, in order.
+fn quads_of(b: &mut SceneBuilder, quads: &[QuadSpec], m: MaterialId) -> Result<(), SceneError> {
     let w = b.world();
-    let mats = cornell_frame(&mut b)?;
-    book2_side_walls(&mut b, &mats)?;
-    let white = mats.white;
-    let light = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(15.0)),
-        two_sided: true,
-    });
-    b.quad(
-        w,
-        Point3::new(343.0, 554.0, 332.0),
-        Vec3::new(-130.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -105.0),
-        light,
-    )?;
-    b.quad(
-        w,
-        Point3::new(0.0, 0.0, 0.0),
-        Vec3::new(555.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 555.0),
-        white,
-    )?;
-    b.quad(
-        w,
-        Point3::new(555.0, 555.0, 555.0),
-        Vec3::new(-555.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -555.0),
-        white,
-    )?;
-    b.quad(
-        w,
-        Point3::new(0.0, 0.0, 555.0),
-        Vec3::new(555.0, 0.0, 0.0),
-        Vec3::new(0.0, 555.0, 0.0),
-        white,
-    )?;
-    let (box1, t1) = rotated_box(
-        &mut b,
+    for &(q, u, v) in quads {
+        b.quad(w, Point3::from(q), Vec3::from(u), Vec3::from(v), m)?;
+    }
+    Ok(())
+}
+
+/// Book 2's two white boxes, each a group of its own with the transform that places it: the tall one
+/// (rotated 15 degrees) and the short one (rotated -18 degrees).
+fn book2_boxes(
+    b: &mut SceneBuilder,
+    white: MaterialId,
+) -> Result<[(GroupId, Transform); 2], SceneError> {
+    let tall = rotated_box(
+        b,
         Vec3::new(165.0, 330.0, 165.0),
         15.0,
         Vec3::new(265.0, 0.0, 295.0),
         white,
     )?;
-    let (box2, t2) = rotated_box(
-        &mut b,
+    let short = rotated_box(
+        b,
         Vec3::new(165.0, 165.0, 165.0),
         -18.0,
         Vec3::new(130.0, 0.0, 65.0),
         white,
     )?;
-    b.instance(w, box1, t1);
-    b.instance(w, box2, t2);
+    Ok([tall, short])
+}
+
+/// A two-sided diffuse light of radiance `radiance` (book 2's lights emit on both faces).
+fn two_sided_light(b: &mut SceneBuilder, radiance: f64) -> MaterialId {
+    b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(radiance)),
+        two_sided: true,
+    })
+}
+
+fn cornell_book2(_: &SceneOptions) -> Result<Built, SceneError> {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let mats = cornell_frame(&mut b)?;
+    book2_side_walls(&mut b, &mats)?;
+    let light = two_sided_light(&mut b, 15.0);
+    quads_of(
+        &mut b,
+        &[([343.0, 554.0, 332.0], [-130.0, 0.0, 0.0], [0.0, 0.0, -105.0])],
+        light,
+    )?;
+    // floor, ceiling, back wall, in the book's order and orientation
+    quads_of(
+        &mut b,
+        &[
+            ([0.0, 0.0, 0.0], [555.0, 0.0, 0.0], [0.0, 0.0, 555.0]),
+            ([555.0, 555.0, 555.0], [-555.0, 0.0, 0.0], [0.0, 0.0, -555.0]),
+            ([0.0, 0.0, 555.0], [555.0, 0.0, 0.0], [0.0, 555.0, 0.0]),
+        ],
+        mats.white,
+    )?;
+    for (group, transform) in book2_boxes(&mut b, mats.white)? {
+        b.instance(w, group, transform);
+    }
     built(b)
 }
 
@@ -501,53 +514,23 @@ fn cornell_smoke(_: &SceneOptions) -> Result<Built, SceneError> {
     let w = b.world();
     let mats = cornell_frame(&mut b)?;
     book2_side_walls(&mut b, &mats)?;
-    let white = mats.white;
-    let light = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(7.0)),
-        two_sided: true,
-    });
-    b.quad(
-        w,
-        Point3::new(113.0, 554.0, 127.0),
-        Vec3::new(330.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 305.0),
+    let light = two_sided_light(&mut b, 7.0);
+    quads_of(
+        &mut b,
+        &[([113.0, 554.0, 127.0], [330.0, 0.0, 0.0], [0.0, 0.0, 305.0])],
         light,
     )?;
-    b.quad(
-        w,
-        Point3::new(0.0, 555.0, 0.0),
-        Vec3::new(555.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 555.0),
-        white,
-    )?;
-    b.quad(
-        w,
-        Point3::new(0.0, 0.0, 0.0),
-        Vec3::new(555.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 555.0),
-        white,
-    )?;
-    b.quad(
-        w,
-        Point3::new(0.0, 0.0, 555.0),
-        Vec3::new(555.0, 0.0, 0.0),
-        Vec3::new(0.0, 555.0, 0.0),
-        white,
-    )?;
-    let (box1, t1) = rotated_box(
+    // ceiling, floor, back wall, in the book's order and orientation
+    quads_of(
         &mut b,
-        Vec3::new(165.0, 330.0, 165.0),
-        15.0,
-        Vec3::new(265.0, 0.0, 295.0),
-        white,
+        &[
+            ([0.0, 555.0, 0.0], [555.0, 0.0, 0.0], [0.0, 0.0, 555.0]),
+            ([0.0, 0.0, 0.0], [555.0, 0.0, 0.0], [0.0, 0.0, 555.0]),
+            ([0.0, 0.0, 555.0], [555.0, 0.0, 0.0], [0.0, 555.0, 0.0]),
+        ],
+        mats.white,
     )?;
-    let (box2, t2) = rotated_box(
-        &mut b,
-        Vec3::new(165.0, 165.0, 165.0),
-        -18.0,
-        Vec3::new(130.0, 0.0, 65.0),
-        white,
-    )?;
+    let [(box1, t1), (box2, t2)] = book2_boxes(&mut b, mats.white)?;
     // Each medium's boundary is a group holding the placed box.
     let (boundary1, boundary2) = (b.group(), b.group());
     b.instance(boundary1, box1, t1);
