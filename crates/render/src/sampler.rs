@@ -108,6 +108,47 @@ fn sobol1(i: u32) -> u32 {
         ^ SOBOL1_BYTES[3][(i >> 24) as usize]
 }
 
+/// `SOBOL1_REVERSED_BYTES[b][x]` is `reverse(sobol1(reverse(x << 8b)))`: Sobol dimension 1 of a
+/// bit-reversed index, bit-reversed (still linear over GF(2), so again a byte at a time).
+const SOBOL1_REVERSED_BYTES: [[u32; 256]; 4] = {
+    let mut t = [[0u32; 256]; 4];
+    let mut b = 0;
+    while b < 4 {
+        let mut x = 0;
+        while x < 256 {
+            let mut r = 0u32;
+            let mut bit = 0;
+            while bit < 8 {
+                if x & (1 << bit) != 0 {
+                    // bit 8b + bit of the reversed index is bit 31 - 8b - bit of the index
+                    let column = 31 - (8 * b + bit);
+                    let mut v = 1u32 << 31;
+                    let mut k = 0;
+                    while k < column {
+                        v ^= v >> 1;
+                        k += 1;
+                    }
+                    r ^= v.reverse_bits();
+                }
+                bit += 1;
+            }
+            t[b][x] = r;
+            x += 1;
+        }
+        b += 1;
+    }
+    t
+};
+
+/// `reverse(sobol1(reverse(r)))` by four table lookups.
+#[inline]
+fn sobol1_reversed(r: u32) -> u32 {
+    SOBOL1_REVERSED_BYTES[0][(r & 0xff) as usize]
+        ^ SOBOL1_REVERSED_BYTES[1][((r >> 8) & 0xff) as usize]
+        ^ SOBOL1_REVERSED_BYTES[2][((r >> 16) & 0xff) as usize]
+        ^ SOBOL1_REVERSED_BYTES[3][(r >> 24) as usize]
+}
+
 /// The sub-pixel position of sample `k` of a pixel, in `[0, 1)^2`: point `k` of the pixel's own
 /// Owen-scrambled Sobol (0,2)-sequence, whose scramble is keyed by `pixel_key` (a hash of seed and
 /// pixel). Every prefix of 2^m samples puts one point in each of the 2^m elementary intervals of any
@@ -135,13 +176,18 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
 #[inline]
 pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
     let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
-    let i = owen_scramble(k as u32, (h >> 32) as u32);
-    let x = owen_scramble(sobol0(i), h as u32);
-    let y = owen_scramble(sobol1(i), (h >> 16) as u32 ^ 0x5bd1_e995);
+    // The shuffled index `i = owen_scramble(k)`, kept bit-reversed as `r` (reversing is the costly part
+    // of a scramble): `owen_scramble(sobol0(i)) = reverse(laine_karras(i))`, and Sobol dimension 1 is
+    // read from `r` directly by a table of reversed columns.
+    // The final reversals of both coordinates are one 64-bit reversal: `x` in the high half, `y` low.
+    let r = laine_karras((k as u32).reverse_bits(), (h >> 32) as u32);
+    let x = laine_karras(r.reverse_bits(), h as u32);
+    let y = laine_karras(sobol1_reversed(r), (h >> 16) as u32 ^ 0x5bd1_e995);
+    let xy = (((y as u64) << 32) | x as u64).reverse_bits();
     let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
     [
-        ((x as u64) << 32) | (low & 0xffff_ffff),
-        ((y as u64) << 32) | (low >> 32),
+        (xy & 0xffff_ffff_0000_0000) | (low & 0xffff_ffff),
+        (xy << 32) | (low >> 32),
     ]
 }
 // ANCHOR_END: padded_sobol
@@ -362,6 +408,34 @@ mod tests {
         }
         // pairs differ from each other
         assert_ne!(padded_sobol_2d(1, 0, 5), padded_sobol_2d(1, 1, 5));
+    }
+
+    /// The padded Sobol point as first written: three plain scrambles.
+    fn padded_sobol_2d_reference(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
+        let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
+        let i = owen_scramble(k as u32, (h >> 32) as u32);
+        let x = owen_scramble(sobol0(i), h as u32);
+        let y = owen_scramble(sobol1(i), (h >> 16) as u32 ^ 0x5bd1_e995);
+        let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        [
+            ((x as u64) << 32) | (low & 0xffff_ffff),
+            ((y as u64) << 32) | (low >> 32),
+        ]
+    }
+
+    #[test]
+    fn padded_sobol_agrees_with_plain_scrambles() {
+        let mut x = 1u32;
+        for i in 0..20_000u32 {
+            x = x.wrapping_mul(0x9e37_79b9).wrapping_add(7);
+            let r = x.reverse_bits();
+            assert_eq!(sobol1_reversed(r), sobol1(x).reverse_bits(), "index {x}");
+            let (key, dim, k) = (mix64(i as u64), i % 40, (i as u64 * 7919) % 5000);
+            assert_eq!(
+                padded_sobol_2d(key, dim, k),
+                padded_sobol_2d_reference(key, dim, k)
+            );
+        }
     }
 
     #[test]

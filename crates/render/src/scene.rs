@@ -741,6 +741,82 @@ impl Scene {
         best_other
     }
 
+    /// Whether anything in group `g` is hit with `t` in the open interval `range`: an occlusion (any-hit)
+    /// query for shadow rays. It stops at the first hit found, visits children in no particular order
+    /// and builds no hit record. (A medium on the way counts if the ray scatters in it before
+    /// `range.max`, which draws a random number as [`Scene::hit`] would.)
+    #[inline]
+    pub fn occluded(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, checked just above.
+            return unsafe { self.occluded_avx2(g, ray, range, ctx) };
+        }
+        self.occluded_portable(g, ray, range, ctx)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn occluded_avx2(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> bool {
+        self.occluded_portable(g, ray, range, ctx)
+    }
+
+    #[inline(always)]
+    fn occluded_portable(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> bool {
+        let group = &self.groups[g.0 as usize];
+        if let [only] = &group.objects[..] {
+            return self.hit_object(only, ray, range, ctx).is_some();
+        }
+        let accel = &group.accel;
+        let nodes = &accel.tree.nodes;
+        if nodes.is_empty() {
+            return false;
+        }
+        let inv = ray.direction.recip();
+        let origin = ray.origin.to_array();
+        let inv = inv.to_array();
+        let neg = [inv[0] < 0.0, inv[1] < 0.0, inv[2] < 0.0];
+        // As in `hit_group_portable`: only entries below `sp` are read, each written when pushed.
+        let mut stack = [MaybeUninit::<u32>::uninit(); 64];
+        let mut sp = 0usize;
+        let mut next = 0u32;
+        loop {
+            if next & LEAF == 0 {
+                let n = &nodes[next as usize];
+                let (_, mask) = Bvh4::hit_children(n, origin, inv, neg, range.min, range.max);
+                let mut m = mask;
+                while m != 0 {
+                    let i = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    stack[sp].write(n.child[i]);
+                    sp += 1;
+                }
+            } else {
+                let leaf = &accel.leaves[(next & !LEAF) as usize];
+                let (p0, np) = leaf.packets;
+                for packet in &accel.packets[p0 as usize..(p0 + np) as usize] {
+                    if packet.hit(ray, range).is_some() {
+                        return true;
+                    }
+                }
+                let (o0, no) = leaf.others;
+                for &oi in &accel.others[o0 as usize..(o0 + no) as usize] {
+                    let o = &group.objects[oi as usize];
+                    if self.hit_object(o, ray, range, ctx).is_some() {
+                        return true;
+                    }
+                }
+            }
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            // SAFETY: sp < the number of entries pushed, each written when pushed.
+            next = unsafe { stack[sp].assume_init() };
+            debug_assert!(next != EMPTY);
+        }
+    }
+
     #[inline]
     fn hit_object(&self, o: &Object, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
         match o {
