@@ -490,7 +490,11 @@ fn cornell_book2(_: &SceneOptions) -> Result<Built, SceneError> {
     let light = two_sided_light(&mut b, 15.0);
     quads_of(
         &mut b,
-        &[([343.0, 554.0, 332.0], [-130.0, 0.0, 0.0], [0.0, 0.0, -105.0])],
+        &[(
+            [343.0, 554.0, 332.0],
+            [-130.0, 0.0, 0.0],
+            [0.0, 0.0, -105.0],
+        )],
         light,
     )?;
     // floor, ceiling, back wall, in the book's order and orientation
@@ -498,7 +502,11 @@ fn cornell_book2(_: &SceneOptions) -> Result<Built, SceneError> {
         &mut b,
         &[
             ([0.0, 0.0, 0.0], [555.0, 0.0, 0.0], [0.0, 0.0, 555.0]),
-            ([555.0, 555.0, 555.0], [-555.0, 0.0, 0.0], [0.0, 0.0, -555.0]),
+            (
+                [555.0, 555.0, 555.0],
+                [-555.0, 0.0, 0.0],
+                [0.0, 0.0, -555.0],
+            ),
             ([0.0, 0.0, 555.0], [555.0, 0.0, 0.0], [0.0, 555.0, 0.0]),
         ],
         mats.white,
