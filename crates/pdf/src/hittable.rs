@@ -85,6 +85,15 @@ impl<T: Target> Pdf for HittablePdf<'_, T> {
         if let [only] = self.targets {
             return only.pdf_value(self.origin, direction);
         }
+        if self.selection.is_none() {
+            // Uniform: `(1 / n) sum_i pdf_i`, one division rather than one a target.
+            let sum: f64 = self
+                .targets
+                .iter()
+                .map(|t| t.pdf_value(self.origin, direction))
+                .sum();
+            return sum / self.targets.len() as f64;
+        }
         self.targets
             .iter()
             .enumerate()
@@ -104,7 +113,12 @@ impl<T: Target> Pdf for HittablePdf<'_, T> {
         let i = match self.selection {
             Some(s) => s.choose(rng.random::<f64>()),
             None if self.targets.len() == 1 => 0,
-            None => rng.random_range(0..self.targets.len()),
+            // `floor(n u)` for `u` uniform in [0, 1) (the `min` guards rounding up to `n`): uniform on
+            // 0..n to within 2^-53 relative, without `random_range`'s rejection loop.
+            None => {
+                let n = self.targets.len();
+                ((rng.random::<f64>() * n as f64) as usize).min(n - 1)
+            }
         };
         self.targets[i].random(self.origin, rng)
     }

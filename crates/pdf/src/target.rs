@@ -101,24 +101,26 @@ impl SphereTarget {
 // ANCHOR: sphere_target
 impl Target for SphereTarget {
     /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside. "Inside the cone" is
-    /// the same as "the ray hits the sphere"; it is tested as `|d - axis|^2 / 2 <= 1 - cos theta_max`,
-    /// `1 - cos` of the angle to the axis without cancellation. From inside the sphere: `1 / (4 pi)`.
+    /// the same as "the ray hits the sphere": the ray points towards the centre `c` and passes within
+    /// `r` of it, `|(c - o) x d|^2 <= r^2` (a cross product, so no cancellation near the axis, and no
+    /// square root or division before a hit). From inside the sphere: `1 / (4 pi)`.
     #[inline]
     fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
-        match self.view(origin) {
-            SphereView::Cone {
-                axis,
-                one_minus_cos_max,
-            } => {
-                let one_minus_cos = (direction - axis).length_squared() / 2.0;
-                // a sphere too small to see (1 - cos theta_max underflowed to 0) is never hit
-                if one_minus_cos <= one_minus_cos_max && one_minus_cos_max > 0.0 {
-                    warp::uniform_cone_pdf(one_minus_cos_max)
-                } else {
-                    0.0
-                }
-            }
-            SphereView::Surrounding => warp::uniform_sphere_pdf(),
+        let to_center = self.center - origin;
+        let d2 = to_center.length_squared();
+        let r2 = self.radius * self.radius;
+        if d2 <= r2 || d2 == 0.0 || d2.is_nan() {
+            return warp::uniform_sphere_pdf();
+        }
+        if to_center.dot(direction) <= 0.0 || to_center.cross(direction).length_squared() > r2 {
+            return 0.0;
+        }
+        let one_minus_cos_max = warp::cone_one_minus_cos(r2 / d2);
+        // a sphere too small to see (1 - cos theta_max underflowed to 0) is never hit
+        if one_minus_cos_max > 0.0 {
+            warp::uniform_cone_pdf(one_minus_cos_max)
+        } else {
+            0.0
         }
     }
 
@@ -162,6 +164,11 @@ pub struct QuadTarget {
     /// `n / (n . n)` with `n = u x v`, for the plane coordinates of a hit
     w: DVec3,
     area: f64,
+    /// `v x w` and `w x u`: the plane coordinates of a hit `q + p` are `(p . (v x w), p . (w x u))`
+    vw: DVec3,
+    wu: DVec3,
+    /// `max |u_i| + max |v_i|`, the quad's part of the in-plane tolerance of [`QuadTarget::height`]
+    edge_scale: f64,
     sampling: QuadSampling,
 }
 
@@ -182,6 +189,9 @@ impl QuadTarget {
             normal,
             w,
             area,
+            vw: v.cross(w),
+            wu: w.cross(u),
+            edge_scale: u.abs().max_element() + v.abs().max_element(),
             sampling: QuadSampling::Area,
         }
     }
@@ -230,8 +240,7 @@ impl QuadTarget {
     fn height(&self, origin: DVec3) -> Option<f64> {
         let rel = origin - self.q;
         let h = self.normal.dot(rel);
-        let scale =
-            rel.abs().max_element() + self.u.abs().max_element() + self.v.abs().max_element();
+        let scale = rel.abs().max_element() + self.edge_scale;
         (h.abs() > 8.0 * f64::EPSILON * scale).then_some(h)
     }
 
@@ -259,8 +268,8 @@ impl QuadTarget {
             return None;
         }
         let p = origin + t * direction - self.q;
-        let a = self.w.dot(p.cross(self.v));
-        let b = self.w.dot(self.u.cross(p));
+        let a = p.dot(self.vw);
+        let b = p.dot(self.wu);
         ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some(t)
     }
 }
