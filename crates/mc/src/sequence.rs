@@ -49,18 +49,24 @@ pub fn sobol_bits(i: u32, dim: usize) -> u32 {
 /// by a hash of `seed` and digits `0..k`, so the map is a bijection that preserves every dyadic box.
 #[inline]
 pub fn owen_scramble(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
-    v = v.wrapping_add(seed);
-    v ^= v.wrapping_mul(0x6c50_b47c);
-    v ^= v.wrapping_mul(0xb82f_1e52);
-    v ^= v.wrapping_mul(0xc7af_e638);
-    v ^= v.wrapping_mul(0x8d22_f6e6);
-    v.reverse_bits()
+    laine_karras(x.reverse_bits(), seed).reverse_bits()
+}
+
+/// Laine and Karras' hash: a permutation of 32-bit values in which each bit depends only on itself
+/// and the bits below it, so applied to bit-reversed digits it is a nested uniform (Owen) scramble.
+#[inline]
+pub fn laine_karras(mut x: u32, seed: u32) -> u32 {
+    x = x.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x
 }
 
 /// SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijective 64-bit hash.
 #[inline]
-fn mix64(mut z: u64) -> u64 {
+pub fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)

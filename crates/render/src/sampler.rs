@@ -11,13 +11,8 @@
 use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-/// SplitMix64's finaliser (Steele, Lea and Flood, 2014): a bijective 64-bit mix.
-#[inline]
-pub fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
+pub use rtl_mc::sequence::mix64;
+use rtl_mc::sequence::{laine_karras, owen_scramble};
 
 /// A well-mixed 64-bit key for `(seed, pixel, k)`.
 #[inline]
@@ -25,24 +20,6 @@ pub fn sample_key(seed: u64, pixel: u64, k: u64) -> u64 {
     let h = mix64(seed ^ 0x9e37_79b9_7f4a_7c15);
     let h = mix64(h ^ pixel.wrapping_mul(0xd1b5_4a32_d192_ed03));
     mix64(h ^ k.wrapping_mul(0x8cb9_2ba7_2f3d_8dd7))
-}
-
-/// Laine and Karras' hash, a permutation of 32-bit values that only lets each bit depend on lower bits
-/// (so applied to reversed bits it is a nested uniform (Owen) scramble).
-#[inline]
-fn laine_karras(mut x: u32, seed: u32) -> u32 {
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
-    x
-}
-
-/// Owen scrambling of a 32-bit fixed-point value in [0, 1).
-#[inline]
-fn owen_scramble(x: u32, seed: u32) -> u32 {
-    laine_karras(x.reverse_bits(), seed).reverse_bits()
 }
 
 /// Sobol dimension 0 (the van der Corput sequence) of index `i`, as 32-bit fixed point.
