@@ -1,5 +1,5 @@
 //! Chi-square goodness-of-fit tests of every warp and every `Pdf` type against its own density
-//! (method: /work/shared/TESTING.md, module `rtl_pdf::chi2`).
+//! (method: the team's testing guide (TESTING.md), module `rtl_pdf::chi2`).
 //!
 //! Each test draws `N` = 1e5 samples from a fixed seed (the `#[ignore]`d `heavy_` variants 1e6) and
 //! rejects below `alpha = 0.01`, Sidak-corrected over every acceptance check in this file, so a

@@ -1,4 +1,4 @@
-//! The hard cases of /work/shared/TESTING.md for directions, orthonormal bases, sphere and quad
+//! The hard cases of the team's testing guide (TESTING.md) for directions, orthonormal bases, sphere and quad
 //! lights, the cosine and mixture pdfs, and light lists: each a named test.
 
 use glam::{DVec2, DVec3};
