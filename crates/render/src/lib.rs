@@ -2,7 +2,7 @@
 //! importance sampling of "The Rest of Your Life" stands on.
 //!
 //! One concept a module, in the books' order: vectors ([`vec`]) and rays ([`ray`]); bounding boxes
-//! ([`aabb`]) and the BVH ([`bvh`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
+//! ([`aabb`]) and the BVH ([`bvh`]), with four-lane packets ([`lanes`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);
 //! the integrator and its sampling strategies ([`integrator`]);
@@ -24,6 +24,7 @@ pub mod camera;
 pub mod checkpoint;
 pub mod hit;
 pub mod integrator;
+pub mod lanes;
 pub mod lights;
 pub mod material;
 pub mod output;

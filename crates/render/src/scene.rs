@@ -619,7 +619,7 @@ impl Scene {
             // SAFETY: the processor supports AVX2, checked just above.
             return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
         }
-        self.hit_group_portable(g, ray, range, ctx)
+        self.hit_group_with::<false>(g, ray, range, ctx)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -631,11 +631,13 @@ impl Scene {
         range: Interval,
         ctx: &mut Ctx,
     ) -> Option<Hit> {
-        self.hit_group_portable(g, ray, range, ctx)
+        self.hit_group_with::<true>(g, ray, range, ctx)
     }
 
+    /// The traversal, its quad packets tested with AVX instructions if `AVX` (only ever set where the
+    /// processor has them) and lane by lane otherwise.
     #[inline(always)]
-    fn hit_group_portable(
+    fn hit_group_with<const AVX: bool>(
         &self,
         g: GroupId,
         ray: &Ray,
@@ -704,7 +706,17 @@ impl Scene {
                     let (p0, np) = leaf.packets;
                     for pi in p0..p0 + np {
                         let packet = &accel.packets[pi as usize];
-                        if let Some(h) = packet.hit(ray, Interval::new(range.min, closest)) {
+                        let range = Interval::new(range.min, closest);
+                        #[cfg(target_arch = "x86_64")]
+                        let h = if AVX {
+                            // SAFETY: `AVX` is set only by `hit_group_avx2`, run where AVX2 is.
+                            unsafe { packet.hit_avx(ray, range) }
+                        } else {
+                            packet.hit(ray, range)
+                        };
+                        #[cfg(not(target_arch = "x86_64"))]
+                        let h = packet.hit(ray, range);
+                        if let Some(h) = h {
                             closest = h.t;
                             best_quad = Some((pi, h.lane, h.alpha, h.beta));
                             best_other = None;
