@@ -634,6 +634,19 @@ impl Scene {
         self.hit_group_with::<true>(g, ray, range, ctx)
     }
 
+    /// [`Scene::hit_group`] as processors without AVX2 run it (the quad packets lane by lane), on any
+    /// processor, for group `g` itself (groups nested in it go through [`Scene::hit_group`]): the tests
+    /// check that both paths find the same hits.
+    pub fn hit_group_portable(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        self.hit_group_with::<false>(g, ray, range, ctx)
+    }
+
     /// The traversal, its quad packets tested with AVX instructions if `AVX` (only ever set where the
     /// processor has them) and lane by lane otherwise.
     #[inline(always)]

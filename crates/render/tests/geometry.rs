@@ -187,6 +187,12 @@ fn bvh_finds_the_same_closest_hit_as_brute_force() {
             let fast = scene.hit_group(g, &ray, Interval::FORWARD, &mut ctx);
             let slow = scene.hit_brute_force(g, &ray, Interval::FORWARD, &mut ctx);
             assert_eq!(fast.map(|h| h.t), slow.map(|h| h.t));
+            // The path of processors without AVX2 finds exactly the same hit.
+            let portable = scene.hit_group_portable(g, &ray, Interval::FORWARD, &mut ctx);
+            assert_eq!(
+                portable.map(|h| (h.t.to_bits(), h.p.to_array().map(f64::to_bits))),
+                fast.map(|h| (h.t.to_bits(), h.p.to_array().map(f64::to_bits)))
+            );
             assert_eq!(
                 scene.hit(&ray, &mut ctx).map(|h| h.t),
                 slow.map(|h| h.t),
