@@ -619,7 +619,7 @@ impl Scene {
             // SAFETY: the processor supports AVX2, checked just above.
             return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
         }
-        self.hit_group_with::<false>(g, ray, range, ctx)
+        self.hit_group_portable(g, ray, range, ctx)
     }
 
     #[cfg(target_arch = "x86_64")]
