@@ -55,7 +55,7 @@ impl fmt::Display for CdfError {
 impl std::error::Error for CdfError {}
 
 impl CdfTable {
-    /// The CDF of the density with weight `weights[i]` on [edges[i], edges[i+1]).
+    /// The CDF of the density with weight `weights[i]` on `[edges[i], edges[i+1])`.
     pub fn new(edges: &[f64], weights: &[f64]) -> Result<Self, CdfError> {
         if edges.len() != weights.len() + 1 || weights.is_empty() {
             return Err(CdfError::BadEdges(format!(

@@ -1,7 +1,7 @@
 //! rtl-render: the renderer of "Ray Tracing in One Weekend" and "The Next Week", the ground the
 //! importance sampling of "The Rest of Your Life" stands on.
 //!
-//! One concept a module, in the books' order: vectors ([`vec`]) and rays ([`ray`]); bounding boxes
+//! One concept a module, in the books' order: vectors ([`vec`](mod@vec)) and rays ([`ray`]); bounding boxes
 //! ([`aabb`]) and the BVH ([`bvh`]), with four-lane packets ([`lanes`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);

@@ -611,7 +611,8 @@ impl Scene {
     /// hit so far. Quads are tested four at a time and only the closest hit's record is built.
     ///
     /// On x86-64 processors with AVX2 (detected at run time) the same code is compiled for 4-wide
-    /// vectors; rounding is identical (no fused multiply-adds are formed), so the hits are too.
+    /// vectors and the quad packets use [`Quad4::hit_avx`]; rounding is identical (no fused
+    /// multiply-adds are formed), so the hits are too.
     #[inline]
     pub fn hit_group(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
         #[cfg(target_arch = "x86_64")]

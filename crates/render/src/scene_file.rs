@@ -56,7 +56,7 @@
 //! `marble`, `image` (`file`, relative to the scene file). Materials: `lambertian`, `metal`,
 //! `dielectric`, `light`, `isotropic`.
 //!
-//! Every error names the place: `FILE:LINE:COL: field `objects[2].radius`: message`.
+//! Every error names the place: `FILE:LINE:COL: field objects[2].radius: message`.
 
 mod values;
 
