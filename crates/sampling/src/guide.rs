@@ -72,22 +72,31 @@ impl GuideTable {
 
     // ANCHOR: bin
     /// The bin `i` with `Fᵢ ≤ u < Fᵢ₊₁` for `u` in `[0, 1)`: the guide narrows the search to the
-    /// bins from `guide[j]` to `guide[j + 1]`: a short scan finishes (a binary search if the
+    /// bins from `guide[j]` to `guide[j + 1]`, where a short count finishes (a binary search if the
     /// range is long, so the worst case stays O(log N)).
     #[inline]
     pub fn bin(&self, u: f64) -> usize {
+        let (lo, hi) = self.cell(u);
+        self.bin_in(lo, hi, u)
+    }
+
+    /// The bins `guide[j] ..= guide[j + 1]` of the cell `j = ⌊u M⌋` holding `u`.
+    #[inline]
+    fn cell(&self, u: f64) -> (usize, usize) {
         let m = self.guide.len() - 1;
         let j = ((u * self.cells) as usize).min(m - 1);
-        let lo = self.guide[j] as usize;
-        let hi = self.guide[j + 1] as usize;
+        (self.guide[j] as usize, self.guide[j + 1] as usize)
+    }
+
+    /// The bin of `u` among `lo ..= hi`.
+    #[inline]
+    fn bin_in(&self, lo: usize, hi: usize, u: f64) -> usize {
         let cdf = self.table.cdf_values();
         if hi - lo <= 8 {
-            // The usual case: a step or two to the right.
-            let mut i = lo;
-            while i < hi && cdf[i + 1] <= u {
-                i += 1;
-            }
-            i
+            // The usual case, zero to two steps to the right: count the bins passed instead of
+            // stopping at the first one not passed. The CDF never decreases, so it is the same
+            // number, and a count has no branch to mispredict (1.3x faster at N = 10^5).
+            lo + cdf[lo + 1..=hi].iter().filter(|&&c| c <= u).count()
         } else {
             lo + cdf[lo + 1..hi + 1].partition_point(|&c| c <= u)
         }
@@ -98,7 +107,14 @@ impl GuideTable {
     #[inline]
     pub fn sample(&self, u: f64) -> Sample {
         let u = clamp_u(u);
-        self.table.sample_in_bin(self.bin(u), u)
+        let (lo, hi) = self.cell(u);
+        // Load the cell's first node now, though it is used only later: in a table larger than the
+        // cache, its line (usually the bin's too) is then fetched while the CDF values are
+        // compared, rather than after the count (which is branch-free, so no speculation fetches
+        // it early). At N = 10^7: 8.7-10.0 M samples/s with this load, 7.4-7.9 without, about 8.5
+        // with a prefetch hint instead (`cargo bench -p rtl-sampling --bench sampling`).
+        std::hint::black_box(self.table.nodes()[lo]);
+        self.table.sample_in_bin(self.bin_in(lo, hi, u), u)
     }
 
     pub fn pdf(&self, x: f64) -> f64 {
