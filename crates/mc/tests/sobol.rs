@@ -21,6 +21,28 @@ fn is_0_m_2_net(points: &[(u32, u32)], m: u32) -> bool {
 }
 
 #[test]
+fn dimension_1_by_tables_is_the_generator_matrix_product() {
+    // The definition, bit by bit: column k is v_k, v_0 = 1/2, v_k = v_(k-1) XOR (v_(k-1) / 2).
+    let by_bits = |mut i: u32| {
+        let (mut v, mut r) = (1u32 << 31, 0);
+        while i != 0 {
+            if i & 1 != 0 {
+                r ^= v;
+            }
+            i >>= 1;
+            v ^= v >> 1;
+        }
+        r
+    };
+    let mut x = 1u32;
+    for i in (0..4096u32).chain([u32::MAX, 1 << 31, 0x8000_0001]) {
+        assert_eq!(sobol_bits(i, 1), by_bits(i), "index {i}");
+        x = x.wrapping_mul(0x9e37_79b9).wrapping_add(7);
+        assert_eq!(sobol_bits(x, 1), by_bits(x), "index {x}");
+    }
+}
+
+#[test]
 fn unscrambled_points_form_a_0_2_sequence() {
     assert_eq!(sobol_bits(1, 1), 1 << 31);
     assert_eq!(sobol_bits(2, 1), 3 << 30);

@@ -12,7 +12,9 @@ use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 pub use rtl_mc::sequence::mix64;
-use rtl_mc::sequence::{laine_karras, owen_scramble};
+use rtl_mc::sequence::{
+    DIRECTIONS_1, byte_product, byte_tables, laine_karras, owen_scramble, sobol_bits,
+};
 
 /// A well-mixed 64-bit key for `(seed, pixel, k)`.
 #[inline]
@@ -22,108 +24,22 @@ pub fn sample_key(seed: u64, pixel: u64, k: u64) -> u64 {
     mix64(h ^ k.wrapping_mul(0x8cb9_2ba7_2f3d_8dd7))
 }
 
-/// Sobol dimension 0 (the van der Corput sequence) of index `i`, as 32-bit fixed point.
-#[inline]
-fn sobol0(i: u32) -> u32 {
-    i.reverse_bits()
-}
-
-/// Sobol dimension 1 (generator matrix: Pascal's triangle mod 2) of index `i`, as 32-bit fixed point:
-/// the XOR of the matrix columns of `i`'s set bits, bit by bit.
-#[cfg(test)]
-fn sobol1_by_bits(mut i: u32) -> u32 {
-    let mut v = 1u32 << 31;
-    let mut r = 0;
-    while i != 0 {
-        if i & 1 != 0 {
-            r ^= v;
-        }
-        i >>= 1;
-        v ^= v >> 1;
+/// Sobol dimension 1 of a bit-reversed index, bit-reversed: `reverse(sobol1(reverse(r)))` is again a
+/// product over GF(2), whose column `j` is the reversed column `31 - j` of dimension 1's matrix.
+const SOBOL1_REVERSED_BYTES: [[u32; 256]; 4] = byte_tables(&{
+    let mut c = [0u32; 32];
+    let mut j = 0;
+    while j < 32 {
+        c[j] = DIRECTIONS_1[31 - j].reverse_bits();
+        j += 1;
     }
-    r
-}
-
-/// The same product as [`sobol1_by_bits`], a byte of the index at a time: `SOBOL1_BYTES[b][x]` is the
-/// XOR of the columns of the bits of `x << 8b` (the product is linear over GF(2)).
-const SOBOL1_BYTES: [[u32; 256]; 4] = {
-    let mut t = [[0u32; 256]; 4];
-    let mut b = 0;
-    while b < 4 {
-        let mut x = 0;
-        while x < 256 {
-            // columns of bits 8b .. 8b + 7
-            let mut v = 1u32 << 31;
-            let mut k = 0;
-            while k < 8 * b {
-                v ^= v >> 1;
-                k += 1;
-            }
-            let mut r = 0u32;
-            let mut bit = 0;
-            while bit < 8 {
-                if x & (1 << bit) != 0 {
-                    r ^= v;
-                }
-                v ^= v >> 1;
-                bit += 1;
-            }
-            t[b][x] = r;
-            x += 1;
-        }
-        b += 1;
-    }
-    t
-};
-
-/// Sobol dimension 1 of index `i` by four table lookups.
-#[inline]
-fn sobol1(i: u32) -> u32 {
-    SOBOL1_BYTES[0][(i & 0xff) as usize]
-        ^ SOBOL1_BYTES[1][((i >> 8) & 0xff) as usize]
-        ^ SOBOL1_BYTES[2][((i >> 16) & 0xff) as usize]
-        ^ SOBOL1_BYTES[3][(i >> 24) as usize]
-}
-
-/// `SOBOL1_REVERSED_BYTES[b][x]` is `reverse(sobol1(reverse(x << 8b)))`: Sobol dimension 1 of a
-/// bit-reversed index, bit-reversed (still linear over GF(2), so again a byte at a time).
-const SOBOL1_REVERSED_BYTES: [[u32; 256]; 4] = {
-    let mut t = [[0u32; 256]; 4];
-    let mut b = 0;
-    while b < 4 {
-        let mut x = 0;
-        while x < 256 {
-            let mut r = 0u32;
-            let mut bit = 0;
-            while bit < 8 {
-                if x & (1 << bit) != 0 {
-                    // bit 8b + bit of the reversed index is bit 31 - 8b - bit of the index
-                    let column = 31 - (8 * b + bit);
-                    let mut v = 1u32 << 31;
-                    let mut k = 0;
-                    while k < column {
-                        v ^= v >> 1;
-                        k += 1;
-                    }
-                    r ^= v.reverse_bits();
-                }
-                bit += 1;
-            }
-            t[b][x] = r;
-            x += 1;
-        }
-        b += 1;
-    }
-    t
-};
+    c
+});
 
 /// `reverse(sobol1(reverse(r)))` by four table lookups.
 #[inline]
 fn sobol1_reversed(r: u32) -> u32 {
-    SOBOL1_REVERSED_BYTES[0][(r & 0xff) as usize]
-        ^ SOBOL1_REVERSED_BYTES[1][((r >> 8) & 0xff) as usize]
-        ^ SOBOL1_REVERSED_BYTES[2][((r >> 16) & 0xff) as usize]
-        ^ SOBOL1_REVERSED_BYTES[3][(r >> 24) as usize]
+    byte_product(&SOBOL1_REVERSED_BYTES, r)
 }
 
 /// The sub-pixel position of sample `k` of a pixel, in `[0, 1)^2`: point `k` of the pixel's own
@@ -135,8 +51,8 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
     let i = k as u32;
     let s0 = pixel_key as u32;
     let s1 = (pixel_key >> 32) as u32;
-    let x = owen_scramble(sobol0(i), s0);
-    let y = owen_scramble(sobol1(i), s1);
+    let x = owen_scramble(sobol_bits(i, 0), s0);
+    let y = owen_scramble(sobol_bits(i, 1), s1);
     const SCALE: f64 = 1.0 / 4_294_967_296.0;
     // Add half an ulp of the 32-bit grid so positions are centred in their cells and never exactly 0.
     ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
@@ -154,7 +70,7 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
 pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
     let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
     // The shuffled index `i = owen_scramble(k)`, kept bit-reversed as `r` (reversing is the costly part
-    // of a scramble): `owen_scramble(sobol0(i)) = reverse(laine_karras(i))`, and Sobol dimension 1 is
+    // of a scramble): `owen_scramble(sobol_bits(i, 0)) = reverse(laine_karras(i))`, and Sobol dimension 1 is
     // read from `r` directly by a table of reversed columns.
     // The final reversals of both coordinates are one 64-bit reversal: `x` in the high half, `y` low.
     let r = laine_karras((k as u32).reverse_bits(), (h >> 32) as u32);
@@ -391,8 +307,8 @@ mod tests {
     fn padded_sobol_2d_reference(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
         let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
         let i = owen_scramble(k as u32, (h >> 32) as u32);
-        let x = owen_scramble(sobol0(i), h as u32);
-        let y = owen_scramble(sobol1(i), (h >> 16) as u32 ^ 0x5bd1_e995);
+        let x = owen_scramble(sobol_bits(i, 0), h as u32);
+        let y = owen_scramble(sobol_bits(i, 1), (h >> 16) as u32 ^ 0x5bd1_e995);
         let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
         [
             ((x as u64) << 32) | (low & 0xffff_ffff),
@@ -406,22 +322,16 @@ mod tests {
         for i in 0..20_000u32 {
             x = x.wrapping_mul(0x9e37_79b9).wrapping_add(7);
             let r = x.reverse_bits();
-            assert_eq!(sobol1_reversed(r), sobol1(x).reverse_bits(), "index {x}");
+            assert_eq!(
+                sobol1_reversed(r),
+                sobol_bits(x, 1).reverse_bits(),
+                "index {x}"
+            );
             let (key, dim, k) = (mix64(i as u64), i % 40, (i as u64 * 7919) % 5000);
             assert_eq!(
                 padded_sobol_2d(key, dim, k),
                 padded_sobol_2d_reference(key, dim, k)
             );
-        }
-    }
-
-    #[test]
-    fn sobol1_tables_agree_with_the_bit_loop() {
-        let mut x = 1u32;
-        for i in (0..4096u32).chain([u32::MAX, 1 << 31, 0x8000_0001]) {
-            assert_eq!(sobol1(i), sobol1_by_bits(i), "index {i}");
-            x = x.wrapping_mul(0x9e37_79b9).wrapping_add(7);
-            assert_eq!(sobol1(x), sobol1_by_bits(x), "index {x}");
         }
     }
 
