@@ -109,6 +109,9 @@ pub struct Plan {
     pub saving: Option<Saving>,
     /// The longest a pass should take (a stopped render loses at most about this much).
     pub pass_time: Duration,
+    /// The progress bar counts the budget's milliseconds (a time budget and no sample count), not
+    /// samples.
+    pub progress_by_time: bool,
 }
 
 /// Render passes into `acc` until the plan says stop, saving it between passes; returns the counters of
@@ -156,7 +159,7 @@ pub fn run(
         next.clone_from(acc);
         let t0 = Instant::now();
         let on_row = || {
-            if plan.budget.is_some() {
+            if plan.progress_by_time {
                 bar.set_position(began.elapsed().as_millis() as u64);
             } else {
                 bar.inc(k1 - k0);
@@ -175,7 +178,7 @@ pub fn run(
         let t = t0.elapsed().as_secs_f64() / (k1 - k0) as f64;
         secs_per_spp = Some(t);
         bar.set_message(format!("{} spp", acc.samples - plan.start));
-        if plan.budget.is_none() {
+        if !plan.progress_by_time {
             bar.set_position(h * (acc.samples - plan.start));
         }
         if let Some(s) = &plan.saving

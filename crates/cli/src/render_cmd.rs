@@ -386,9 +386,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
             .checkpoint_every
             .clamp(Duration::from_millis(20), Duration::from_secs(1)),
         saving,
+        progress_by_time: args.time.is_some() && args.spp.is_none(),
     };
     let bar = match args.time {
-        Some(t) if args.spp.is_none() => ProgressBar::new(t.as_millis() as u64),
+        Some(t) if plan.progress_by_time => ProgressBar::new(t.as_millis() as u64),
         _ => {
             let b = ProgressBar::new(h as u64 * spp);
             b.set_position(h as u64 * (acc.samples - start));

@@ -133,9 +133,21 @@ fn killed_and_resumed_render_equals_a_straight_one_bit_for_bit() {
         std::fs::read(d.join("r.pfm")).unwrap(),
         std::fs::read(d.join("full.pfm")).unwrap()
     );
-    // Extending a finished render with a larger --spp continues from the file.
-    let out = rtl(&d, &args(&["--spp", "1000", "--resume", "ck"]));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("already holds 1500 spp"));
+    // A smaller --spp than the file holds is refused (--spp is the total) ...
+    let err = refused(&d, &args(&["--spp", "1000", "--resume", "ck"]));
+    assert!(err.contains("already holds 1500 spp"), "{err}");
+    // ... and a larger one continues from the file, to the same sums as a straight render.
+    ok(
+        &d,
+        &args(&["--spp", "1600", "--resume", "ck", "--checkpoint", "ck"]),
+    );
+    ok(&d, &args(&["--spp", "1600", "--part", "full1600.ck"]));
+    let extended = Checkpoint::read(&ck).unwrap();
+    assert_eq!(extended.spp(), 1600);
+    assert_eq!(
+        extended.acc,
+        Checkpoint::read(&d.join("full1600.ck")).unwrap().acc
+    );
     let _ = std::fs::remove_dir_all(&d);
 }
 

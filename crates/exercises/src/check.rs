@@ -82,6 +82,11 @@ pub fn z_test(what: &str, estimate: f64, std_error: f64, truth: f64) -> CheckRes
             "{what}: the estimate is {estimate}, expected about {truth}"
         ));
     }
+    if !(std_error >= 0.0 && std_error.is_finite()) {
+        return Err(format!(
+            "{what}: no usable standard error ({std_error}): fewer than two values?"
+        ));
+    }
     if std_error == 0.0 {
         return close(what, estimate, truth, 1e-12);
     }
@@ -422,5 +427,8 @@ mod tests {
         assert!(z_test("biased", 1.0 + 5.0 * 0.01, 0.01, 1.0).is_err());
         assert!(z_test("exact", 1.0 + 1e-9, 0.0, 1.0).is_err());
         assert!(z_test("nan", f64::NAN, 0.1, 1.0).is_err());
+        // No data, or one value, has no standard error: never a pass.
+        assert!(z_test_mean("empty", [], 0.0).is_err());
+        assert!(z_test_mean("one value", [0.5], 0.5).is_err());
     }
 }

@@ -161,10 +161,9 @@ pub struct QuadTarget {
     v: DVec3,
     /// unit normal `u x v / |u x v|`
     normal: DVec3,
-    /// `n / (n . n)` with `n = u x v`, for the plane coordinates of a hit
-    w: DVec3,
     area: f64,
-    /// `v x w` and `w x u`: the plane coordinates of a hit `q + p` are `(p . (v x w), p . (w x u))`
+    /// `v x w` and `w x u` with `w = n / (n . n)`, `n = u x v`: the plane coordinates of a hit `q + p`
+    /// are `(p . (v x w), p . (w x u))`
     vw: DVec3,
     wu: DVec3,
     /// `max |u_i| + max |v_i|`, the quad's part of the in-plane tolerance of [`QuadTarget::height`]
@@ -187,7 +186,6 @@ impl QuadTarget {
             u,
             v,
             normal,
-            w,
             area,
             vw: v.cross(w),
             wu: w.cross(u),

@@ -8,6 +8,7 @@
 use glam::{DVec2, DVec3};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
+use rtl_mc::RunningStats;
 use rtl_pdf::chi2::{ChiSquareTest, ConeDomain, ParallelogramDomain};
 use rtl_pdf::warp;
 use rtl_pdf::{
@@ -38,18 +39,14 @@ fn check<P: Pdf>(name: &str, pdf: &P, seed: u64, n: usize) {
             "{name}: value {v} of a generated direction"
         );
     }
-    let (mut sum, mut sum2) = (0.0, 0.0);
+    let mut stats = RunningStats::new();
     for _ in 0..n {
         let d = warp::sample_uniform_sphere(DVec2::new(r.random(), r.random()));
         let v = pdf.value(d);
         assert!(v.is_finite() && v >= 0.0, "{name}: value {v} at {d}");
-        let x = 4.0 * PI * v;
-        sum += x;
-        sum2 += x * x;
+        stats.push(4.0 * PI * v);
     }
-    let mean = sum / n as f64;
-    let var = (sum2 / n as f64 - mean * mean).max(0.0) * n as f64 / (n as f64 - 1.0);
-    let se = (var / n as f64).sqrt();
+    let (mean, se) = (stats.mean(), stats.std_error().expect("n >= 2"));
     if se == 0.0 {
         assert!(
             (mean - 1.0).abs() < 1e-12,
@@ -66,6 +63,30 @@ fn check<P: Pdf>(name: &str, pdf: &P, seed: u64, n: usize) {
 
 fn tilted() -> DVec3 {
     DVec3::new(-0.2, 0.4, 0.7).normalize()
+}
+
+/// A density 1% too large everywhere: what the check exists to catch.
+struct OnePercentHeavy(CosinePdf);
+
+impl Pdf for OnePercentHeavy {
+    fn value(&self, direction: DVec3) -> f64 {
+        1.01 * self.0.value(direction)
+    }
+    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
+        self.0.generate(rng)
+    }
+}
+
+#[test]
+#[should_panic(expected = "E[4 pi value]")]
+fn a_density_that_integrates_to_1_01_is_caught() {
+    // z is about 7.7 at 1e6 samples: far beyond 4.89.
+    check(
+        "cosine x 1.01",
+        &OnePercentHeavy(CosinePdf::new(tilted())),
+        3,
+        1_000_000,
+    );
 }
 
 #[test]

@@ -1,12 +1,12 @@
 //! Bounding volume hierarchy: built top-down by the surface-area heuristic over binned centroids
 //! (Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies", 2007; pbrt-v4's
 //! `BVHAggregate`), stored flat in depth-first order (a node's first child follows it, the second is
-//! at an index), and traversed iteratively with a small stack, nearer child first by the sign of the
-//! ray direction on the split axis.
+//! at an index).
 //!
 //! For traversal the binary tree is collapsed into a 4-wide one ([`Bvh4`], as Embree's and pbrt's
 //! wide BVHs): every node holds the boxes of up to four children in structure-of-arrays form, so one
-//! ray is tested against all four boxes in a handful of vector instructions.
+//! ray is tested against all four boxes in a handful of vector instructions, and the children hit are
+//! visited nearest entry first (`Scene::hit_group`).
 
 use crate::aabb::Aabb;
 use crate::vec::Vec3;
@@ -19,8 +19,6 @@ pub struct Node {
     pub offset: u32,
     /// Number of items in a leaf; 0 for an interior node.
     pub count: u16,
-    /// Split axis of an interior node (0, 1, 2).
-    pub axis: u8,
 }
 
 /// A flattened BVH over items `0..n`; `order[i]` is the original index of the `i`-th item in leaf order.
@@ -114,7 +112,6 @@ impl Bvh {
             bounds,
             offset: 0,
             count: 0,
-            axis: 0,
         });
         let n = items.len();
         let make_leaf = |bvh: &mut Bvh, items: &mut [Item]| {
@@ -219,7 +216,6 @@ impl Bvh {
         self.build_node(left);
         let second = self.build_node(right);
         self.nodes[me].offset = second as u32;
-        self.nodes[me].axis = axis as u8;
         me
     }
 }

@@ -349,17 +349,15 @@ impl Checkpoint {
         Checkpoint::from_bytes(&bytes, path)
     }
 
-    /// Write atomically: to `<path>.tmp`, flushed to disk, then renamed over `path`.
+    /// Write atomically ([`crate::output::write_atomically`]): to a temporary file, flushed to disk,
+    /// then renamed over `path`.
     pub fn write(&self, path: &Path) -> std::io::Result<()> {
-        let mut tmp = path.as_os_str().to_owned();
-        tmp.push(".tmp");
-        let tmp = PathBuf::from(tmp);
-        {
-            let mut f = std::fs::File::create(&tmp)?;
-            f.write_all(&self.to_bytes())?;
-            f.sync_all()?;
-        }
-        std::fs::rename(&tmp, path)
+        crate::output::write_atomically(path, |tmp| {
+            let mut f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+            f.write_all(&self.to_bytes()).map_err(|e| e.to_string())?;
+            f.sync_all().map_err(|e| e.to_string())
+        })
+        .map_err(std::io::Error::other)
     }
 }
 

@@ -75,30 +75,28 @@ impl Lights {
     pub fn new(scene: &Scene, spherical_rectangles: bool) -> Lights {
         let mut lights = Lights::default();
         for t in &scene.targets {
-            let (material, book, kind) = match t {
+            let (material, book) = match t {
                 SceneShape::Quad(q) => (
                     q.material,
                     LightTarget::Quad {
                         quad: QuadTarget::new(q.q, q.u, q.v),
                         one_sided: false,
                     },
-                    Some(QuadTarget::new(q.q, q.u, q.v)),
                 ),
                 SceneShape::Sphere(s) => (
                     s.material,
                     LightTarget::Sphere(SphereTarget::new(s.center, s.radius)),
-                    None,
                 ),
             };
             lights.all.push(book);
             match scene.materials.get(material as usize) {
                 Some(Material::DiffuseLight { two_sided, .. }) => {
-                    lights.emitters.push(match kind {
-                        Some(quad) => LightTarget::Quad {
+                    lights.emitters.push(match book {
+                        LightTarget::Quad { quad, .. } => LightTarget::Quad {
                             quad: quad.with_spherical_rectangles(spherical_rectangles),
                             one_sided: !two_sided,
                         },
-                        None => book,
+                        sphere => sphere,
                     });
                 }
                 _ => lights.others.push(book),

@@ -3,8 +3,8 @@
 //! Scattering returns a record in book 3's form, so the importance-sampling strategies can plug in:
 //! either a *specular* ray that skips densities (metal, glass), or the material's own density of
 //! scattered directions (`ScatterPdf`: Lambertian = cosine, isotropic = uniform sphere) together with
-//! its attenuation. [`Material::scattering_pdf`] is the density `s(omega)` the book's estimator
-//! `color * s(omega) / p(omega)` needs.
+//! its attenuation. That density's `value` (the `Pdf` trait of rtl-pdf) is the book's
+//! `scattering_pdf`, the `s(omega)` of the estimator `color * s(omega) / p(omega)`.
 
 use crate::hit::Hit;
 use crate::ray::Ray;
@@ -14,7 +14,6 @@ use crate::vec::{Color, Vec3, reflect, refract};
 use glam::DVec2;
 use rand::Rng;
 use rtl_pdf::{CosinePdf, Pdf, SpherePdf, warp};
-use std::f64::consts::FRAC_1_PI;
 
 /// A reflectance or emission: a plain colour (no texture lookup at all) or a texture of the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -170,16 +169,6 @@ impl Material {
                 })
             }
             Material::DiffuseLight { .. } => None,
-        }
-    }
-
-    /// The scattering density `s(omega)` of a diffuse material for the unit direction `direction`.
-    #[inline]
-    pub fn scattering_pdf(&self, hit: &Hit, direction: Vec3) -> f64 {
-        match self {
-            Material::Lambertian { .. } => (hit.normal.dot(direction) * FRAC_1_PI).max(0.0),
-            Material::Isotropic { .. } => 0.25 * FRAC_1_PI,
-            _ => 0.0,
         }
     }
 

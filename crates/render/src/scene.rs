@@ -137,11 +137,10 @@ impl Object {
     }
 }
 
-/// A list of objects and the BVH over them (objects stored in leaf order).
+/// A list of objects and the BVH over them (objects stored in the BVH's leaf order).
 #[derive(Clone, Debug, Default)]
 pub struct Group {
     pub objects: Vec<Object>,
-    pub bvh: Bvh,
     /// What the ray is traced through: the BVH collapsed to 4-wide nodes, with each leaf's quads in
     /// packets of four and its other objects listed.
     pub accel: Accel,
@@ -222,12 +221,17 @@ impl Background {
 }
 
 /// An importance target of book 3 ("lights"): a shape in world space that scattered rays may be
-/// aimed at.
+/// aimed at. Its material says whether it emits (then `mis` aims shadow rays at it); a shape given only
+/// to aim at, not placed in the scene, has the material [`NO_MATERIAL`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target {
     Quad(Quad),
     Sphere(Sphere),
 }
+
+/// The material of a target that is only a shape to aim at: it names no material, so the target
+/// never counts as an emitter.
+pub const NO_MATERIAL: u32 = u32::MAX;
 
 /// What a scene calls for, decided once when it is built, so that nothing is simulated that the scene
 /// does not need.
@@ -529,7 +533,6 @@ impl SceneBuilder {
             built[gi] = Some(Group {
                 accel: Accel::new(&objects_in_order, &bvh),
                 objects: objects_in_order,
-                bvh,
             });
         }
         let groups: Vec<Group> = built

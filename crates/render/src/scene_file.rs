@@ -63,7 +63,8 @@ mod values;
 use crate::camera::CameraSettings;
 use crate::material::{Albedo, Material};
 use crate::scene::{
-    Background, GroupId, MaterialId, Object, SceneBuilder, Target, TextureId, Transform,
+    Background, GroupId, MaterialId, NO_MATERIAL, Object, SceneBuilder, Target, TextureId,
+    Transform,
 };
 use crate::scenes::Built;
 use crate::shapes::{Quad, Sphere};
@@ -1057,12 +1058,13 @@ impl Loader {
         let Typed { kind, table, span } = typed(v, "importance target", &["sphere", "quad"])?;
         let target = if kind == "sphere" {
             let d: TargetSphereDoc = de_table(table, &span)?;
-            Target::Sphere(Sphere::new(d.center.0, positive(&d.radius, "radius")?, 0))
+            let r = positive(&d.radius, "radius")?;
+            Target::Sphere(Sphere::new(d.center.0, r, NO_MATERIAL))
         } else {
             let d: TargetQuadDoc = de_table(table, &span)?;
             let (u, v) = (d.u.get_ref().0, d.v.get_ref().0);
             check_quad(u, v, &d.u, &d.v)?;
-            match Quad::new(d.q.0, u, v, 0) {
+            match Quad::new(d.q.0, u, v, NO_MATERIAL) {
                 Some(q) => Target::Quad(q),
                 None => return fail(span, "degenerate quad"),
             }

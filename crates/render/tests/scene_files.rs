@@ -541,3 +541,21 @@ fn no_error_panics_on_garbage() {
         }
     }
 }
+
+#[test]
+fn an_inline_target_is_never_an_emitter_whatever_material_comes_first() {
+    // The first material declared is a light: an inline target (a shape only to aim at) must not take
+    // it for its own, or `mis` would aim shadow rays at a glass ball.
+    let text = BASE.replace(
+        "[materials]\n",
+        "[materials]\nlamp = { type = \"light\", emit = [4, 4, 4] }\n",
+    );
+    let text =
+        format!("lights = [{{ type = \"sphere\", center = [0, 0, 0], radius = 1 }}]\n{text}");
+    let scene = load(&text).unwrap().built.scene;
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(
+        (lights.all.len(), lights.emitters.len(), lights.others.len()),
+        (1, 0, 1)
+    );
+}

@@ -215,7 +215,7 @@ impl AliasPiecewise {
         let (o, start) = if keep { (&c.own, 0.0) } else { (&c.alias, c.q) };
         let v = ((coin - start) * o.stretch).min(ONE_MINUS_EPSILON);
         Sample {
-            x: (o.x0 + v * (o.x1 - o.x0)).min(crate::next_down(o.x1)),
+            x: (o.x0 + v * (o.x1 - o.x0)).min(o.x1.next_down()),
             pdf: o.pdf,
         }
     }

@@ -74,7 +74,9 @@ impl Linear {
         }
     }
     pub fn sample(&self, u: f64) -> Sample {
-        let x = 2.0 * clamp_u(u).sqrt();
+        // u = 0 would give x = 0, where the density is 0 and f(x)/p(x) is 0/0: the smallest normal u
+        // instead (still within the first of the 2^53 equal steps of u).
+        let x = 2.0 * clamp_u(u).max(f64::MIN_POSITIVE).sqrt();
         Sample { x, pdf: x / 2.0 }
     }
     pub fn invert(&self, x: f64) -> f64 {
@@ -98,7 +100,8 @@ impl Quadratic {
         }
     }
     pub fn sample(&self, u: f64) -> Sample {
-        let x = 2.0 * clamp_u(u).cbrt();
+        // As for `Linear`: never x = 0, where the density is 0.
+        let x = 2.0 * clamp_u(u).max(f64::MIN_POSITIVE).cbrt();
         Sample {
             x,
             pdf: 3.0 * x * x / 8.0,
@@ -181,7 +184,7 @@ mod tests {
                 ("exponential", Exponential { rate: 1.0 }.sample(u), 40.0),
             ] {
                 assert!(
-                    s.x >= 0.0 && s.x <= hi && s.pdf.is_finite() && s.pdf >= 0.0,
+                    s.x >= 0.0 && s.x <= hi && s.pdf.is_finite() && s.pdf > 0.0,
                     "{name} at u = {u}: {s:?}"
                 );
             }

@@ -116,7 +116,7 @@ impl EytzingerCdf {
         let (lo, hi) = self.bracket(u);
         let t = (u - lo.cdf) / (hi.cdf - lo.cdf);
         Sample {
-            x: (lo.x + t * (hi.x - lo.x)).min(crate::next_down(hi.x)),
+            x: (lo.x + t * (hi.x - lo.x)).min(hi.x.next_down()),
             pdf: (hi.cdf - lo.cdf) / (hi.x - lo.x),
         }
     }
@@ -140,7 +140,7 @@ impl EytzingerCdf {
         if !(self.first.x..=self.last.x).contains(&x) {
             return 0.0;
         }
-        let (lo, hi) = self.bracket_x(x.min(crate::next_down(self.last.x)));
+        let (lo, hi) = self.bracket_x(x.min(self.last.x.next_down()));
         (hi.cdf - lo.cdf) / (hi.x - lo.x)
     }
 

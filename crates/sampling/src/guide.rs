@@ -51,7 +51,7 @@ impl GuideTable {
         for j in 0..m {
             // Advance to the first bin of positive probability whose largest u, the float just
             // below Fᵢ₊₁, lies in cell j or later.
-            while i + 1 < n && (cdf[i + 1] <= cdf[i] || cell(crate::next_down(cdf[i + 1])) < j) {
+            while i + 1 < n && (cdf[i + 1] <= cdf[i] || cell(cdf[i + 1].next_down()) < j) {
                 i += 1;
             }
             guide.push(i as u32);

@@ -79,23 +79,6 @@ pub(crate) fn clamp_u(u: f64) -> f64 {
     u.max(0.0).min(ONE_MINUS_EPSILON)
 }
 
-/// The next float above `x` (`f64::next_up`, which needs Rust 1.86).
-pub fn next_up(x: f64) -> f64 {
-    if x.is_nan() || x == f64::INFINITY {
-        return x;
-    }
-    if x == 0.0 {
-        return f64::from_bits(1);
-    }
-    let bits = x.to_bits();
-    f64::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
-}
-
-/// The next float below `x` (`f64::next_down`, which needs Rust 1.86).
-pub fn next_down(x: f64) -> f64 {
-    -next_up(-x)
-}
-
 /// Implements rand's `Distribution<f64>` for an [`InverseTransform`]: one uniform `u` per sample.
 macro_rules! distribution_by_inversion {
     ($($t:ty),* $(,)?) => {$(

@@ -173,7 +173,7 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> NumericInverse<F, P> {
             } else {
                 hi = x
             }
-            if crate::next_up(lo) >= hi {
+            if lo.next_up() >= hi {
                 break; // two neighbouring floats: nothing left to refine
             }
             let slope = p(x);

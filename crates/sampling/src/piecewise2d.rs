@@ -20,7 +20,6 @@ pub struct PiecewiseConstant2D {
     /// marginal never selects).
     rows: Vec<TabulatedCdf>,
     marginal: TabulatedCdf,
-    nx: usize,
 }
 
 impl PiecewiseConstant2D {
@@ -73,7 +72,7 @@ impl PiecewiseConstant2D {
                 SamplingError::AllZero { .. } => SamplingError::AllZero { bins: nx * ny },
                 other => other,
             })?;
-        Ok(Self { rows, marginal, nx })
+        Ok(Self { rows, marginal })
     }
     // ANCHOR_END: build
 
@@ -81,8 +80,9 @@ impl PiecewiseConstant2D {
     /// The point for `(u₁, u₂)`: `u₂` picks the row (and `y`) through the marginal, `u₁` the column
     /// (and `x`) through that row's conditional; the density is the product `p(y) p(x | y)`.
     pub fn sample(&self, u1: f64, u2: f64) -> Sample2 {
-        let my = self.marginal.sample(u2);
-        let row = self.marginal.bin(crate::clamp_u(u2));
+        let u2 = crate::clamp_u(u2);
+        let row = self.marginal.bin(u2);
+        let my = self.marginal.sample_in_bin(row, u2);
         let mx = self.rows[row].sample(u1);
         Sample2 {
             x: mx.x,
@@ -116,7 +116,7 @@ impl PiecewiseConstant2D {
 
     /// Cells per row.
     pub fn nx(&self) -> usize {
-        self.nx
+        self.rows[0].len()
     }
 
     /// The number of rows.

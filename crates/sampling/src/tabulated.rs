@@ -233,7 +233,7 @@ impl TabulatedCdf {
         let (x0, x1) = (self.x[i], self.x[i + 1]);
         let t = (u - c0) / (c1 - c0);
         Sample {
-            x: (x0 + t * (x1 - x0)).min(crate::next_down(x1)),
+            x: (x0 + t * (x1 - x0)).min(x1.next_down()),
             pdf: (c1 - c0) / (x1 - x0),
         }
     }

@@ -6,7 +6,7 @@ use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_sampling::{
     AliasPiecewise, AliasTable, EytzingerCdf, GuideTable, ONE_MINUS_EPSILON, PiecewiseConstant2D,
-    SamplingError, TabulatedCdf, next_down, next_up,
+    SamplingError, TabulatedCdf,
 };
 
 /// Zero bins at the start, in the middle (two in a row) and at the end.
@@ -29,7 +29,7 @@ fn awkward_u(t: &TabulatedCdf) -> Vec<f64> {
         f64::MIN_POSITIVE,
     ];
     for &c in t.cdf_values() {
-        us.extend([c, next_down(c), next_up(c)]);
+        us.extend([c, c.next_down(), c.next_up()]);
     }
     us
 }

@@ -13,6 +13,7 @@
 use crate::plot;
 use anyhow::{Context, Result};
 use clap::Args;
+use glam::DVec2;
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
@@ -21,6 +22,7 @@ use rtl_mc::{
     Estimate, Interval, McError, Rect, importance, jittered, jittered_2d, plain, plain_2d, sobol,
     sobol_2d,
 };
+use rtl_pdf::warp;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -89,33 +91,25 @@ fn unit_square() -> Rect {
     Rect::new(0.0, 1.0, 0.0, 1.0).expect("a valid square")
 }
 
-// The sphere and hemisphere warps of the examples (rtl-pdf has the full set). Each maps the unit square
-// onto directions with a constant or known density, so an integral over directions becomes an integral
-// over the unit square that jittered and Sobol points can stratify. Where a direction only feeds an
-// integrand of z, `black_box` keeps the compiler from skipping its x and y (a sine and a cosine), so
-// every estimator pays for whole directions and the times compare fairly.
+// The sphere and hemisphere warps of rtl-pdf (chapter 7), which the renderer uses too. Each maps the
+// unit square onto directions with a constant or known density, so an integral over directions becomes
+// an integral over the unit square that jittered and Sobol points can stratify. Where a direction only
+// feeds an integrand of z, `black_box` keeps the compiler from skipping its x and y, so every estimator
+// pays for whole directions and the times compare fairly.
 
-/// Uniform on the sphere: z = 1 - 2 u2, phi = 2 pi u1; density 1 / 4 pi.
-fn uniform_sphere([u1, u2]: [f64; 2]) -> [f64; 3] {
-    let z = 1.0 - 2.0 * u2;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u1;
-    [r * phi.cos(), r * phi.sin(), z]
+/// Uniform on the sphere; density 1 / 4 pi.
+fn uniform_sphere(u: [f64; 2]) -> [f64; 3] {
+    warp::sample_uniform_sphere(DVec2::from(u)).to_array()
 }
 
-/// Uniform on the hemisphere z > 0: z = 1 - u2; density 1 / 2 pi.
-fn uniform_hemisphere([u1, u2]: [f64; 2]) -> [f64; 3] {
-    let z = 1.0 - u2;
-    let r = (u2 * (2.0 - u2)).sqrt();
-    let phi = 2.0 * PI * u1;
-    [r * phi.cos(), r * phi.sin(), z]
+/// Uniform on the hemisphere z >= 0; density 1 / 2 pi.
+fn uniform_hemisphere(u: [f64; 2]) -> [f64; 3] {
+    warp::sample_uniform_hemisphere(DVec2::from(u)).to_array()
 }
 
-/// Cosine-weighted on the hemisphere: z = sqrt(1 - u2); density z / pi.
-fn cosine_hemisphere([u1, u2]: [f64; 2]) -> [f64; 3] {
-    let r = u2.sqrt();
-    let phi = 2.0 * PI * u1;
-    [r * phi.cos(), r * phi.sin(), (1.0 - u2).sqrt()]
+/// Cosine-weighted on the hemisphere (Malley's method on the concentric disk); density z / pi.
+fn cosine_hemisphere(u: [f64; 2]) -> [f64; 3] {
+    warp::sample_cosine_hemisphere(DVec2::from(u)).to_array()
 }
 
 fn random_pair(rng: &mut Rng64) -> [f64; 2] {

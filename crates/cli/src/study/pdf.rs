@@ -17,6 +17,7 @@ use clap::Args;
 use glam::DVec3;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
+use rtl_mc::RunningStats;
 use rtl_pdf::{CosinePdf, HemispherePdf, MixturePdf, Pdf, SpherePdf};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
@@ -54,22 +55,15 @@ fn estimate<P: Pdf>(
     n: usize,
     rng: &mut Xoshiro256PlusPlus,
 ) -> (f64, f64) {
-    let (mut sum, mut sum2) = (0.0, 0.0);
+    // Welford's running mean and variance (chapter 2), not the cancellation-prone `sum x^2 - n mean^2`.
+    let mut stats = RunningStats::new();
     for _ in 0..n {
         // black_box: the whole direction is made, as a renderer needs it, even where `f` reads only z
         let d = std::hint::black_box(pdf.generate(rng));
         let p = pdf.value(d);
-        let x = if p > 0.0 { f(d) / p } else { 0.0 };
-        sum += x;
-        sum2 += x * x;
+        stats.push(if p > 0.0 { f(d) / p } else { 0.0 });
     }
-    let mean = sum / n as f64;
-    let var = if n > 1 {
-        ((sum2 - sum * mean) / (n as f64 - 1.0)).max(0.0)
-    } else {
-        0.0
-    };
-    (mean, var)
+    (stats.mean(), stats.variance().unwrap_or(0.0))
 }
 // ANCHOR_END: estimate
 

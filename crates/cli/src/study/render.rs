@@ -18,6 +18,7 @@ use crate::plot::{Series, loglog};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rayon::prelude::*;
+use rtl_mc::RunningStats;
 use rtl_render::Color;
 use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::output::{Transfer, to_rgb8, write_linear};
@@ -164,11 +165,18 @@ fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
 fn reference(dir: &Path, name: &str, scene: &Scene, width: usize, spp: u64) -> Result<Vec<Color>> {
     let path = dir.join(format!("render-reference-{name}-{width}-{spp}.pfm"));
     if path.exists() {
-        let (w, _, px) = read_pfm(&path)?;
-        if w == width {
+        let (w, h, px) = read_pfm(&path)?;
+        let camera = &Renderer::new(scene, settings(width, scene, 999, Strategy::default())).camera;
+        if (w, h) == (camera.width, camera.height) {
             eprintln!("reference: cached {}", path.display());
             return Ok(px);
         }
+        eprintln!(
+            "reference: {} is {w}x{h}, not {}x{}: rendering it again",
+            path.display(),
+            camera.width,
+            camera.height
+        );
     }
     let strategy = Strategy::Mis(MisOptions::default());
     eprintln!("reference: {name} {width} wide, {spp} spp with mis (seed 999) ...");
@@ -224,21 +232,14 @@ fn pixel_variance(r: &Renderer, spp: u64) -> Vec<f64> {
             let mut ctx = Ctx::new();
             (0..w)
                 .map(|i| {
-                    let (mut s, mut s2, mut n) = (0.0, 0.0, 0.0);
+                    let mut stats = RunningStats::new();
                     for k in 0..spp {
                         let v = r.sample(i, j, k, &mut ctx);
                         if v.is_finite() {
-                            let y = luminance(v);
-                            s += y;
-                            s2 += y * y;
-                            n += 1.0;
+                            stats.push(luminance(v));
                         }
                     }
-                    if n > 1.0 {
-                        ((s2 - s * s / n) / (n - 1.0)).max(0.0)
-                    } else {
-                        0.0
-                    }
+                    stats.variance().unwrap_or(0.0)
                 })
                 .collect::<Vec<_>>()
         })
@@ -332,6 +333,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .unwrap_or(if args.quick { 1024 } else { 8192 });
     let max_spp = args.max_spp.unwrap_or(if args.quick { 16 } else { 256 });
     let repeat = args.repeat.unwrap_or(if args.quick { 1 } else { 2 }).max(1);
+    if width < 2 {
+        bail!("--width {width}: the study needs an image at least 2 pixels wide");
+    }
+    if ref_spp == 0 {
+        bail!("--reference-spp 0: the reference needs at least one sample per pixel");
+    }
+    // The sweep is 1, 4, 16, ... spp; the crops are taken at 16.
+    if max_spp < 16 || !max_spp.is_power_of_two() || !max_spp.trailing_zeros().is_multiple_of(2) {
+        bail!("--max-spp {max_spp}: must be a power of 4, at least 16 (16, 64, 256, ...)");
+    }
     let threads = rayon::current_num_threads();
     let reference = reference(&args.out, b.name, &scene, width, ref_spp)?;
     let mut spps = vec![1u64];
@@ -357,7 +368,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
                 k0 = spp;
                 best[n] = best[n].min(seconds);
                 rays[n] = total_rays;
-                if spp == 16.min(max_spp) {
+                if spp == 16 {
                     images.retain(|(l, _)| l != &label);
                     images.push((label.clone(), acc.image()));
                 }
@@ -494,7 +505,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // as many samples as fit in it at its measured cost per spp.
     let budget = rows
         .iter()
-        .find(|r| r.label == "mis" && r.spp == 16.min(max_spp))
+        .find(|r| r.label == "mis" && r.spp == 16)
         .map(|r| r.seconds)
         .unwrap_or(1.0);
     let mut panels = Vec::new();
