@@ -1,5 +1,7 @@
-//! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders.
+//! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders, and
+//! watch it all converge live in the lab.
 
+mod lab;
 mod merge_cmd;
 mod plot;
 mod progressive;
@@ -27,6 +29,8 @@ enum Command {
     Study(study::StudyArgs),
     /// Merge partial renders (disjoint sample ranges of one scene) into one image.
     Merge(merge_cmd::MergeArgs),
+    /// A local web page: watch estimators, samplers and the Cornell box converge, switch strategies live.
+    Lab(lab::LabArgs),
 }
 
 fn main() {
@@ -35,6 +39,7 @@ fn main() {
         Command::Render(args) => render_cmd::run(args),
         Command::Study(args) => study::run(args),
         Command::Merge(args) => merge_cmd::run(args),
+        Command::Lab(args) => lab::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

@@ -40,20 +40,20 @@ pub struct McArgs {
 }
 
 /// Independent repetitions of every estimator at every N.
-const REPETITIONS: u64 = 30;
+pub(crate) const REPETITIONS: u64 = 30;
 /// Replicates inside one jittered or Sobol estimate (its standard error comes from their spread).
 const REPLICATES: u32 = 4;
 const SMALLEST_LOG2_N: u32 = 4;
 
-type Rng64 = Xoshiro256PlusPlus;
+pub(crate) type Rng64 = Xoshiro256PlusPlus;
 
 /// One estimator of one integral: runs it with `n` samples in all.
-struct Case {
-    integral: &'static str,
-    slug: &'static str,
-    exact: f64,
-    estimator: &'static str,
-    run: fn(u64, &mut Rng64) -> Result<Estimate, McError>,
+pub(crate) struct Case {
+    pub(crate) integral: &'static str,
+    pub(crate) slug: &'static str,
+    pub(crate) exact: f64,
+    pub(crate) estimator: &'static str,
+    pub(crate) run: fn(u64, &mut Rng64) -> Result<Estimate, McError>,
 }
 
 /// The `nx` by `ny` grid of `cells = 2^m` cells, as square as a power of two allows.
@@ -130,7 +130,7 @@ fn cos_cubed_over_cosine(u: [f64; 2]) -> f64 {
     cos_cubed(d) / (d[2] / PI)
 }
 
-fn cases() -> Vec<Case> {
+pub(crate) fn cases() -> Vec<Case> {
     const X2: &str = "x^2 over 0..2";
     const PI_DISC: &str = "pi as the unit disc area";
     const SPHERE: &str = "cos^2 over the sphere";
@@ -249,20 +249,20 @@ fn cases() -> Vec<Case> {
 }
 
 /// One row of mc.csv.
-struct Row {
-    n: u64,
-    rms_error: f64,
-    mean_std_error: f64,
-    ns_per_sample: f64,
-    seconds_per_estimate: f64,
+pub(crate) struct Row {
+    pub(crate) n: u64,
+    pub(crate) rms_error: f64,
+    pub(crate) mean_std_error: f64,
+    pub(crate) ns_per_sample: f64,
+    pub(crate) seconds_per_estimate: f64,
 }
 
 /// A seed that depends only on the case, N and the repetition, so results do not depend on threads.
-fn seed(case: usize, log2_n: u32, rep: u64) -> u64 {
+pub(crate) fn seed(case: usize, log2_n: u32, rep: u64) -> u64 {
     ((case as u64) << 48) ^ (u64::from(log2_n) << 40) ^ rep ^ 0x5eed_0000_0000_0000
 }
 
-fn measure(index: usize, case: &Case, log2_n: u32) -> Result<Row> {
+pub(crate) fn measure(index: usize, case: &Case, log2_n: u32) -> Result<Row> {
     let n = 1u64 << log2_n;
     let runs: Vec<Estimate> = (0..REPETITIONS)
         .into_par_iter()

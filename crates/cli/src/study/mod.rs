@@ -2,10 +2,10 @@
 //!
 //! Each study lives in a module of its own with its own arguments; all write into `--out DIR`.
 
-mod mc;
+pub(crate) mod mc;
 mod pdf;
-mod render;
-mod sampling;
+pub(crate) mod render;
+pub(crate) mod sampling;
 
 use clap::{Args, Subcommand};
 

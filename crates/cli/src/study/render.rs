@@ -162,7 +162,13 @@ fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
 }
 
 /// The cached reference, or a new one.
-fn reference(dir: &Path, name: &str, scene: &Scene, width: usize, spp: u64) -> Result<Vec<Color>> {
+pub(crate) fn reference(
+    dir: &Path,
+    name: &str,
+    scene: &Scene,
+    width: usize,
+    spp: u64,
+) -> Result<Vec<Color>> {
     let path = dir.join(format!("render-reference-{name}-{width}-{spp}.pfm"));
     if path.exists() {
         let (w, h, px) = read_pfm(&path)?;
@@ -207,7 +213,7 @@ fn reference(dir: &Path, name: &str, scene: &Scene, width: usize, spp: u64) -> R
 }
 
 /// RMSE and relative MSE (`(x - r)^2 / (r^2 + 0.01)`, pbrt's guard) over every pixel and channel.
-fn errors(img: &[Color], reference: &[Color]) -> (f64, f64) {
+pub(crate) fn errors(img: &[Color], reference: &[Color]) -> (f64, f64) {
     let (mut se, mut rel) = (0.0, 0.0);
     for (x, r) in img.iter().zip(reference) {
         let d = *x - *r;
@@ -218,7 +224,7 @@ fn errors(img: &[Color], reference: &[Color]) -> (f64, f64) {
     ((se / n).sqrt(), rel / n)
 }
 
-fn luminance(c: Color) -> f64 {
+pub(crate) fn luminance(c: Color) -> f64 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
@@ -247,7 +253,7 @@ fn pixel_variance(r: &Renderer, spp: u64) -> Vec<f64> {
 }
 
 /// A colour map from 0 (dark blue) through green to 1 (yellow-white).
-fn heat(t: f64) -> [u8; 3] {
+pub(crate) fn heat(t: f64) -> [u8; 3] {
     let t = t.clamp(0.0, 1.0);
     let stops = [
         (0.0, [0.05, 0.03, 0.25]),

@@ -52,7 +52,7 @@ struct Row {
 }
 
 /// Nanoseconds per sample over the queries `us`.
-fn time_per_sample(us: &[f64], sample: impl Fn(f64) -> Sample) -> f64 {
+pub(crate) fn time_per_sample(us: &[f64], sample: impl Fn(f64) -> Sample) -> f64 {
     let start = Instant::now();
     let mut acc = 0.0;
     for &u in us {
@@ -64,13 +64,13 @@ fn time_per_sample(us: &[f64], sample: impl Fn(f64) -> Sample) -> f64 {
 }
 
 /// The evaluation set: `u`, the exact quantile there.
-struct Reference {
+pub(crate) struct Reference {
     us: Vec<f64>,
     xs: Vec<f64>,
 }
 
 impl Reference {
-    fn new(target: &dyn Target, rng: &mut Xoshiro256PlusPlus) -> Self {
+    pub(crate) fn new(target: &dyn Target, rng: &mut Xoshiro256PlusPlus) -> Self {
         let m = 4096;
         let mut us: Vec<f64> = (0..m)
             .map(|k| (k as f64 + rng.random::<f64>()) / m as f64)
@@ -81,7 +81,7 @@ impl Reference {
     }
 
     /// (max u-error, max x-error) of an inverse.
-    fn errors(&self, target: &dyn Target, inverse: impl Fn(f64) -> f64) -> (f64, f64) {
+    pub(crate) fn errors(&self, target: &dyn Target, inverse: impl Fn(f64) -> f64) -> (f64, f64) {
         let (mut eu, mut ex) = (0.0f64, 0.0f64);
         for (&u, &x) in self.us.iter().zip(&self.xs) {
             let xh = inverse(u);

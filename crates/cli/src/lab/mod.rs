@@ -1,0 +1,141 @@
+//! `rtl lab`: a local web page on which a reader watches estimators, samplers and the Cornell box
+//! converge, and switches strategies live. Three benches:
+//!
+//! 1. Monte Carlo (book chapters 2-4): the integrals and estimators of `rtl study mc`, one N at a
+//!    time: the estimate and its 95% band, RMS error against N and against time ([`mc`]);
+//! 2. sampling (chapters 3, 7): a density and a method, the histogram against the density, the
+//!    u-error, ns per sample and the chi-square p-value, on a line and on the sphere ([`sampling`]);
+//! 3. the Cornell box (chapters 5-13): a progressive render with the strategy and its extras
+//!    switchable, the variance map, and RMSE against time, one curve per setting ([`cornell`],
+//!    through the renderer's door [`glue`]).
+//!
+//! All computation is in our crates, through the same functions as `rtl study` and `rtl render`;
+//! the page (HTML, CSS and JavaScript of our own, plots drawn as SVG by its script) is embedded in the
+//! binary and loads nothing from anywhere else.
+//!
+//! **Why tiny_http.** The lab serves one reader on one machine: a handful of small requests a second.
+//! tiny_http is a small synchronous server (a few small dependencies, seconds to compile), whose
+//! requests we hand to plain threads; axum would bring tokio and hyper, minutes of compiling on a
+//! two-core machine for concurrency the lab does not need. The render runs on rayon's pool either way.
+
+mod cornell;
+mod glue;
+mod mc;
+mod params;
+mod sampling;
+mod server;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+#[derive(Args)]
+pub struct LabArgs {
+    /// Port to listen on; 0 picks a free one.
+    #[arg(long, default_value_t = 8017)]
+    pub port: u16,
+    /// Address to listen on. The default, 127.0.0.1, is this machine only; any other address lets
+    /// other machines drive the lab (and use its cores).
+    #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
+    pub bind: IpAddr,
+    /// Directory of the references of `rtl study render` (`render-reference-cornell-W-SPP.pfm`): the
+    /// Cornell bench reads the one at its width, or renders one and caches it there.
+    #[arg(long, default_value = "docs/figures")]
+    pub reference_dir: PathBuf,
+    /// Samples per pixel of a reference the lab renders itself (none cached at that width).
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    pub reference_spp: u64,
+    /// The built book (`mdbook build book`), which the benches link to under /book/.
+    #[arg(long, default_value = "book/book")]
+    pub book_dir: PathBuf,
+}
+
+/// The Cornell bench's settings when the page opens: 200 x 200, `mis` with its default extras.
+pub(crate) fn default_settings() -> glue::Settings {
+    glue::Settings {
+        width: 200,
+        strategy: rtl_render::integrator::Strategy::default(),
+        seed: 1,
+        max_depth: 50,
+    }
+}
+
+/// Why the lab could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum LabError {
+    #[error(
+        "port {port} on {addr} is in use (another `rtl lab`?): choose another with --port, or --port 0 for a free one"
+    )]
+    PortInUse { addr: IpAddr, port: u16 },
+    #[error("cannot listen on {addr}:{port}: {source}")]
+    Listen {
+        addr: IpAddr,
+        port: u16,
+        source: std::io::Error,
+    },
+}
+
+pub fn run(args: LabArgs) -> Result<()> {
+    let listener = TcpListener::bind(SocketAddr::new(args.bind, args.port)).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::AddrInUse {
+            LabError::PortInUse {
+                addr: args.bind,
+                port: args.port,
+            }
+        } else {
+            LabError::Listen {
+                addr: args.bind,
+                port: args.port,
+                source: e,
+            }
+        }
+    })?;
+    let port = listener.local_addr()?.port();
+    let server = tiny_http::Server::from_listener(listener, None)
+        .map_err(|e| anyhow::anyhow!("cannot start the server: {e}"))?;
+    let hosts = if args.bind.is_loopback() {
+        ["127.0.0.1", "localhost", "[::1]"]
+            .iter()
+            .map(|h| format!("{h}:{port}"))
+            .collect()
+    } else {
+        eprintln!(
+            "warning: --bind {}: the lab is reachable from other machines, and anyone who reaches it \
+             can make this machine render",
+            args.bind
+        );
+        Vec::new()
+    };
+    let scene = Arc::new(glue::scene().context("building the Cornell box")?);
+    let bench = Arc::new(cornell::Bench::new(
+        default_settings(),
+        args.reference_dir.clone(),
+        args.reference_spp,
+    ));
+    {
+        let (b, s) = (Arc::clone(&bench), Arc::clone(&scene));
+        std::thread::Builder::new()
+            .name("render".into())
+            .spawn(move || cornell::worker(b, s))?;
+        let b = Arc::clone(&bench);
+        std::thread::Builder::new()
+            .name("watchdog".into())
+            .spawn(move || cornell::watchdog(b))?;
+    }
+    let shown = match args.bind {
+        a if a.is_unspecified() => IpAddr::V4(Ipv4Addr::LOCALHOST),
+        a => a,
+    };
+    let url = match shown {
+        IpAddr::V6(a) => format!("http://[{a}]:{port}/"),
+        IpAddr::V4(a) => format!("http://{a}:{port}/"),
+    };
+    println!("rtl lab: open {url} (Ctrl-C to stop)");
+    server::serve(
+        server,
+        Arc::new(server::App::new(bench, hosts, args.book_dir)),
+    );
+    Ok(())
+}

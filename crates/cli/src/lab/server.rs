@@ -1,0 +1,366 @@
+//! The HTTP side: routes, the page's embedded assets, and the answers (JSON, PNG, or a 400 with a
+//! message). Each request is served on a thread of its own, so a long Monte Carlo run never holds up
+//! the render's frames; at most [`MAX_IN_FLIGHT`] at once, and one computation of the Monte Carlo and
+//! sampling benches at a time (the others wait their turn).
+
+use super::cornell::{self, Bench};
+use super::glue::{self, Settings};
+use super::params::{BadRequest, Query, bad};
+use super::{mc, sampling};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use tiny_http::{Header, Method, Request, Response, Server};
+
+/// Requests served at once; more are answered 503.
+pub const MAX_IN_FLIGHT: usize = 32;
+
+/// The page and its assets, in the binary.
+const ASSETS: [(&str, &str, &[u8]); 4] = [
+    (
+        "/",
+        "text/html; charset=utf-8",
+        include_bytes!("assets/index.html"),
+    ),
+    (
+        "/lab.css",
+        "text/css; charset=utf-8",
+        include_bytes!("assets/lab.css"),
+    ),
+    (
+        "/lab.js",
+        "text/javascript; charset=utf-8",
+        include_bytes!("assets/lab.js"),
+    ),
+    (
+        "/favicon.ico",
+        "image/svg+xml",
+        include_bytes!("assets/favicon.svg"),
+    ),
+];
+
+/// What the handlers share.
+pub struct App {
+    pub bench: Arc<Bench>,
+    /// One Monte Carlo or sampling computation at a time.
+    pub compute: Mutex<()>,
+    /// Host names the page may be reached by (empty: any, when bound beyond loopback).
+    pub hosts: Vec<String>,
+    /// The built book (`mdbook build book`), served under `/book/`.
+    pub book_dir: PathBuf,
+    in_flight: AtomicUsize,
+}
+
+impl App {
+    pub fn new(bench: Arc<Bench>, hosts: Vec<String>, book_dir: PathBuf) -> App {
+        App {
+            bench,
+            compute: Mutex::new(()),
+            hosts,
+            book_dir,
+            in_flight: AtomicUsize::new(0),
+        }
+    }
+}
+
+/// Serve forever, one thread per request.
+pub fn serve(server: Server, app: Arc<App>) {
+    for request in server.incoming_requests() {
+        if app.in_flight.fetch_add(1, Ordering::SeqCst) >= MAX_IN_FLIGHT {
+            app.in_flight.fetch_sub(1, Ordering::SeqCst);
+            let _ = request.respond(text(503, "too many requests at once"));
+            continue;
+        }
+        let app = Arc::clone(&app);
+        std::thread::spawn(move || {
+            handle(&app, request);
+            app.in_flight.fetch_sub(1, Ordering::SeqCst);
+        });
+    }
+}
+
+fn header(name: &str, value: &str) -> Header {
+    Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("ASCII header")
+}
+
+/// Headers of every answer: nothing cached, nothing loaded from anywhere but this server.
+fn with_common<R: std::io::Read>(r: Response<R>) -> Response<R> {
+    r.with_header(header("Cache-Control", "no-store"))
+        .with_header(header("X-Content-Type-Options", "nosniff"))
+        .with_header(header(
+            "Content-Security-Policy",
+            "default-src 'self'; img-src 'self' blob: data:; style-src 'self'; script-src 'self'; connect-src 'self'",
+        ))
+}
+
+fn text(status: u16, msg: &str) -> Response<std::io::Cursor<Vec<u8>>> {
+    with_common(
+        Response::from_string(msg)
+            .with_status_code(status)
+            .with_header(header("Content-Type", "text/plain; charset=utf-8")),
+    )
+}
+
+fn json_response(status: u16, v: &Value) -> Response<std::io::Cursor<Vec<u8>>> {
+    with_common(
+        Response::from_string(v.to_string())
+            .with_status_code(status)
+            .with_header(header("Content-Type", "application/json")),
+    )
+}
+
+fn bytes(content_type: &str, body: Vec<u8>) -> Response<std::io::Cursor<Vec<u8>>> {
+    with_common(Response::from_data(body).with_header(header("Content-Type", content_type)))
+}
+
+/// An answer before it is sent.
+enum Answer {
+    Json(Value),
+    Bytes(&'static str, Vec<u8>),
+    Error(u16, String),
+}
+
+impl From<BadRequest> for Answer {
+    fn from(e: BadRequest) -> Answer {
+        Answer::Error(400, e.0)
+    }
+}
+
+fn handle(app: &App, request: Request) {
+    let url = request.url().to_string();
+    let (path, query) = url.split_once('?').unwrap_or((&url, ""));
+    let answer = if !host_allowed(app, &request) {
+        Answer::Error(
+            403,
+            "the Host header names another site: the lab answers only to its own address".into(),
+        )
+    } else {
+        route(app, request.method(), path, query)
+    };
+    let response = match answer {
+        Answer::Json(v) => json_response(200, &v),
+        Answer::Bytes(t, b) => bytes(t, b),
+        Answer::Error(status, msg) => json_response(status, &json!({ "error": msg })),
+    };
+    // A page that went away before its answer is not an error of ours.
+    let _ = request.respond(response);
+}
+
+/// Refuse requests whose `Host` is not the lab's own (a page elsewhere that resolves its name to
+/// 127.0.0.1, "DNS rebinding", cannot drive the lab).
+fn host_allowed(app: &App, request: &Request) -> bool {
+    if app.hosts.is_empty() {
+        return true;
+    }
+    let host = request
+        .headers()
+        .iter()
+        .find(|h| h.field.equiv("Host"))
+        .map(|h| h.value.as_str().to_ascii_lowercase());
+    match host {
+        None => true,
+        Some(h) => app.hosts.contains(&h),
+    }
+}
+
+fn route(app: &App, method: &Method, path: &str, query: &str) -> Answer {
+    let get = *method == Method::Get || *method == Method::Head;
+    let post = *method == Method::Post;
+    if get && let Some((_, t, body)) = ASSETS.iter().find(|a| a.0 == path) {
+        if !query.is_empty() {
+            return Answer::Error(400, format!("{path} takes no parameters"));
+        }
+        return Answer::Bytes(t, body.to_vec());
+    }
+    if get && let Some(rest) = path.strip_prefix("/book/") {
+        return book_page(&app.book_dir, rest);
+    }
+    let result: Result<Answer, BadRequest> = match (path, get, post) {
+        ("/api/mc/list", true, _) => no_query(query).map(|()| Answer::Json(mc::list())),
+        ("/api/mc/run", true, _) => {
+            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
+            mc::run(query).map(Answer::Json)
+        }
+        ("/api/sampling/list", true, _) => no_query(query).map(|()| Answer::Json(sampling::list())),
+        ("/api/sampling/line", true, _) => {
+            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
+            sampling::run_line(query).map(Answer::Json)
+        }
+        ("/api/sampling/sphere", true, _) => {
+            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
+            sampling::run_sphere(query).map(Answer::Json)
+        }
+        ("/api/render/list", true, _) => no_query(query).map(|()| Answer::Json(render_list())),
+        ("/api/render/settings", _, true) => set_render(app, query).map(Answer::Json),
+        ("/api/render/state", true, _) => render_state(app, query).map(Answer::Json),
+        ("/api/render/image", true, _) => render_image(app, query),
+        ("/api/render/clear", _, true) => no_query(query).map(|()| {
+            app.bench.clear_curves();
+            Answer::Json(json!({ "cleared": true }))
+        }),
+        (p, _, _) if p.starts_with("/api/") && route_exists(p) => {
+            return Answer::Error(405, format!("{p}: wrong method {method}"));
+        }
+        (p, _, _) => return Answer::Error(404, format!("no page {p}")),
+    };
+    result.unwrap_or_else(Answer::from)
+}
+
+fn route_exists(p: &str) -> bool {
+    [
+        "/api/mc/list",
+        "/api/mc/run",
+        "/api/sampling/list",
+        "/api/sampling/line",
+        "/api/sampling/sphere",
+        "/api/render/list",
+        "/api/render/settings",
+        "/api/render/state",
+        "/api/render/image",
+        "/api/render/clear",
+    ]
+    .contains(&p)
+}
+
+fn no_query(query: &str) -> Result<(), BadRequest> {
+    Query::parse(query, &[]).map(|_| ())
+}
+
+fn render_list() -> Value {
+    json!({
+        "strategies": glue::strategy_names(),
+        "widths": [cornell::WIDTHS.0, cornell::WIDTHS.1],
+        "default": settings_json(&super::default_settings()),
+    })
+}
+
+fn settings_json(s: &Settings) -> Value {
+    use rtl_render::integrator::Strategy;
+    let o = match s.strategy {
+        Strategy::Mis(o) => o,
+        _ => rtl_render::integrator::MisOptions::DEFAULT,
+    };
+    json!({
+        "width": s.width, "strategy": s.strategy.name(), "seed": s.seed, "max_depth": s.max_depth,
+        "rr": o.russian_roulette, "lds": o.low_discrepancy, "sph_rect": o.spherical_rectangles,
+        "label": cornell::label(s),
+    })
+}
+
+/// `POST /api/render/settings?strategy=S&width=W&seed=K&max_depth=D&rr=1&lds=1&sph_rect=0`
+fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
+    let q = Query::parse(
+        query,
+        &[
+            "strategy",
+            "width",
+            "seed",
+            "max_depth",
+            "rr",
+            "lds",
+            "sph_rect",
+        ],
+    )?;
+    let d = super::default_settings();
+    let names = glue::strategy_names();
+    let name = q.choice("strategy", d.strategy.name(), &names)?;
+    let width = q.number("width", d.width, cornell::WIDTHS.0, cornell::WIDTHS.1)?;
+    let seed = q.number("seed", d.seed, 0, u64::MAX)?;
+    let max_depth = q.number("max_depth", d.max_depth, 1, 200)?;
+    let strategy = glue::strategy(
+        name,
+        q.flag("rr", true)?,
+        q.flag("lds", true)?,
+        q.flag("sph_rect", false)?,
+    )
+    .map_err(bad)?;
+    let s = Settings {
+        width,
+        strategy,
+        seed,
+        max_depth,
+    };
+    let generation = app.bench.set(s);
+    Ok(json!({ "generation": generation, "settings": settings_json(&s) }))
+}
+
+/// `GET /api/render/state[?peek=1]`: the latest frame's numbers and the curves; `peek=1` does not
+/// count as the page watching (for tests of the idle stop).
+fn render_state(app: &App, query: &str) -> Result<Value, BadRequest> {
+    let q = Query::parse(query, &["peek"])?;
+    if !q.flag("peek", false)? {
+        app.bench.touch();
+    }
+    let s = app.bench.settings();
+    let f = app.bench.frame.lock().unwrap();
+    let curves = app.bench.curves.lock().unwrap().clone();
+    Ok(json!({
+        "generation": app.bench.generation(),
+        "settings": settings_json(&s),
+        "rendering": !app.bench.is_idle(),
+        "frame": {
+            "id": f.id, "generation": f.generation, "width": f.width, "height": f.height,
+            "spp": f.spp, "seconds": f.seconds, "rays_per_second": f.rays_per_second, "rmse": f.rmse,
+        },
+        "reference": app.bench.reference_note(s.width),
+        "curves": curves,
+    }))
+}
+
+/// `GET /api/render/image?kind=image|variance`: the latest frame as PNG.
+fn render_image(app: &App, query: &str) -> Result<Answer, BadRequest> {
+    let q = Query::parse(query, &["kind", "frame"])?;
+    let kind = q.choice("kind", "image", &["image", "variance"])?;
+    q.number("frame", 0u64, 0, u64::MAX)?; // a cache-buster of the page, not used
+    app.bench.touch();
+    let f = app.bench.frame.lock().unwrap();
+    if f.id == 0 {
+        return Ok(Answer::Error(503, "no frame yet".into()));
+    }
+    let png = if kind == "image" {
+        &f.image_png
+    } else {
+        &f.variance_png
+    };
+    Ok(Answer::Bytes("image/png", png.as_ref().clone()))
+}
+
+/// A file of the built book: `rest` is a relative path of plain names (no `..`, nothing hidden).
+fn book_page(dir: &Path, rest: &str) -> Answer {
+    let rest = if rest.is_empty() { "index.html" } else { rest };
+    let plain = rest.len() <= 200
+        && rest.split('/').all(|part| {
+            !part.is_empty()
+                && !part.starts_with('.')
+                && part
+                    .bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || b"._-".contains(&b))
+        });
+    if !plain {
+        return Answer::Error(400, format!("/book/{rest}: not a page of the book"));
+    }
+    let kind = match rest.rsplit_once('.').map(|(_, e)| e) {
+        Some("html") => "text/html; charset=utf-8",
+        Some("css") => "text/css; charset=utf-8",
+        Some("js") => "text/javascript; charset=utf-8",
+        Some("svg") => "image/svg+xml",
+        Some("png") => "image/png",
+        Some("json") => "application/json",
+        Some("woff2") => "font/woff2",
+        Some("woff") => "font/woff",
+        Some("ttf") => "font/ttf",
+        _ => "application/octet-stream",
+    };
+    match std::fs::read(dir.join(rest)) {
+        Ok(body) => Answer::Bytes(kind, body),
+        Err(_) if !dir.is_dir() => Answer::Error(
+            404,
+            format!(
+                "the book is not built in {}: run `mdbook build book` (or read book/src/ in the repository)",
+                dir.display()
+            ),
+        ),
+        Err(_) => Answer::Error(404, format!("no page /book/{rest} in {}", dir.display())),
+    }
+}
