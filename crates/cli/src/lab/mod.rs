@@ -33,6 +33,9 @@ use std::sync::Arc;
 
 #[derive(Args)]
 pub struct LabArgs {
+    /// The Cornell box's width (and height) when the page opens.
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(16..=600))]
+    pub width: u64,
     /// Port to listen on; 0 picks a free one.
     #[arg(long, default_value_t = 8017)]
     pub port: u16,
@@ -52,10 +55,10 @@ pub struct LabArgs {
     pub book_dir: PathBuf,
 }
 
-/// The Cornell bench's settings when the page opens: 200 x 200, `mis` with its default extras.
-pub(crate) fn default_settings() -> glue::Settings {
+/// The Cornell bench's settings when the page opens: `mis` with its default extras.
+fn initial_settings(width: usize) -> glue::Settings {
     glue::Settings {
-        width: 200,
+        width,
         strategy: rtl_render::integrator::Strategy::default(),
         seed: 1,
         max_depth: 50,
@@ -110,7 +113,7 @@ pub fn run(args: LabArgs) -> Result<()> {
     };
     let scene = Arc::new(glue::scene().context("building the Cornell box")?);
     let bench = Arc::new(cornell::Bench::new(
-        default_settings(),
+        initial_settings(args.width as usize),
         args.reference_dir.clone(),
         args.reference_spp,
     ));

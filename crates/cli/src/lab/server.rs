@@ -191,7 +191,7 @@ fn route(app: &App, method: &Method, path: &str, query: &str) -> Answer {
             let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
             sampling::run_sphere(query).map(Answer::Json)
         }
-        ("/api/render/list", true, _) => no_query(query).map(|()| Answer::Json(render_list())),
+        ("/api/render/list", true, _) => no_query(query).map(|()| Answer::Json(render_list(app))),
         ("/api/render/settings", _, true) => set_render(app, query).map(Answer::Json),
         ("/api/render/state", true, _) => render_state(app, query).map(Answer::Json),
         ("/api/render/image", true, _) => render_image(app, query),
@@ -227,11 +227,11 @@ fn no_query(query: &str) -> Result<(), BadRequest> {
     Query::parse(query, &[]).map(|_| ())
 }
 
-fn render_list() -> Value {
+fn render_list(app: &App) -> Value {
     json!({
         "strategies": glue::strategy_names(),
         "widths": [cornell::WIDTHS.0, cornell::WIDTHS.1],
-        "default": settings_json(&super::default_settings()),
+        "current": settings_json(&app.bench.settings()),
     })
 }
 
@@ -248,7 +248,8 @@ fn settings_json(s: &Settings) -> Value {
     })
 }
 
-/// `POST /api/render/settings?strategy=S&width=W&seed=K&max_depth=D&rr=1&lds=1&sph_rect=0`
+/// `POST /api/render/settings?strategy=S&width=W&seed=K&max_depth=D&rr=1&lds=1&sph_rect=0`; what is
+/// not given stays as it is.
 fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
     let q = Query::parse(
         query,
@@ -262,7 +263,11 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
             "sph_rect",
         ],
     )?;
-    let d = super::default_settings();
+    let d = app.bench.settings();
+    let o = match d.strategy {
+        rtl_render::integrator::Strategy::Mis(o) => o,
+        _ => rtl_render::integrator::MisOptions::DEFAULT,
+    };
     let names = glue::strategy_names();
     let name = q.choice("strategy", d.strategy.name(), &names)?;
     let width = q.number("width", d.width, cornell::WIDTHS.0, cornell::WIDTHS.1)?;
@@ -270,9 +275,9 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
     let max_depth = q.number("max_depth", d.max_depth, 1, 200)?;
     let strategy = glue::strategy(
         name,
-        q.flag("rr", true)?,
-        q.flag("lds", true)?,
-        q.flag("sph_rect", false)?,
+        q.flag("rr", o.russian_roulette)?,
+        q.flag("lds", o.low_discrepancy)?,
+        q.flag("sph_rect", o.spherical_rectangles)?,
     )
     .map_err(bad)?;
     let s = Settings {

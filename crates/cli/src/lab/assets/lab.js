@@ -94,11 +94,15 @@ function polyline(svg, c, points, attrs) {
   return el("path", Object.assign({ d }, attrs), svg);
 }
 
-function legend(svg, c, entries) {
+// A legend in a corner: "tr" (top right) or "bl" (bottom left, where falling curves seldom are).
+function legend(svg, c, entries, corner = "tr") {
+  const width = 26 + 6.2 * Math.max(0, ...entries.map((e) => e[0].length));
+  const x = corner === "tr" ? c.W - c.m.r - width : c.m.l + 8;
+  const top = corner === "tr" ? c.m.t + 12 : c.H - c.m.b - 8 - 14 * (entries.length - 1);
   entries.forEach(([text, color], i) => {
-    const y = c.m.t + 12 + 14 * i;
-    el("line", { x1: c.W - c.m.r - 190, x2: c.W - c.m.r - 172, y1: y - 4, y2: y - 4, stroke: color, "stroke-width": 2 }, svg);
-    el("text", { x: c.W - c.m.r - 168, y }, svg).textContent = text;
+    const y = top + 14 * i;
+    el("line", { x1: x, x2: x + 18, y1: y - 4, y2: y - 4, stroke: color, "stroke-width": 2 }, svg);
+    el("text", { x: x + 22, y }, svg).textContent = text;
   });
 }
 
@@ -123,7 +127,7 @@ function loglogCurves(svg, curves, xlabel, ylabel, withSlope) {
   legend(svg, c, curves.map((s) => {
     const k = withSlope ? loglogSlope(s.points) : null;
     return [s.label + (k === null ? "" : `  (slope ${k.toFixed(2)})`), s.color];
-  }));
+  }), "bl");
   return c;
 }
 
@@ -346,7 +350,8 @@ async function cApply() {
   const mis = $("c-strategy").value === "mis";
   for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = !mis;
   try {
-    await api("/api/render/settings?" + cSettings(), { method: "POST" });
+    const r = await api("/api/render/settings?" + cSettings(), { method: "POST" });
+    document.body.dataset.renderGeneration = r.generation;
   } catch (e) {
     showError($("c-status"), e);
   }
@@ -368,10 +373,12 @@ function colorOf(label) {
 async function pollRender() {
   if (cornell.polling) return;
   cornell.polling = true;
+  let first = true;
   try {
     while (activeBench === "cornell" && document.visibilityState === "visible") {
       const t0 = performance.now();
       const s = await api("/api/render/state");
+      if (first) { syncControls(s.settings); first = false; }
       const f = s.frame;
       if (f.id !== cornell.frame && f.id > 0) {
         cornell.frame = f.id;
@@ -397,17 +404,19 @@ async function pollRender() {
   }
 }
 
-async function cornellInit() {
-  const l = await api("/api/render/list");
-  for (const s of l.strategies) $("c-strategy").add(new Option(s, s));
-  // Show the server's current settings (another tab may have changed them).
-  const s = (await api("/api/render/state?peek=1")).settings;
+// Show the server's settings (another tab may have changed them).
+function syncControls(s) {
   $("c-strategy").value = s.strategy;
   $("c-width").value = s.width; $("c-seed").value = s.seed; $("c-depth").value = s.max_depth;
   $("c-rr").checked = s.rr; $("c-lds").checked = s.lds; $("c-sph").checked = s.sph_rect;
+  for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = s.strategy !== "mis";
+}
+
+async function cornellInit() {
+  const l = await api("/api/render/list");
+  for (const s of l.strategies) $("c-strategy").add(new Option(s, s));
+  syncControls(l.current);
   for (const id of ["c-strategy", "c-rr", "c-lds", "c-sph", "c-width", "c-seed", "c-depth"]) $(id).onchange = cApply;
-  const mis = s.strategy === "mis";
-  for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = !mis;
   $("c-clear").onclick = () => api("/api/render/clear", { method: "POST" });
   document.addEventListener("visibilitychange", () => { if (activeBench === "cornell") pollRender(); });
 }
