@@ -148,7 +148,8 @@ fn number(json: &str, key: &str) -> f64 {
 
 #[test]
 fn the_page_comes_from_the_binary() {
-    let lab = start("page", &[]);
+    let book = concat!(env!("CARGO_MANIFEST_DIR"), "/../../book/book");
+    let lab = start("page", &["--book-dir", book]);
     let page = lab.get("/");
     assert_eq!(page.status, 200);
     let html = page.text();
@@ -165,6 +166,11 @@ fn the_page_comes_from_the_binary() {
     }
     assert!(!lab.get("/lab.js").text().contains("https://"));
     assert_eq!(lab.get("/nope").status, 404);
+    // The benches link to the book's chapters: the built page, or else the chapter's source.
+    let chapter = lab.get("/book/ch02-a-simple-monte-carlo-program.html");
+    assert_eq!(chapter.status, 200);
+    assert!(chapter.text().contains("A Simple Monte Carlo Program"));
+    assert_eq!(lab.get("/book/ch99-none.html").status, 404);
     assert_eq!(lab.get("/?x=1").status, 400);
 }
 

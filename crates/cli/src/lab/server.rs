@@ -118,6 +118,8 @@ fn bytes(content_type: &str, body: Vec<u8>) -> Response<std::io::Cursor<Vec<u8>>
 enum Answer {
     Json(Value),
     Bytes(&'static str, Vec<u8>),
+    /// A page of the built book: its own scripts and styles, so no Content-Security-Policy of ours.
+    Book(&'static str, Vec<u8>),
     Error(u16, String),
 }
 
@@ -141,6 +143,9 @@ fn handle(app: &App, request: Request) {
     let response = match answer {
         Answer::Json(v) => json_response(200, &v),
         Answer::Bytes(t, b) => bytes(t, b),
+        Answer::Book(t, b) => Response::from_data(b)
+            .with_header(header("Content-Type", t))
+            .with_header(header("Cache-Control", "no-store")),
         Answer::Error(status, msg) => json_response(status, &json!({ "error": msg })),
     };
     // A page that went away before its answer is not an error of ours.
@@ -357,15 +362,22 @@ fn book_page(dir: &Path, rest: &str) -> Answer {
         Some("ttf") => "font/ttf",
         _ => "application/octet-stream",
     };
-    match std::fs::read(dir.join(rest)) {
-        Ok(body) => Answer::Bytes(kind, body),
-        Err(_) if !dir.is_dir() => Answer::Error(
-            404,
-            format!(
-                "the book is not built in {}: run `mdbook build book` (or read book/src/ in the repository)",
-                dir.display()
-            ),
-        ),
-        Err(_) => Answer::Error(404, format!("no page /book/{rest} in {}", dir.display())),
+    if let Ok(body) = std::fs::read(dir.join(rest)) {
+        return Answer::Book(kind, body);
     }
+    // Not built: the chapter's source (book/src/NAME.md beside book/book), as text.
+    let source = rest
+        .strip_suffix(".html")
+        .zip(dir.parent())
+        .map(|(stem, book)| book.join("src").join(format!("{stem}.md")));
+    if let Some(body) = source.and_then(|p| std::fs::read(p).ok()) {
+        return Answer::Book("text/plain; charset=utf-8", body);
+    }
+    Answer::Error(
+        404,
+        format!(
+            "no page /book/{rest} in {} (build the book with `mdbook build book`)",
+            dir.display()
+        ),
+    )
 }
