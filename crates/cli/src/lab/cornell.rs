@@ -75,6 +75,8 @@ pub struct Bench {
     pub frame: Mutex<Frame>,
     pub curves: Mutex<Vec<Curve>>,
     references: Mutex<HashMap<usize, Reference>>,
+    /// One reference rendered at a time.
+    reference_turn: Mutex<()>,
     reference_dir: PathBuf,
     reference_spp: u64,
 }
@@ -127,6 +129,7 @@ impl Bench {
             frame: Mutex::new(Frame::default()),
             curves: Mutex::new(Vec::new()),
             references: Mutex::new(HashMap::new()),
+            reference_turn: Mutex::new(()),
             reference_dir,
             reference_spp,
         }
@@ -170,6 +173,15 @@ impl Bench {
         refs.insert(width, Reference::Rendering);
         let (me, scene) = (Arc::clone(self), Arc::clone(scene));
         std::thread::spawn(move || {
+            let _turn = me.reference_turn.lock().unwrap_or_else(|e| e.into_inner());
+            // The page moved on to another width while this one waited: forget it (asked again if
+            // the page comes back to it).
+            if me.settings().width != width
+                && cached_reference_spp(&me.reference_dir, width).is_none()
+            {
+                me.references.lock().unwrap().remove(&width);
+                return;
+            }
             let dir = &me.reference_dir;
             let spp = cached_reference_spp(dir, width).unwrap_or(me.reference_spp);
             // A pool of its own: in the render's pool its long passes would hold up the frames
