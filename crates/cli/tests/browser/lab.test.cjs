@@ -72,6 +72,7 @@ const check = (ok, what) => {
     .filter((b) => Number(b.getAttribute("height")) > 1).length);
   check(bars > 60, `a sampling run draws its histogram (${bars} of 80 bars visible)`);
   check(await page.$("#s-hist .density") !== null, "the density is drawn over the histogram");
+  await page.selectOption("#d-pdf", "cosine");
   await page.click("#d-run");
   await page.waitForFunction(() => document.querySelectorAll("#d-observed rect").length > 400);
   const p = await page.textContent("#d-numbers");
