@@ -302,7 +302,7 @@ pub fn run(args: McArgs) -> Result<()> {
         if args.quick {
             " (--quick)"
         } else {
-            " (about 5 minutes on 2 cores)"
+            " (about 3 minutes on 2 cores)"
         }
     );
     let start = Instant::now();
