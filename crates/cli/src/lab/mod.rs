@@ -45,7 +45,7 @@ pub struct LabArgs {
     pub bind: IpAddr,
     /// Directory of the references of `rtl study render` (`render-reference-cornell-W-SPP.pfm`): the
     /// Cornell bench reads the one at its width, or renders one and caches it there.
-    #[arg(long, default_value = "docs/figures")]
+    #[arg(long, default_value = "book/src/figures")]
     pub reference_dir: PathBuf,
     /// Samples per pixel of a reference the lab renders itself (none cached at that width).
     #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]

@@ -31,9 +31,10 @@ use std::time::Instant;
 
 #[derive(Args)]
 pub struct McArgs {
-    /// Directory for the CSV and the plots (created if missing).
+    /// Directory for the CSV and the plots (created if missing; default: a scratch directory,
+    /// printed; the book's figures are book/src/figures).
     #[arg(long)]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// N up to 2^16 instead of 2^24: seconds instead of minutes.
     #[arg(long)]
     pub quick: bool,
@@ -291,8 +292,7 @@ pub(crate) fn measure(index: usize, case: &Case, log2_n: u32) -> Result<Row> {
 
 pub fn run(args: McArgs) -> Result<()> {
     let largest = if args.quick { 16 } else { 24 };
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    let out_dir = super::out_dir(args.out.clone(), "mc")?;
     let cases = cases();
     println!(
         "study mc: {} estimators, N = 2^{SMALLEST_LOG2_N} .. 2^{largest}, R = {REPETITIONS} repetitions each, \
@@ -302,7 +302,7 @@ pub fn run(args: McArgs) -> Result<()> {
         if args.quick {
             " (--quick)"
         } else {
-            " (about 5 minutes on 2 cores)"
+            " (about 3 minutes on 2 cores)"
         }
     );
     let start = Instant::now();
@@ -336,7 +336,7 @@ pub fn run(args: McArgs) -> Result<()> {
         );
         results.push((i, rows));
     }
-    let csv_path = args.out.join("mc.csv");
+    let csv_path = out_dir.join("mc.csv");
     std::fs::write(&csv_path, csv).with_context(|| format!("writing {}", csv_path.display()))?;
 
     // Slopes and plots, one pair of plots per integral.
@@ -383,7 +383,7 @@ pub fn run(args: McArgs) -> Result<()> {
             });
         }
         plot::loglog(
-            &args.out.join(format!("mc_{slug}_error_vs_n.png")),
+            &out_dir.join(format!("mc_{slug}_error_vs_n.png")),
             &format!("{title}: RMS error against N (R = {REPETITIONS})"),
             "samples N",
             "RMS error",
@@ -391,7 +391,7 @@ pub fn run(args: McArgs) -> Result<()> {
             true,
         )?;
         plot::loglog(
-            &args.out.join(format!("mc_{slug}_error_vs_time.png")),
+            &out_dir.join(format!("mc_{slug}_error_vs_time.png")),
             &format!("{title}: RMS error against time per estimate"),
             "seconds per estimate",
             "RMS error",
@@ -399,13 +399,13 @@ pub fn run(args: McArgs) -> Result<()> {
             true,
         )?;
     }
-    let slopes_path = args.out.join("mc_slopes.csv");
+    let slopes_path = out_dir.join("mc_slopes.csv");
     std::fs::write(&slopes_path, slopes)
         .with_context(|| format!("writing {}", slopes_path.display()))?;
     println!(
         "\nwrote {} and plots mc_*.png in {} ({:.1} s)",
         csv_path.display(),
-        args.out.display(),
+        out_dir.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())

@@ -26,9 +26,10 @@ use std::time::Instant;
 
 #[derive(Args)]
 pub struct PdfArgs {
-    /// Directory for the CSV and the plots (created if missing).
+    /// Directory for the CSV and the plots (created if missing; default: a scratch directory,
+    /// printed; the book's figures are book/src/figures).
     #[arg(long)]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// Fewer and smaller runs (a few seconds), for a quick look or CI.
     #[arg(long)]
     pub quick: bool,
@@ -105,8 +106,7 @@ fn series<P: Pdf>(
 }
 
 pub fn run(args: PdfArgs) -> Result<()> {
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating the output directory {}", args.out.display()))?;
+    let out_dir = super::out_dir(args.out.clone(), "pdf")?;
     let (max_pow, reps) = if args.quick { (7, 12) } else { (9, 40) };
     let sizes: Vec<usize> = (2..=max_pow).map(|k| 4usize.pow(k)).collect();
     let z = DVec3::Z;
@@ -218,7 +218,7 @@ pub fn run(args: PdfArgs) -> Result<()> {
             r.variance_per_sample
         )?;
     }
-    let csv_path = args.out.join("pdf.csv");
+    let csv_path = out_dir.join("pdf.csv");
     std::fs::write(&csv_path, csv).with_context(|| format!("writing {}", csv_path.display()))?;
 
     // One plot per integral: RMS error against seconds per estimate.
@@ -240,7 +240,7 @@ pub fn run(args: PdfArgs) -> Result<()> {
                     .collect(),
             })
             .collect();
-        let path = args.out.join(file);
+        let path = out_dir.join(file);
         loglog(
             &path,
             &format!("{integral}: RMS error against time"),

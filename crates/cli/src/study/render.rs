@@ -14,7 +14,7 @@
 //!    assuming RMSE ~ c / sqrt(spp) (fitted on the two largest spp) and time ~ pixels x spp (the
 //!    per-sample cost measured here) -> `DIR/render-600.csv`.
 
-use crate::plot::{Series, loglog};
+use crate::plot::{Panel, Series, image_grid, loglog};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use rayon::prelude::*;
@@ -32,9 +32,10 @@ use std::time::Instant;
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Directory for the CSV, the plots and the cached reference (created if missing).
+    /// Directory for the CSV, the plots and the cached reference (created if missing; default: a
+    /// scratch directory, printed; the book's figures are book/src/figures).
     #[arg(long)]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// Built-in scene to study.
     #[arg(long, default_value = "cornell")]
     pub scene: String,
@@ -51,7 +52,8 @@ pub struct RenderArgs {
     /// the minimum is the least disturbed). Default 2; 1 with --quick.
     #[arg(long)]
     pub repeat: Option<u32>,
-    /// A small, fast look: about a minute.
+    /// A small, fast look: 48x48, a 1024-spp reference, up to 16 spp (about 10 s on 2 cores; the full
+    /// study takes about 3 minutes with the committed reference cached, 10 more to make it).
     #[arg(long)]
     pub quick: bool,
 }
@@ -281,28 +283,9 @@ pub(crate) fn heat(t: f64) -> [u8; 3] {
     ]
 }
 
-/// Panels side by side with a gap, each `scale` times enlarged (nearest neighbour).
-fn side_by_side(path: &Path, panels: &[(usize, usize, Vec<u8>)], scale: usize) -> Result<()> {
-    let gap = 4;
-    let h = panels.iter().map(|p| p.1).max().unwrap_or(1) * scale;
-    let w: usize = panels.iter().map(|p| p.0 * scale + gap).sum::<usize>() - gap;
-    let mut img = image::RgbImage::from_pixel(w as u32, h as u32, image::Rgb([255, 255, 255]));
-    let mut x0 = 0;
-    for (pw, ph, rgb) in panels {
-        for y in 0..ph * scale {
-            for x in 0..pw * scale {
-                let k = 3 * ((y / scale) * pw + x / scale);
-                img.put_pixel(
-                    (x0 + x) as u32,
-                    y as u32,
-                    image::Rgb([rgb[k], rgb[k + 1], rgb[k + 2]]),
-                );
-            }
-        }
-        x0 += pw * scale + gap;
-    }
-    img.save(path)
-        .with_context(|| format!("writing {}", path.display()))
+/// How much to enlarge a picture of `width` pixels so that it is at least 360 pixels wide.
+fn panel_scale(width: usize) -> usize {
+    360usize.div_ceil(width.max(1)).max(2)
 }
 
 /// The crop `[x0, x0 + cw) x [y0, y0 + ch)` of an image as gamma-2 RGB bytes.
@@ -318,6 +301,9 @@ fn crop(img: &[Color], w: usize, (x0, y0, cw, ch): (usize, usize, usize, usize))
 
 struct Row {
     label: String,
+    biased: bool,
+    /// Mean radiance of the image over the reference's, minus 1: a biased strategy's stays away from 0.
+    mean_bias: f64,
     spp: u64,
     seconds: f64,
     rmse: f64,
@@ -326,9 +312,23 @@ struct Row {
     rays_per_sample: f64,
 }
 
+/// Whether a strategy is a biased estimator of the image: `light` samples only towards the importance
+/// targets, so light arriving from anywhere else is never found (its error stops falling, and the
+/// renderer's tests reject it against the unbiased strategies).
+fn biased(s: Strategy) -> bool {
+    matches!(s, Strategy::Light)
+}
+
+/// The label of a strategy in plots and tables: biased ones say so.
+fn shown(label: &str) -> String {
+    match strategies().into_iter().find(|(l, _)| l == label) {
+        Some((_, s)) if biased(s) => format!("{label} (biased: misses indirect light)"),
+        _ => label.to_string(),
+    }
+}
+
 pub fn run(args: RenderArgs) -> Result<()> {
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    let out_dir = super::out_dir(args.out.clone(), "render")?;
     let b = find(&args.scene).map_err(anyhow::Error::msg)?;
     let scene = (b.build)(&Default::default())
         .map_err(|e| anyhow::anyhow!("scene {}: {e}", b.name))?
@@ -350,7 +350,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         bail!("--max-spp {max_spp}: must be a power of 4, at least 16 (16, 64, 256, ...)");
     }
     let threads = rayon::current_num_threads();
-    let reference = reference(&args.out, b.name, &scene, width, ref_spp)?;
+    let reference = reference(&out_dir, b.name, &scene, width, ref_spp)?;
     let mut spps = vec![1u64];
     while spps.last().unwrap() * 4 <= max_spp {
         spps.push(spps.last().unwrap() * 4);
@@ -394,8 +394,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
             let samples = (acc.width * acc.height) as u64 * spp;
             let seconds = best[n];
             eprintln!("{label:>16} {spp:>5} spp {seconds:>8.3} s  RMSE {rmse:.5}");
+            let mean = |v: &[Color]| v.iter().map(|c| c.element_sum()).sum::<f64>();
             rows.push(Row {
                 label: label.clone(),
+                biased: biased(strategy),
+                mean_bias: mean(&img) / mean(&reference) - 1.0,
                 spp,
                 seconds,
                 rmse,
@@ -406,17 +409,25 @@ pub fn run(args: RenderArgs) -> Result<()> {
         }
     }
     let mut csv = String::from(
-        "strategy,spp,seconds,rmse,rel_mse,rmse_display,rays_per_sample,width,height,threads,reference_spp\n",
+        "strategy,spp,seconds,rmse,rel_mse,rmse_display,rays_per_sample,width,height,threads,reference_spp,biased,mean_bias\n",
     );
     let height = reference.len() / width;
     for r in &rows {
         writeln!(
             csv,
-            "{},{},{:.6},{:.6e},{:.6e},{:.6e},{:.4},{width},{height},{threads},{ref_spp}",
-            r.label, r.spp, r.seconds, r.rmse, r.rel_mse, r.rmse_display, r.rays_per_sample
+            "{},{},{:.6},{:.6e},{:.6e},{:.6e},{:.4},{width},{height},{threads},{ref_spp},{},{:.5}",
+            r.label,
+            r.spp,
+            r.seconds,
+            r.rmse,
+            r.rel_mse,
+            r.rmse_display,
+            r.rays_per_sample,
+            r.biased,
+            r.mean_bias
         )?;
     }
-    std::fs::write(args.out.join("render.csv"), csv)?;
+    std::fs::write(out_dir.join("render.csv"), csv)?;
 
     let labels: Vec<String> = strategies().into_iter().map(|(l, _)| l).collect();
     let series = |filter: &dyn Fn(&str) -> bool| -> Vec<Series> {
@@ -424,7 +435,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             .iter()
             .filter(|l| filter(l))
             .map(|l| Series {
-                label: l.clone(),
+                label: shown(l),
                 points: rows
                     .iter()
                     .filter(|r| &r.label == l)
@@ -434,7 +445,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             .collect()
     };
     loglog(
-        &args.out.join("render-study-rmse-time.png"),
+        &out_dir.join("render-study-rmse-time.png"),
         &format!(
             "{} {width}x{height}: RMSE against a {ref_spp}-spp reference ({threads} threads)",
             b.name
@@ -445,7 +456,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         false,
     )?;
     loglog(
-        &args.out.join("render-study-mis-ablation.png"),
+        &out_dir.join("render-study-mis-ablation.png"),
         &format!("{} {width}x{height}: mis with each extra toggled", b.name),
         "seconds",
         "RMSE (linear radiance)",
@@ -480,8 +491,23 @@ pub fn run(args: RenderArgs) -> Result<()> {
                 .collect();
             (width, height, rgb)
         })
+        .zip(main.iter())
+        .map(|((w, h, rgb), s)| Panel {
+            width: w,
+            height: h,
+            rgb,
+            label: s.name().to_string(),
+        })
         .collect();
-    side_by_side(&args.out.join("render-study-variance.png"), &panels, 2)?;
+    image_grid(
+        &out_dir.join("render-study-variance.png"),
+        &format!(
+            "variance of one sample's luminance per pixel ({heat_spp} spp): log scale, 1e-4 dark to 1e3 bright"
+        ),
+        &panels,
+        panel_scale(width),
+        2,
+    )?;
     let mut vcsv = String::from("strategy,mean_pixel_variance,median_pixel_variance\n");
     for (s, v) in main.iter().zip(&variances) {
         let mut sorted = v.clone();
@@ -494,7 +520,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             sorted[sorted.len() / 2]
         )?;
     }
-    std::fs::write(args.out.join("render-variance.csv"), vcsv)?;
+    std::fs::write(out_dir.join("render-variance.csv"), vcsv)?;
 
     // 4. Crops: the lower half (box, sphere, caustic, floor), at equal spp and at equal time.
     let region = (0, height / 2, width, height / 2);
@@ -503,10 +529,24 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .iter()
         .map(|l| {
             let img = &images.iter().find(|(n, _)| n == l).unwrap().1;
-            (region.2, region.3, crop(img, width, region))
+            Panel {
+                width: region.2,
+                height: region.3,
+                rgb: crop(img, width, region),
+                label: format!("{l}: 16 spp"),
+            }
         })
         .collect();
-    side_by_side(&args.out.join("render-study-equal-spp.png"), &panels, 3)?;
+    image_grid(
+        &out_dir.join("render-study-equal-spp.png"),
+        &format!(
+            "{} {width}x{height}, lower half: equal samples, 16 per pixel",
+            b.name
+        ),
+        &panels,
+        panel_scale(width),
+        2,
+    )?;
     // Equal time: the time mis took for 16 spp (or the largest spp in a quick run); each strategy gets
     // as many samples as fit in it at its measured cost per spp.
     let budget = rows
@@ -524,11 +564,25 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let r = Renderer::new(&scene, settings(width, &scene, 1, strategy));
         let mut acc = r.accumulator();
         r.render_pass(&mut acc, 0, spp, &|| {});
-        panels.push((region.2, region.3, crop(&acc.image(), width, region)));
+        panels.push(Panel {
+            width: region.2,
+            height: region.3,
+            rgb: crop(&acc.image(), width, region),
+            label: format!("{l}: {spp} spp"),
+        });
         writeln!(note, "{l},{spp},{budget:.4}")?;
     }
-    side_by_side(&args.out.join("render-study-equal-time.png"), &panels, 3)?;
-    std::fs::write(args.out.join("render-equal-time.csv"), note)?;
+    image_grid(
+        &out_dir.join("render-study-equal-time.png"),
+        &format!(
+            "{} {width}x{height}, lower half: equal time, {budget:.2} s each (what mis takes for 16 spp)",
+            b.name
+        ),
+        &panels,
+        panel_scale(width),
+        2,
+    )?;
+    std::fs::write(out_dir.join("render-equal-time.csv"), note)?;
 
     // 5. Extrapolation to 600 x 600 and an RMSE of 0.010.
     let target = 0.010;
@@ -552,6 +606,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let per_sample = last.seconds / ((width * height) as f64 * last.spp as f64);
         let spp = (c / target).powi(2).ceil();
         let seconds = per_sample * 600.0 * 600.0 * spp;
+        if last.biased {
+            // its error stops falling: no number of samples reaches the target
+            println!(
+                "{l:>16} {c:>10.4} {:>12} {:>12}   biased: mean radiance {:+.1}% off the reference",
+                "-",
+                "-",
+                100.0 * last.mean_bias
+            );
+            writeln!(table, "{l},{c:.5},biased,biased,{:.4}", per_sample * 1e6)?;
+            continue;
+        }
         println!("{l:>16} {c:>10.4} {spp:>12.0} {seconds:>12.1}");
         writeln!(
             table,
@@ -559,7 +624,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             per_sample * 1e6
         )?;
     }
-    std::fs::write(args.out.join("render-600.csv"), table)?;
-    eprintln!("wrote {}", args.out.display());
+    std::fs::write(out_dir.join("render-600.csv"), table)?;
+    eprintln!("wrote {}", out_dir.display());
     Ok(())
 }

@@ -30,9 +30,10 @@ use std::time::Instant;
 
 #[derive(Args)]
 pub struct SamplingArgs {
-    /// Directory for the CSV and the plots (created if missing).
+    /// Directory for the CSV and the plots (created if missing; default: a scratch directory,
+    /// printed; the book's figures are book/src/figures).
     #[arg(long)]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// Tables only up to N = 10^5 and fewer queries: a look in seconds.
     #[arg(long)]
     pub quick: bool,
@@ -365,8 +366,7 @@ fn summary(rows: &[Row], target: &str, sizes: &[usize]) -> String {
 }
 
 pub fn run(args: SamplingArgs) -> Result<()> {
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    let out_dir = super::out_dir(args.out.clone(), "sampling")?;
     let sizes: Vec<usize> = if args.quick {
         vec![16, 100, 1_000, 10_000, 100_000]
     } else {
@@ -379,16 +379,16 @@ pub fn run(args: SamplingArgs) -> Result<()> {
         eprintln!("target {}", t.name());
         study_target(t, &sizes, queries, &mut rows);
     }
-    let path = args.out.join("sampling.csv");
+    let path = out_dir.join("sampling.csv");
     std::fs::write(&path, csv(&rows)).with_context(|| format!("writing {}", path.display()))?;
-    plots(&rows, &targets, &args.out)?;
+    plots(&rows, &targets, &out_dir)?;
     for t in targets {
         println!("{}", summary(&rows, t.name(), &sizes));
     }
     println!(
         "wrote {} and plots in {}",
         path.display(),
-        args.out.display()
+        out_dir.display()
     );
     Ok(())
 }

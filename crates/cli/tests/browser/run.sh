@@ -27,7 +27,7 @@ cargo build --release -q -p rtl
 # nothing into docs/ and renders no reference.
 refs=$(mktemp -d)
 log=$refs/lab.log
-cp docs/figures/render-reference-cornell-128-*.pfm "$refs/"
+cp book/src/figures/render-reference-cornell-128-*.pfm "$refs/"
 target/release/rtl lab --port 0 --width 128 --reference-dir "$refs" >"$log" 2>&1 &
 pid=$!
 trap 'kill $pid 2>/dev/null; rm -rf "$refs"' EXIT
