@@ -1,5 +1,6 @@
 //! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders.
 
+mod bench_cmd;
 mod merge_cmd;
 mod plot;
 mod progressive;
@@ -27,6 +28,8 @@ enum Command {
     Study(study::StudyArgs),
     /// Merge partial renders (disjoint sample ranges of one scene) into one image.
     Merge(merge_cmd::MergeArgs),
+    /// Compare rtl with the book's C++ and Mitsuba 3 on this machine (`rtl bench compare`).
+    Bench(bench_cmd::BenchArgs),
 }
 
 fn main() {
@@ -35,6 +38,7 @@ fn main() {
         Command::Render(args) => render_cmd::run(args),
         Command::Study(args) => study::run(args),
         Command::Merge(args) => merge_cmd::run(args),
+        Command::Bench(args) => bench_cmd::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");
