@@ -242,8 +242,9 @@ fn compare(a: CompareArgs) -> Result<()> {
     }
     println!();
     println!(
-        "vs book: samples/s per core / time to the target (both as ratios to the book's C++). Times are wall clock of each render \
-         (the process for the book and rtl, `mi.render` for Mitsuba); every image is encoded as the book's write_color does \
+        "vs book: samples/s per core / time to the target (both as ratios to the book's C++). samples/s per core is samples per \
+         second of processor time (user + system, all threads: the process for the book and rtl, `mi.render` for Mitsuba), \
+         the projection assumes that rate on each of the cores; every image is encoded as the book's write_color does \
          (sqrt, clamp, 8 bits) before c is measured. The book's main.cc was patched in a copy under {}.",
         a.scratch.display()
     );
@@ -256,14 +257,47 @@ fn num_cores() -> usize {
         .unwrap_or(1)
 }
 
-/// Runs `cmd`, returning its stdout and the wall-clock seconds; a failure names the command.
-fn timed(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, f64)> {
+/// The processor time (user + system) of this process's waited-for children so far, in seconds:
+/// fields `cutime` and `cstime` of /proc/self/stat, in the kernel's fixed 100 ticks a second.
+fn children_cpu_seconds() -> Option<f64> {
+    children_cpu_of(&std::fs::read_to_string("/proc/self/stat").ok()?)
+}
+
+/// `cutime + cstime` of a /proc/PID/stat line, in seconds.
+fn children_cpu_of(stat: &str) -> Option<f64> {
+    // The command name (field 2) is parenthesised and may hold spaces: count from its end.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // Fields 16 and 17 of the whole line are 14 and 15 after the name (state is field 3).
+    let ticks = fields.get(13)?.parse::<f64>().ok()? + fields.get(14)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Seconds a render took: processor time (all threads, summed) where the system tells it, which a
+/// shared machine's load disturbs far less than the wall clock, else wall-clock time.
+#[derive(Clone, Copy, Debug)]
+struct Took {
+    wall: f64,
+    cpu: Option<f64>,
+}
+
+impl Took {
+    fn seconds(&self) -> f64 {
+        self.cpu.filter(|c| *c > 0.0).unwrap_or(self.wall)
+    }
+}
+
+/// Runs `cmd`, returning its stdout and how long it took; a failure names the command.
+fn timed(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, Took)> {
+    let cpu0 = children_cpu_seconds();
     let start = Instant::now();
     let out = cmd
         .stdin(Stdio::null())
         .output()
         .with_context(|| format!("{what}: could not start {cmd:?}"))?;
-    let secs = start.elapsed().as_secs_f64();
+    let wall = start.elapsed().as_secs_f64();
+    let cpu = cpu0.zip(children_cpu_seconds()).map(|(a, b)| b - a);
+    let secs = Took { wall, cpu };
     if !out.status.success() {
         bail!(
             "{what}: {cmd:?} failed ({}):\n{}",
@@ -300,7 +334,7 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
     let src = String::from_utf8(read(&main_path)?)
         .with_context(|| format!("{} is not UTF-8", main_path.display()))?;
     let mut images = Vec::new();
-    let mut secs = 0.0;
+    let (mut secs, mut wall) = (0.0, 0.0);
     for &seed in &a.seeds {
         let settings = BookSettings {
             width: a.width,
@@ -347,9 +381,10 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
                 a.width
             );
         }
-        eprintln!("  {s:.2} s");
+        eprintln!("  {s:?}");
         images.push(img);
-        secs += s;
+        secs += s.seconds();
+        wall += s.wall;
     }
     let samples = (a.width * a.width) as f64 * a.spp as f64 * 2.0;
     let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
@@ -358,7 +393,9 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
         per_core: samples / secs,
         c,
         mean,
-        note: format!("1 thread, {secs:.1} s for both renders, main.cc patched"),
+        note: format!(
+            "1 thread, {secs:.1} s processor time ({wall:.1} s wall) for both renders, main.cc patched"
+        ),
     })
 }
 
@@ -385,12 +422,14 @@ fn run_mitsuba(a: &CompareArgs, python: &Path, depth: u32) -> Result<Measured> {
         "Mitsuba (is `mitsuba` installed in that Python?)",
     )?;
     let text = String::from_utf8_lossy(&out);
-    let times: Vec<f64> = text
-        .lines()
-        .filter_map(|l| l.split_whitespace().nth(3).and_then(|t| t.parse().ok()))
-        .collect();
-    if times.len() != 2 {
-        bail!("Mitsuba: expected two `seed S seconds T` lines, got:\n{text}");
+    let field = |k: usize| -> Vec<f64> {
+        text.lines()
+            .filter_map(|l| l.split_whitespace().nth(k).and_then(|t| t.parse().ok()))
+            .collect()
+    };
+    let (times, cpu) = (field(3), field(5));
+    if times.len() != 2 || cpu.len() != 2 {
+        bail!("Mitsuba: expected two `seed S seconds T cpu C` lines, got:\n{text}");
     }
     let mut images = Vec::new();
     for &seed in &a.seeds {
@@ -402,12 +441,12 @@ fn run_mitsuba(a: &CompareArgs, python: &Path, depth: u32) -> Result<Measured> {
     let samples = (a.width * a.width) as f64 * a.spp as f64;
     Ok(Measured {
         name: format!("Mitsuba {}", a.mitsuba_variant),
-        per_core: samples / times[1] / a.threads as f64,
+        per_core: samples / cpu[1],
         c,
         mean,
         note: format!(
-            "{} threads, path (max_depth {depth}), {:.1} s with kernel compilation, {:.1} s without",
-            a.threads, times[0], times[1]
+            "{} threads, path (max_depth {depth}), second render {:.1} s processor time ({:.1} s wall; the first, compiling its kernels, {:.1} s wall)",
+            a.threads, cpu[1], times[1], times[0]
         ),
     })
 }
@@ -424,7 +463,7 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
         CompareScene::Book2Final => "book2-final",
     };
     let mut images = Vec::new();
-    let mut secs = 0.0;
+    let (mut secs, mut wall) = (0.0, 0.0);
     for &seed in &a.seeds {
         let png = dir.join(format!("{scene}-{strategy}-{seed}.png"));
         let pfm = dir.join(format!("{scene}-{strategy}-{seed}.pfm"));
@@ -452,17 +491,37 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
         }
         eprintln!("running rtl --strategy {strategy}, seed {seed}");
         let (_, s) = timed(&mut cmd, "rtl render")?;
-        eprintln!("  {s:.2} s");
-        secs += s;
+        eprintln!("  {s:?}");
+        secs += s.seconds();
+        wall += s.wall;
         images.push(parse_pfm(&read(&pfm)?, &pfm.display().to_string())?);
     }
     let samples = (a.width * a.width) as f64 * a.spp as f64 * 2.0;
     let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
     Ok(Measured {
         name: format!("rtl --strategy {strategy}"),
-        per_core: samples / secs / a.threads as f64,
+        per_core: samples / secs,
         c,
         mean,
-        note: format!("{} threads, {secs:.1} s for both renders", a.threads),
+        note: format!(
+            "{} threads, {secs:.1} s processor time ({wall:.1} s wall) for both renders",
+            a.threads
+        ),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn children_cpu_time_is_read_past_the_command_name() {
+        // pid (comm) state ppid pgrp session tty tpgid flags minflt cminflt majflt cmajflt utime stime
+        // cutime cstime ...
+        let line = "42 (rtl (x) y) S 1 42 42 0 -1 4194304 10 20 0 0 7 3 250 50 20 0 1 0";
+        assert_eq!(children_cpu_of(line), Some(3.0));
+        assert_eq!(children_cpu_of("42 (rtl) S 1"), None);
+        let now = children_cpu_seconds().expect("Linux has /proc/self/stat");
+        assert!(now >= 0.0);
+    }
 }

@@ -4,8 +4,9 @@
 # usage: python cornell_mitsuba.py VARIANT WIDTH SPP MAX_DEPTH THREADS OUT_PREFIX SEED [SEED ...]
 #
 # Writes OUT_PREFIX-SEED.pfm (linear RGB, the standard colour PFM, rows bottom-to-top) for each seed
-# and prints one line `seed S seconds T` per render: T is the wall clock of `mi.render` plus the
-# evaluation of its result (the first render of a process also compiles Mitsuba's kernels).
+# and prints one line `seed S seconds T cpu C` per render: T is the wall clock of `mi.render` plus the
+# evaluation of its result, C the processor time of the process (all threads) meanwhile (the first
+# render of a process also compiles Mitsuba's kernels).
 import struct
 import sys
 import time
@@ -106,10 +107,10 @@ def write_pfm(path, rgb):
 
 
 for seed in seeds:
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     image = mi.render(scene, seed=seed, spp=spp)
     dr.eval(image)
     rgb = np.array(image, dtype=np.float32)[:, :, :3]
-    seconds = time.perf_counter() - start
+    seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
     write_pfm("%s-%d.pfm" % (prefix, seed), rgb)
-    print("seed %d seconds %.6f" % (seed, seconds), flush=True)
+    print("seed %d seconds %.6f cpu %.6f" % (seed, seconds, cpu), flush=True)
