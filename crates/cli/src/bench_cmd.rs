@@ -524,4 +524,46 @@ mod tests {
         let now = children_cpu_seconds().expect("Linux has /proc/self/stat");
         assert!(now >= 0.0);
     }
+
+    fn parse(args: &[&str]) -> CompareArgs {
+        #[derive(clap::Parser)]
+        struct Cli {
+            #[command(flatten)]
+            compare: CompareArgs,
+        }
+        let mut all = vec!["compare"];
+        all.extend(args);
+        <Cli as clap::Parser>::try_parse_from(all).unwrap().compare
+    }
+
+    #[test]
+    fn bad_settings_are_refused_before_any_work() {
+        let err = |args: &[&str]| validate(&parse(args)).unwrap_err().to_string();
+        assert!(err(&[]).contains("--target-rmse is needed"));
+        assert!(err(&["--target-rmse", "0"]).contains("--target-rmse must be positive"));
+        assert!(err(&["--target-rmse", "0.01", "--seeds", "3,3"]).contains("--seeds"));
+        assert!(err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]).contains("`fast`"));
+        assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
+        let dir = std::env::temp_dir().join("rtl-bench-no-book");
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = err(&["--book", dir.to_str().unwrap()]);
+        assert!(e.contains("src/TheRestOfYourLife/main.cc"), "{e}");
+        // A checkout that looks like the book's, with a spp the book cannot stratify.
+        let main = dir.join("src/TheRestOfYourLife");
+        std::fs::create_dir_all(&main).unwrap();
+        std::fs::write(main.join("main.cc"), "int main() {}\n").unwrap();
+        let e = err(&["--book", dir.to_str().unwrap(), "--spp", "20"]);
+        assert!(e.contains("--spp 20"), "{e}");
+        assert!(validate(&parse(&["--book", dir.to_str().unwrap(), "--spp", "16"])).is_ok());
+        let e = err(&[
+            "--target-rmse",
+            "0.01",
+            "--scene",
+            "book2-final",
+            "--mitsuba",
+            "python3",
+        ]);
+        assert!(e.contains("only the cornell scene"), "{e}");
+        assert!(validate(&parse(&["--target-rmse", "0.01"])).is_ok());
+    }
 }
