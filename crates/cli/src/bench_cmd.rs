@@ -544,7 +544,8 @@ mod tests {
         assert!(err(&["--target-rmse", "0.01", "--seeds", "3,3"]).contains("--seeds"));
         assert!(err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]).contains("`fast`"));
         assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
-        let dir = std::env::temp_dir().join("rtl-bench-no-book");
+        let dir = std::env::temp_dir().join(format!("rtl-bench-no-book-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let e = err(&["--book", dir.to_str().unwrap()]);
         assert!(e.contains("src/TheRestOfYourLife/main.cc"), "{e}");
@@ -565,5 +566,6 @@ mod tests {
         ]);
         assert!(e.contains("only the cornell scene"), "{e}");
         assert!(validate(&parse(&["--target-rmse", "0.01"])).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
