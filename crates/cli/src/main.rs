@@ -1,6 +1,7 @@
 //! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders, and
 //! watch it all converge live in the lab.
 
+mod bench_cmd;
 mod lab;
 mod merge_cmd;
 mod plot;
@@ -29,6 +30,8 @@ enum Command {
     Study(study::StudyArgs),
     /// Merge partial renders (disjoint sample ranges of one scene) into one image.
     Merge(merge_cmd::MergeArgs),
+    /// Compare rtl with the book's C++ and Mitsuba 3 on this machine (`rtl bench compare`).
+    Bench(bench_cmd::BenchArgs),
     /// A local web page: watch estimators, samplers and the Cornell box converge, switch strategies live.
     Lab(lab::LabArgs),
 }
@@ -39,6 +42,7 @@ fn main() {
         Command::Render(args) => render_cmd::run(args),
         Command::Study(args) => study::run(args),
         Command::Merge(args) => merge_cmd::run(args),
+        Command::Bench(args) => bench_cmd::run(args),
         Command::Lab(args) => lab::run(args),
     };
     if let Err(err) = result {

@@ -37,6 +37,7 @@ pub mod scene_file;
 pub mod scenes;
 pub mod shapes;
 pub mod texture;
+pub mod traversal;
 pub mod vec;
 
 pub use vec::{Color, Point3, Vec3};

@@ -1,0 +1,571 @@
+//! `rtl bench compare`: the book's C++, Mitsuba 3 (optionally) and `rtl` run one after another on
+//! the same scene settings, each measured for speed (samples per second per core) and noise per
+//! sample (the noise constant `c = RMSE sqrt(spp)`, from two seeds), and projected to the time each
+//! needs for a given per-pixel noise. Only ratios from one run on one machine are figures to quote.
+
+mod book_cpp;
+mod noise;
+
+use anyhow::{Context, Result, bail};
+use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
+use clap::{Args, Subcommand, ValueEnum};
+use noise::{DisplayImage, noise_constant, parse_pfm, parse_ppm, seconds_to};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+#[derive(Args)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    command: BenchCommand,
+}
+
+#[derive(Subcommand)]
+enum BenchCommand {
+    /// Compare rtl with the book's C++ (and Mitsuba 3) side by side on this machine.
+    Compare(CompareArgs),
+}
+
+/// The scenes all the renderers have.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CompareScene {
+    /// Book 3's final Cornell box (the book's src/TheRestOfYourLife/main.cc).
+    Cornell,
+    /// Book 2's final scene (the book's src/TheNextWeek/main.cc, `final_scene`); no Mitsuba scene.
+    Book2Final,
+}
+
+#[derive(Args)]
+pub struct CompareArgs {
+    /// A checkout of RayTracing/raytracing.github.io: its program is built with `g++ -O3` from a
+    /// patched copy in the scratch directory (width, spp, depth and a seed set in the copy's main.cc).
+    #[arg(long, value_name = "DIR")]
+    book: Option<PathBuf>,
+    /// A Python with the `mitsuba` package: Mitsuba's path tracer renders the same Cornell box.
+    #[arg(long, value_name = "PYTHON")]
+    mitsuba: Option<PathBuf>,
+    /// Mitsuba variant.
+    #[arg(long, default_value = "llvm_ad_rgb")]
+    mitsuba_variant: String,
+    #[arg(long, value_enum, default_value = "cornell")]
+    scene: CompareScene,
+    /// Image width (the images are square).
+    #[arg(long, default_value_t = 600)]
+    width: usize,
+    /// Samples per pixel of each measured render (a square for the book's stratified Cornell box).
+    #[arg(long, default_value_t = 16)]
+    spp: u64,
+    /// Most ray segments per path (the book's `max_depth`): 50 for cornell, 40 for book2-final.
+    #[arg(long)]
+    max_depth: Option<u32>,
+    /// rtl strategies to measure, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "mixture,mis")]
+    strategy: Vec<String>,
+    /// Threads for rtl and Mitsuba (the book's program has one); rates are divided by it.
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Cores the projected times are for (at that many times the per-core rate).
+    #[arg(long, default_value_t = 2)]
+    cores: usize,
+    /// The per-pixel RMSE (display values, gamma 2) to project to; default: the book's noise at
+    /// `--target-book-spp`.
+    #[arg(long)]
+    target_rmse: Option<f64>,
+    /// The book's samples per pixel whose noise is the target (when `--target-rmse` is not given).
+    #[arg(long, default_value_t = 1000)]
+    target_book_spp: u64,
+    /// The two seeds of each renderer's pair of renders.
+    #[arg(long, value_delimiter = ',', default_values_t = [1u32, 2])]
+    seeds: Vec<u32>,
+    /// The rtl binary to time (default: this one), e.g. a build of another commit.
+    #[arg(long)]
+    rtl: Option<PathBuf>,
+    /// Where the patched copy, the builds and the images go.
+    #[arg(long, default_value = "target/bench-compare")]
+    scratch: PathBuf,
+}
+
+/// One renderer's measurement.
+struct Measured {
+    name: String,
+    /// Samples per second on one core.
+    per_core: f64,
+    c: f64,
+    mean: f64,
+    note: String,
+}
+
+pub fn run(args: BenchArgs) -> Result<()> {
+    match args.command {
+        BenchCommand::Compare(a) => compare(a),
+    }
+}
+
+/// The processor's model name, from /proc/cpuinfo.
+fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown (no /proc/cpuinfo)".into())
+}
+
+fn validate(a: &CompareArgs) -> Result<()> {
+    if a.width == 0 || a.spp == 0 || a.threads == 0 || a.cores == 0 {
+        bail!("--width, --spp, --threads and --cores must be positive");
+    }
+    if a.seeds.len() != 2 || a.seeds[0] == a.seeds[1] {
+        bail!("--seeds: give two different seeds, got {:?}", a.seeds);
+    }
+    if let Some(t) = a.target_rmse
+        && !(t > 0.0 && t.is_finite())
+    {
+        bail!("--target-rmse must be positive, got {t}");
+    }
+    if a.target_rmse.is_none() && a.book.is_none() {
+        bail!("--target-rmse is needed when the book's code is not run (no --book)");
+    }
+    if let Some(book) = &a.book {
+        let program = program(a.scene);
+        let main = book.join(program.dir()).join("main.cc");
+        if !main.is_file() {
+            bail!(
+                "--book {}: no {} (expected a checkout of RayTracing/raytracing.github.io)",
+                book.display(),
+                main.display()
+            );
+        }
+        if samples_taken(program, a.spp) != a.spp {
+            bail!(
+                "--spp {}: the book's Cornell box stratifies into a square number of samples; give a square (16, 64, ...)",
+                a.spp
+            );
+        }
+    }
+    if a.mitsuba.is_some() && a.scene != CompareScene::Cornell {
+        bail!("--mitsuba: only the cornell scene is written for Mitsuba");
+    }
+    for s in &a.strategy {
+        if !["uniform", "cosine", "light", "mixture", "mis"].contains(&s.as_str()) {
+            bail!("--strategy: unknown strategy `{s}` (uniform, cosine, light, mixture, mis)");
+        }
+    }
+    Ok(())
+}
+
+fn program(scene: CompareScene) -> BookProgram {
+    match scene {
+        CompareScene::Cornell => BookProgram::Cornell,
+        CompareScene::Book2Final => BookProgram::Book2Final,
+    }
+}
+
+fn compare(a: CompareArgs) -> Result<()> {
+    validate(&a)?;
+    let depth = a.max_depth.unwrap_or(match a.scene {
+        CompareScene::Cornell => 50,
+        CompareScene::Book2Final => 40,
+    });
+    std::fs::create_dir_all(&a.scratch)
+        .with_context(|| format!("--scratch {}: cannot create it", a.scratch.display()))?;
+    let cpu = cpu_model();
+    println!("CPU: {cpu} ({} logical cores)", num_cores());
+    println!(
+        "scene {:?}, {w}x{w}, {} spp per render, max depth {depth}, seeds {:?}, rtl/Mitsuba threads {}",
+        a.scene,
+        a.spp,
+        a.seeds,
+        a.threads,
+        w = a.width
+    );
+    let mut rows = Vec::new();
+    let mut book_c = None;
+    if let Some(book) = &a.book {
+        let m = run_book(&a, book, depth)?;
+        book_c = Some(m.c);
+        rows.push(m);
+    }
+    if let Some(py) = &a.mitsuba {
+        rows.push(run_mitsuba(&a, py, depth)?);
+    }
+    for s in &a.strategy {
+        rows.push(run_rtl(&a, s, depth)?);
+    }
+    let target = match (a.target_rmse, book_c) {
+        (Some(t), _) => t,
+        (None, Some(c)) => c / (a.target_book_spp as f64).sqrt(),
+        (None, None) => unreachable!("validated"),
+    };
+    let pixels = a.width * a.width;
+    println!();
+    println!(
+        "target: per-pixel RMSE {target:.5} (display values, gamma 2){}",
+        if a.target_rmse.is_none() {
+            format!(", the book's C++ at {} spp", a.target_book_spp)
+        } else {
+            String::new()
+        }
+    );
+    println!(
+        "{:<22} {:>14} {:>8} {:>8} {:>11} {:>14} {:>10}  note",
+        "renderer",
+        "samples/s/core",
+        "c",
+        "mean",
+        "spp needed",
+        format!("s on {} cores", a.cores),
+        "vs book"
+    );
+    let book_rate = a.book.as_ref().map(|_| rows[0].per_core);
+    let book_secs = book_rate.map(|r| seconds_to(rows[0].c, target, pixels, r, a.cores));
+    for m in &rows {
+        let secs = seconds_to(m.c, target, pixels, m.per_core, a.cores);
+        let vs = match (book_rate, book_secs) {
+            (Some(r), Some(s)) => format!("{:.2}x/{:.1}x", m.per_core / r, s / secs),
+            _ => "-".into(),
+        };
+        println!(
+            "{:<22} {:>14.0} {:>8.4} {:>8.4} {:>11.0} {:>14.1} {:>10}  {}",
+            m.name,
+            m.per_core,
+            m.c,
+            m.mean,
+            noise::spp_to(m.c, target),
+            secs,
+            vs,
+            m.note
+        );
+    }
+    println!();
+    println!(
+        "vs book: samples/s per core / time to the target (both as ratios to the book's C++). samples/s per core is samples per \
+         second of processor time (user + system, all threads: the process for the book and rtl, `mi.render` for Mitsuba), \
+         the projection assumes that rate on each of the cores; every image is encoded as the book's write_color does \
+         (sqrt, clamp, 8 bits) before c is measured. The book's main.cc was patched in a copy under {}.",
+        a.scratch.display()
+    );
+    Ok(())
+}
+
+fn num_cores() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+}
+
+/// The processor time (user + system) of this process's waited-for children so far, in seconds:
+/// fields `cutime` and `cstime` of /proc/self/stat, in the kernel's fixed 100 ticks a second.
+fn children_cpu_seconds() -> Option<f64> {
+    children_cpu_of(&std::fs::read_to_string("/proc/self/stat").ok()?)
+}
+
+/// `cutime + cstime` of a /proc/PID/stat line, in seconds.
+fn children_cpu_of(stat: &str) -> Option<f64> {
+    // The command name (field 2) is parenthesised and may hold spaces: count from its end.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // Fields 16 and 17 of the whole line are 14 and 15 after the name (state is field 3).
+    let ticks = fields.get(13)?.parse::<f64>().ok()? + fields.get(14)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Seconds a render took: processor time (all threads, summed) where the system tells it, which a
+/// shared machine's load disturbs far less than the wall clock, else wall-clock time.
+#[derive(Clone, Copy, Debug)]
+struct Took {
+    wall: f64,
+    cpu: Option<f64>,
+}
+
+impl Took {
+    fn seconds(&self) -> f64 {
+        self.cpu.filter(|c| *c > 0.0).unwrap_or(self.wall)
+    }
+}
+
+/// Runs `cmd`, returning its stdout and how long it took; a failure names the command.
+fn timed(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, Took)> {
+    let cpu0 = children_cpu_seconds();
+    let start = Instant::now();
+    let out = cmd
+        .stdin(Stdio::null())
+        .output()
+        .with_context(|| format!("{what}: could not start {cmd:?}"))?;
+    let wall = start.elapsed().as_secs_f64();
+    let cpu = cpu0.zip(children_cpu_seconds()).map(|(a, b)| b - a);
+    let secs = Took { wall, cpu };
+    if !out.status.success() {
+        bail!(
+            "{what}: {cmd:?} failed ({}):\n{}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+                .lines()
+                .rev()
+                .take(20)
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev()
+                .collect::<Vec<_>>()
+                .join("\n")
+        );
+    }
+    Ok((out.stdout, secs))
+}
+
+fn read(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+fn pair_constant(a: &DisplayImage, b: &DisplayImage, spp: u64) -> Result<(f64, f64)> {
+    let c = noise_constant(a, b, spp)?;
+    Ok((c, 0.5 * (a.mean() + b.mean())))
+}
+
+fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
+    let program = program(a.scene);
+    let src_dir = book.join(program.dir());
+    let dir = a.scratch.join("book");
+    std::fs::create_dir_all(&dir)?;
+    let main_path = src_dir.join("main.cc");
+    let src = String::from_utf8(read(&main_path)?)
+        .with_context(|| format!("{} is not UTF-8", main_path.display()))?;
+    let mut images = Vec::new();
+    let (mut secs, mut wall) = (0.0, 0.0);
+    for &seed in &a.seeds {
+        let settings = BookSettings {
+            width: a.width,
+            spp: a.spp,
+            max_depth: depth,
+            seed,
+        };
+        let patched = patch_main(&src, &main_path.display().to_string(), program, &settings)?;
+        let cc = dir.join(format!("main-{seed}.cc"));
+        std::fs::write(&cc, patched)?;
+        let exe = dir.join(format!("book-{seed}"));
+        eprintln!("building the book's program: g++ -O3 {}", cc.display());
+        timed(
+            Command::new("g++")
+                .arg("-O3")
+                // The book's headers are read from the checkout, not copied.
+                .arg("-I")
+                .arg(&src_dir)
+                .arg("-I")
+                .arg(book.join("src"))
+                .arg("-o")
+                .arg(&exe)
+                .arg(&cc),
+            "g++ (is it installed?)",
+        )?;
+        eprintln!("running the book's program, seed {seed}");
+        let (ppm, s) = timed(
+            Command::new(&exe)
+                .current_dir(&dir)
+                .env("RTW_IMAGES", book.join("images"))
+                .stderr(Stdio::null()),
+            "the book's program",
+        )?;
+        let ppm_path = dir.join(format!("book-{seed}.ppm"));
+        std::fs::write(&ppm_path, &ppm)?;
+        let img = parse_ppm(&ppm, &ppm_path.display().to_string())?;
+        if (img.width, img.height) != (a.width, a.width) {
+            bail!(
+                "{}: the book's program wrote {}x{}, expected {}x{}",
+                ppm_path.display(),
+                img.width,
+                img.height,
+                a.width,
+                a.width
+            );
+        }
+        eprintln!("  {s:?}");
+        images.push(img);
+        secs += s.seconds();
+        wall += s.wall;
+    }
+    let samples = (a.width * a.width) as f64 * a.spp as f64 * 2.0;
+    let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
+    Ok(Measured {
+        name: "book C++ (g++ -O3)".into(),
+        per_core: samples / secs,
+        c,
+        mean,
+        note: format!(
+            "1 thread, {secs:.1} s processor time ({wall:.1} s wall) for both renders, main.cc patched"
+        ),
+    })
+}
+
+fn run_mitsuba(a: &CompareArgs, python: &Path, depth: u32) -> Result<Measured> {
+    let dir = a.scratch.join("mitsuba");
+    std::fs::create_dir_all(&dir)?;
+    let script = dir.join("cornell_mitsuba.py");
+    std::fs::write(&script, include_str!("bench_cmd/cornell_mitsuba.py"))?;
+    eprintln!(
+        "running Mitsuba ({}), seeds {:?}",
+        a.mitsuba_variant, a.seeds
+    );
+    let prefix = dir.join("mitsuba");
+    let (out, _) = timed(
+        Command::new(python)
+            .arg(&script)
+            .arg(&a.mitsuba_variant)
+            .arg(a.width.to_string())
+            .arg(a.spp.to_string())
+            .arg(depth.to_string())
+            .arg(a.threads.to_string())
+            .arg(&prefix)
+            .args(a.seeds.iter().map(|s| s.to_string())),
+        "Mitsuba (is `mitsuba` installed in that Python?)",
+    )?;
+    let text = String::from_utf8_lossy(&out);
+    let field = |k: usize| -> Vec<f64> {
+        text.lines()
+            .filter_map(|l| l.split_whitespace().nth(k).and_then(|t| t.parse().ok()))
+            .collect()
+    };
+    let (times, cpu) = (field(3), field(5));
+    if times.len() != 2 || cpu.len() != 2 {
+        bail!("Mitsuba: expected two `seed S seconds T cpu C` lines, got:\n{text}");
+    }
+    let mut images = Vec::new();
+    for &seed in &a.seeds {
+        let path = PathBuf::from(format!("{}-{seed}.pfm", prefix.display()));
+        images.push(parse_pfm(&read(&path)?, &path.display().to_string())?);
+    }
+    let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
+    // The first render compiles the kernels: the second one is the rate.
+    let samples = (a.width * a.width) as f64 * a.spp as f64;
+    Ok(Measured {
+        name: format!("Mitsuba {}", a.mitsuba_variant),
+        per_core: samples / cpu[1],
+        c,
+        mean,
+        note: format!(
+            "{} threads, path (max_depth {depth}), second render {:.1} s processor time ({:.1} s wall; the first, compiling its kernels, {:.1} s wall)",
+            a.threads, cpu[1], times[1], times[0]
+        ),
+    })
+}
+
+fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
+    let exe = match &a.rtl {
+        Some(p) => p.clone(),
+        None => std::env::current_exe().context("cannot find the rtl binary itself")?,
+    };
+    let dir = a.scratch.join("rtl");
+    std::fs::create_dir_all(&dir)?;
+    let scene = match a.scene {
+        CompareScene::Cornell => "cornell",
+        CompareScene::Book2Final => "book2-final",
+    };
+    let mut images = Vec::new();
+    let (mut secs, mut wall) = (0.0, 0.0);
+    for &seed in &a.seeds {
+        let png = dir.join(format!("{scene}-{strategy}-{seed}.png"));
+        let pfm = dir.join(format!("{scene}-{strategy}-{seed}.pfm"));
+        let mut cmd = Command::new(&exe);
+        cmd.arg("render")
+            .arg(scene)
+            .args(["--width", &a.width.to_string()])
+            .args(["--spp", &a.spp.to_string()])
+            .args(["--max-depth", &depth.to_string()])
+            .args(["--seed", &seed.to_string()])
+            .args(["--threads", &a.threads.to_string()])
+            .args(["--strategy", strategy])
+            .arg("-o")
+            .arg(&png)
+            .arg("--linear")
+            .arg(&pfm)
+            .stdout(Stdio::null());
+        if a.scene == CompareScene::Book2Final
+            && let Some(book) = &a.book
+        {
+            let earth = book.join("images/earthmap.jpg");
+            if earth.is_file() {
+                cmd.arg("--texture").arg(earth);
+            }
+        }
+        eprintln!("running rtl --strategy {strategy}, seed {seed}");
+        let (_, s) = timed(&mut cmd, "rtl render")?;
+        eprintln!("  {s:?}");
+        secs += s.seconds();
+        wall += s.wall;
+        images.push(parse_pfm(&read(&pfm)?, &pfm.display().to_string())?);
+    }
+    let samples = (a.width * a.width) as f64 * a.spp as f64 * 2.0;
+    let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
+    Ok(Measured {
+        name: format!("rtl --strategy {strategy}"),
+        per_core: samples / secs,
+        c,
+        mean,
+        note: format!(
+            "{} threads, {secs:.1} s processor time ({wall:.1} s wall) for both renders",
+            a.threads
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn children_cpu_time_is_read_past_the_command_name() {
+        // pid (comm) state ppid pgrp session tty tpgid flags minflt cminflt majflt cmajflt utime stime
+        // cutime cstime ...
+        let line = "42 (rtl (x) y) S 1 42 42 0 -1 4194304 10 20 0 0 7 3 250 50 20 0 1 0";
+        assert_eq!(children_cpu_of(line), Some(3.0));
+        assert_eq!(children_cpu_of("42 (rtl) S 1"), None);
+        let now = children_cpu_seconds().expect("Linux has /proc/self/stat");
+        assert!(now >= 0.0);
+    }
+
+    fn parse(args: &[&str]) -> CompareArgs {
+        #[derive(clap::Parser)]
+        struct Cli {
+            #[command(flatten)]
+            compare: CompareArgs,
+        }
+        let mut all = vec!["compare"];
+        all.extend(args);
+        <Cli as clap::Parser>::try_parse_from(all).unwrap().compare
+    }
+
+    #[test]
+    fn bad_settings_are_refused_before_any_work() {
+        let err = |args: &[&str]| validate(&parse(args)).unwrap_err().to_string();
+        assert!(err(&[]).contains("--target-rmse is needed"));
+        assert!(err(&["--target-rmse", "0"]).contains("--target-rmse must be positive"));
+        assert!(err(&["--target-rmse", "0.01", "--seeds", "3,3"]).contains("--seeds"));
+        assert!(err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]).contains("`fast`"));
+        assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
+        let dir = std::env::temp_dir().join(format!("rtl-bench-no-book-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = err(&["--book", dir.to_str().unwrap()]);
+        assert!(e.contains("src/TheRestOfYourLife/main.cc"), "{e}");
+        // A checkout that looks like the book's, with a spp the book cannot stratify.
+        let main = dir.join("src/TheRestOfYourLife");
+        std::fs::create_dir_all(&main).unwrap();
+        std::fs::write(main.join("main.cc"), "int main() {}\n").unwrap();
+        let e = err(&["--book", dir.to_str().unwrap(), "--spp", "20"]);
+        assert!(e.contains("--spp 20"), "{e}");
+        assert!(validate(&parse(&["--book", dir.to_str().unwrap(), "--spp", "16"])).is_ok());
+        let e = err(&[
+            "--target-rmse",
+            "0.01",
+            "--scene",
+            "book2-final",
+            "--mitsuba",
+            "python3",
+        ]);
+        assert!(e.contains("only the cornell scene"), "{e}");
+        assert!(validate(&parse(&["--target-rmse", "0.01"])).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

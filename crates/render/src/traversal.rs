@@ -1,0 +1,336 @@
+//! Tracing a ray through a scene: each group's binary BVH ([`crate::bvh`]) collapsed to 4-wide nodes
+//! whose leaves hold quads in packets of four ([`Accel`]), and the closest-hit traversal over them,
+//! through instances (the ray moved into the group's frame) and constant media.
+
+use crate::bvh::{Bvh, Bvh4, EMPTY, LEAF};
+use crate::hit::{Hit, REL_ERROR};
+use crate::ray::{Interval, Ray};
+use crate::sampler::Ctx;
+use crate::scene::{ConstantMedium, GroupId, Object, Scene, Transform};
+use crate::shapes::{Quad, Quad4};
+use crate::vec::Vec3;
+use std::mem::MaybeUninit;
+
+/// The traversal form of a group: [`Bvh4`] nodes whose leaves are [`LeafItems`].
+#[derive(Clone, Debug, Default)]
+pub struct Accel {
+    pub tree: Bvh4,
+    /// Per leaf of `tree`: its quad packets and its other objects.
+    pub leaves: Vec<LeafItems>,
+    pub packets: Vec<Quad4>,
+    /// Indices into the group's objects of the objects that are not quads.
+    pub others: Vec<u32>,
+}
+
+/// A leaf's quads (`packets[packets.0 .. packets.0 + packets.1]`) and other objects (likewise in
+/// `others`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LeafItems {
+    pub packets: (u32, u32),
+    pub others: (u32, u32),
+}
+
+impl Accel {
+    /// The traversal form of `objects` (in leaf order of `bvh`).
+    pub fn new(objects: &[Object], bvh: &Bvh) -> Accel {
+        let tree = Bvh4::from_binary(bvh);
+        let mut accel = Accel::default();
+        for leaf in &tree.leaves {
+            let range = leaf.first as usize..(leaf.first + leaf.count) as usize;
+            let quads: Vec<(Quad, u32)> = range
+                .clone()
+                .filter_map(|i| match objects[i] {
+                    Object::Quad(q) => Some((q, i as u32)),
+                    _ => None,
+                })
+                .collect();
+            let p0 = accel.packets.len() as u32;
+            accel
+                .packets
+                .extend(quads.chunks(crate::bvh::PACKET).map(Quad4::new));
+            let o0 = accel.others.len() as u32;
+            accel.others.extend(
+                range
+                    .filter(|&i| !matches!(objects[i], Object::Quad(_)))
+                    .map(|i| i as u32),
+            );
+            accel.leaves.push(LeafItems {
+                packets: (p0, accel.packets.len() as u32 - p0),
+                others: (o0, accel.others.len() as u32 - o0),
+            });
+        }
+        accel.tree = tree;
+        accel
+    }
+}
+
+impl Scene {
+    /// The closest hit along `ray` at `t > 0`.
+    #[inline]
+    pub fn hit(&self, ray: &Ray, ctx: &mut Ctx) -> Option<Hit> {
+        self.hit_group(GroupId(0), ray, Interval::FORWARD, ctx)
+    }
+
+    /// The closest hit in group `g` with `t` in the open interval `range`: iterative traversal of the
+    /// 4-wide BVH, nearest child first, skipping any child whose box the ray enters beyond the closest
+    /// hit so far. Quads are tested four at a time and only the closest hit's record is built.
+    ///
+    /// On x86-64 processors with AVX2 (detected at run time) the same code is compiled for 4-wide
+    /// vectors and the quad packets use [`Quad4::hit_avx`]; rounding is identical (no fused
+    /// multiply-adds are formed), so the hits are too.
+    #[inline]
+    pub fn hit_group(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, checked just above.
+            return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
+        }
+        self.hit_group_portable(g, ray, range, ctx)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn hit_group_avx2(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        self.hit_group_with::<true>(g, ray, range, ctx)
+    }
+
+    /// [`Scene::hit_group`] as processors without AVX2 run it (the quad packets lane by lane), on any
+    /// processor, for group `g` itself (groups nested in it go through [`Scene::hit_group`]): the tests
+    /// check that both paths find the same hits.
+    pub fn hit_group_portable(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        self.hit_group_with::<false>(g, ray, range, ctx)
+    }
+
+    /// The traversal, its quad packets tested with AVX instructions if `AVX` (only ever set where the
+    /// processor has them) and lane by lane otherwise.
+    #[inline(always)]
+    fn hit_group_with<const AVX: bool>(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let group = &self.groups[g.0 as usize];
+        if let [only] = &group.objects[..] {
+            // A medium's boundary, say: its box would cost as much as the object.
+            return self.hit_object(only, ray, range, ctx);
+        }
+        let accel = &group.accel;
+        let nodes = &accel.tree.nodes;
+        if nodes.is_empty() {
+            return None;
+        }
+        let inv = ray.direction.recip();
+        let origin = ray.origin.to_array();
+        let inv = inv.to_array();
+        // From the reciprocal, so that a direction component of -0 counts as negative.
+        let neg = [inv[0] < 0.0, inv[1] < 0.0, inv[2] < 0.0];
+        let mut closest = range.max;
+        // The closest hit so far: a quad (packet, lane, alpha, beta) whose record is not built yet,
+        // or another object's record.
+        let mut best_quad: Option<(u32, usize, f64, f64)> = None;
+        let mut best_other: Option<Hit> = None;
+        // Stacked children and their entry parameters. Left uninitialised (clearing them costs as much
+        // as a box test): only the entries below `sp` are ever read, and each was written when pushed.
+        let mut stack = [MaybeUninit::<u32>::uninit(); 64];
+        let mut stack_near = [MaybeUninit::<f64>::uninit(); 64];
+        let mut sp = 0usize;
+        let mut next = 0u32;
+        let mut next_near = range.min;
+        loop {
+            if next_near <= closest {
+                if next & LEAF == 0 {
+                    let n = &nodes[next as usize];
+                    let (near, mask) = Bvh4::hit_children(n, origin, inv, neg, range.min, closest);
+                    // Push the children hit, farthest first, so the nearest is visited next.
+                    let base = sp;
+                    let mut m = mask;
+                    while m != 0 {
+                        let i = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        let (child, t) = (n.child[i], near[i]);
+                        // Insertion into the pushed run, kept sorted by decreasing entry.
+                        let mut j = sp;
+                        while j > base {
+                            // SAFETY: base <= j - 1 < sp, and every entry below sp was written.
+                            let (below, below_near) = unsafe {
+                                (stack[j - 1].assume_init(), stack_near[j - 1].assume_init())
+                            };
+                            if below_near >= t {
+                                break;
+                            }
+                            stack[j].write(below);
+                            stack_near[j].write(below_near);
+                            j -= 1;
+                        }
+                        stack[j].write(child);
+                        stack_near[j].write(t);
+                        sp += 1;
+                    }
+                } else {
+                    let leaf = &accel.leaves[(next & !LEAF) as usize];
+                    let (p0, np) = leaf.packets;
+                    for pi in p0..p0 + np {
+                        let packet = &accel.packets[pi as usize];
+                        let range = Interval::new(range.min, closest);
+                        #[cfg(target_arch = "x86_64")]
+                        let h = if AVX {
+                            // SAFETY: `AVX` is set only by `hit_group_avx2`, run where AVX2 is.
+                            unsafe { packet.hit_avx(ray, range) }
+                        } else {
+                            packet.hit(ray, range)
+                        };
+                        #[cfg(not(target_arch = "x86_64"))]
+                        let h = packet.hit(ray, range);
+                        if let Some(h) = h {
+                            closest = h.t;
+                            best_quad = Some((pi, h.lane, h.alpha, h.beta));
+                            best_other = None;
+                        }
+                    }
+                    let (o0, no) = leaf.others;
+                    for &oi in &accel.others[o0 as usize..(o0 + no) as usize] {
+                        let o = &group.objects[oi as usize];
+                        if let Some(h) =
+                            self.hit_object(o, ray, Interval::new(range.min, closest), ctx)
+                        {
+                            closest = h.t;
+                            best_other = Some(h);
+                            best_quad = None;
+                        }
+                    }
+                }
+            }
+            if sp == 0 {
+                break;
+            }
+            sp -= 1;
+            // SAFETY: sp < the number of entries pushed, each written when pushed.
+            (next, next_near) = unsafe { (stack[sp].assume_init(), stack_near[sp].assume_init()) };
+            debug_assert!(next != EMPTY);
+        }
+        if let Some((pi, lane, alpha, beta)) = best_quad {
+            let index = accel.packets[pi as usize].index[lane];
+            let Object::Quad(q) = &group.objects[index as usize] else {
+                unreachable!("a packet lane names a quad")
+            };
+            return Some(q.hit_at(ray, closest, alpha, beta));
+        }
+        best_other
+    }
+
+    #[inline]
+    fn hit_object(&self, o: &Object, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
+        match o {
+            Object::Sphere(s) => s.hit(ray, range),
+            Object::Quad(q) => q.hit(ray, range),
+            Object::Instance { transform, group } => {
+                self.hit_instance(transform, *group, ray, range, ctx)
+            }
+            Object::Group(group) => self.hit_group(*group, ray, range, ctx),
+            Object::Medium(m) => self.hit_medium(m, ray, range, ctx),
+        }
+    }
+
+    /// Intersect a placed group: move the ray into the group's frame, hit, move the hit back. The
+    /// error bound grows by the rounding of the transform.
+    fn hit_instance(
+        &self,
+        tr: &Transform,
+        group: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let local = Ray::new(
+            tr.inverse_point(ray.origin),
+            tr.inverse_vector(ray.direction),
+            ray.time,
+        );
+        let mut h = self.hit_group(group, &local, range, ctx)?;
+        h.p = tr.point(h.p);
+        h.normal = tr.vector(h.normal);
+        h.err = h.err * 2.0
+            + REL_ERROR * (h.p.abs().max_element() + tr.translation.abs().max_element());
+        Some(h)
+    }
+
+    /// Book 2's constant medium, made robust: find where the ray enters and leaves the boundary (the
+    /// first hit on the whole line, then the next hit beyond it by more than the hit's error bound),
+    /// clip that segment to `range`, and scatter at an exponentially distributed distance if it falls
+    /// inside. A ray that starts inside the medium (its entry lies behind it) travels from its origin.
+    /// The boundary must be closed; a grazing ray whose entry and exit coincide passes through.
+    fn hit_medium(
+        &self,
+        m: &ConstantMedium,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        ctx.stats.medium_evaluations += 1;
+        let enter = self.hit_group(m.boundary, ray, Interval::UNIVERSE, ctx)?;
+        let len = ray.direction.length();
+        let gap = 8.0 * enter.err / len;
+        let exit = self.hit_group(
+            m.boundary,
+            ray,
+            Interval::new(enter.t + gap, f64::INFINITY),
+            ctx,
+        )?;
+        let t0 = enter.t.max(range.min).max(0.0);
+        let t1 = exit.t.min(range.max);
+        if t0 >= t1 || t0.is_nan() || t1.is_nan() {
+            return None;
+        }
+        let inside = (t1 - t0) * len;
+        // 1 - u lies in (0, 1], so the logarithm is finite.
+        let distance = m.neg_inv_density * (1.0 - ctx.uniform()).ln();
+        if distance >= inside {
+            return None;
+        }
+        let t = t0 + distance / len;
+        let p = ray.at(t);
+        Some(Hit {
+            t,
+            p,
+            normal: Vec3::X,
+            front_face: true,
+            err: 0.0,
+            material: m.phase,
+            uv_source: crate::hit::UvSource::Uv(0.0, 0.0),
+        })
+    }
+
+    /// The closest hit by testing every object of group `g` in turn (no BVH): the reference the BVH is
+    /// tested against.
+    pub fn hit_brute_force(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let mut closest = range.max;
+        let mut best = None;
+        for o in &self.groups[g.0 as usize].objects {
+            if let Some(h) = self.hit_object(o, ray, Interval::new(range.min, closest), ctx) {
+                closest = h.t;
+                best = Some(h);
+            }
+        }
+        best
+    }
+}
