@@ -31,7 +31,7 @@ pub enum StudyWhat {
     Pdf(pdf::PdfArgs),
     /// Each rendering strategy against a converged reference: RMSE against time.
     Render(render::RenderArgs),
-    /// The book's geometric diagrams as SVG, drawn from rtl-pdf's own warps and bases (1 s).
+    /// The book's geometric diagrams as SVG, drawn from rtl-pdf's own warps and bases (under a second).
     Diagrams(diagrams::DiagramsArgs),
     /// Each chapter's sampler: its samples against the density it claims, as SVG histograms (seconds).
     Samples(samples::SamplesArgs),

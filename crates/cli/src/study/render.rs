@@ -52,8 +52,14 @@ pub struct RenderArgs {
     /// the minimum is the least disturbed). Default 2; 1 with --quick.
     #[arg(long)]
     pub repeat: Option<u32>,
-    /// A small, fast look: 48x48, a 1024-spp reference, up to 16 spp (about 10 s on 2 cores; the full
-    /// study takes about 3 minutes with the committed reference cached, 10 more to make it).
+    /// Redraw the plots and images from the measurements already in the output directory
+    /// (render.csv), timing nothing: for a change of labels or layout, or on a busy machine. The
+    /// images are rendered again (they depend on the seed and spp only, not on the clock).
+    #[arg(long)]
+    pub replot: bool,
+    /// A small, fast look: 48x48, a 1024-spp reference, up to 16 spp: about 10 s on 2 cores. The full
+    /// study takes 1-2 minutes on 2 quiet cores with the reference cached (6 under a load average of 9),
+    /// plus about 4 to render the 8192-spp reference once.
     #[arg(long)]
     pub quick: bool,
 }
@@ -349,7 +355,33 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if max_spp < 16 || !max_spp.is_power_of_two() || !max_spp.trailing_zeros().is_multiple_of(2) {
         bail!("--max-spp {max_spp}: must be a power of 4, at least 16 (16, 64, 256, ...)");
     }
-    let threads = rayon::current_num_threads();
+    let mut threads = rayon::current_num_threads();
+    if args.replot {
+        let (rows, csv_width, csv_threads, csv_ref_spp) = read_rows(&out_dir.join("render.csv"))?;
+        threads = csv_threads;
+        let mut images = Vec::new();
+        for (label, strategy) in strategies() {
+            if ["uniform", "cosine", "mixture", "mis"].contains(&label.as_str()) {
+                let r = Renderer::new(&scene, settings(csv_width, &scene, 1, strategy));
+                let mut acc = r.accumulator();
+                r.render_pass(&mut acc, 0, 16, &|| {});
+                images.push((label, acc.image()));
+            }
+        }
+        let height = images[0].1.len() / csv_width;
+        return figures(
+            &args,
+            &out_dir,
+            b,
+            &scene,
+            rows,
+            images,
+            (csv_width, height),
+            threads,
+            csv_ref_spp,
+            false,
+        );
+    }
     let reference = reference(&out_dir, b.name, &scene, width, ref_spp)?;
     let mut spps = vec![1u64];
     while spps.last().unwrap() * 4 <= max_spp {
@@ -428,7 +460,111 @@ pub fn run(args: RenderArgs) -> Result<()> {
         )?;
     }
     std::fs::write(out_dir.join("render.csv"), csv)?;
+    figures(
+        &args,
+        &out_dir,
+        b,
+        &scene,
+        rows,
+        images,
+        (width, height),
+        threads,
+        ref_spp,
+        true,
+    )
+}
 
+/// Rows of a render.csv written by an earlier run, with its width, thread count and reference spp.
+fn read_rows(path: &Path) -> Result<(Vec<Row>, usize, usize, u64)> {
+    let text = std::fs::read_to_string(path).with_context(|| {
+        format!(
+            "--replot reads the measurements of an earlier run: {}",
+            path.display()
+        )
+    })?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .with_context(|| format!("{}: no column `{name}`", path.display()))
+    };
+    let (c_label, c_spp, c_sec, c_rmse, c_rel, c_disp, c_rays, c_w, c_t, c_ref) = (
+        col("strategy")?,
+        col("spp")?,
+        col("seconds")?,
+        col("rmse")?,
+        col("rel_mse")?,
+        col("rmse_display")?,
+        col("rays_per_sample")?,
+        col("width")?,
+        col("threads")?,
+        col("reference_spp")?,
+    );
+    let c_bias = col("mean_bias").ok();
+    let (mut rows, mut width, mut threads, mut ref_spp) = (Vec::new(), 0, 0, 0);
+    for (i, line) in lines.enumerate() {
+        let f: Vec<&str> = line.split(',').collect();
+        let at = |c: usize| -> Result<&str> {
+            f.get(c)
+                .copied()
+                .with_context(|| format!("{}:{}: too few fields", path.display(), i + 2))
+        };
+        let num = |c: usize| -> Result<f64> {
+            at(c)?.parse::<f64>().with_context(|| {
+                format!(
+                    "{}:{}: field {} is not a number",
+                    path.display(),
+                    i + 2,
+                    header[c]
+                )
+            })
+        };
+        let label = at(c_label)?.to_string();
+        let strategy = strategies()
+            .into_iter()
+            .find(|(l, _)| *l == label)
+            .with_context(|| format!("{}:{}: unknown strategy `{label}`", path.display(), i + 2))?
+            .1;
+        width = num(c_w)? as usize;
+        threads = num(c_t)? as usize;
+        ref_spp = num(c_ref)? as u64;
+        rows.push(Row {
+            label,
+            biased: biased(strategy),
+            mean_bias: match c_bias {
+                Some(c) => num(c)?,
+                None => f64::NAN,
+            },
+            spp: num(c_spp)? as u64,
+            seconds: num(c_sec)?,
+            rmse: num(c_rmse)?,
+            rel_mse: num(c_rel)?,
+            rmse_display: num(c_disp)?,
+            rays_per_sample: num(c_rays)?,
+        });
+    }
+    if rows.is_empty() || width < 2 {
+        bail!("{}: no measurements to replot", path.display());
+    }
+    Ok((rows, width, threads, ref_spp))
+}
+
+/// Plots, heat maps, crops and the extrapolation from the sweep's `rows` and its 16-spp `images`.
+#[allow(clippy::too_many_arguments)]
+fn figures(
+    args: &RenderArgs,
+    out_dir: &Path,
+    b: &rtl_render::scenes::BuiltIn,
+    scene: &Scene,
+    rows: Vec<Row>,
+    images: Vec<(String, Vec<Color>)>,
+    (width, height): (usize, usize),
+    threads: usize,
+    ref_spp: u64,
+    write_equal_time_csv: bool,
+) -> Result<()> {
     let labels: Vec<String> = strategies().into_iter().map(|(l, _)| l).collect();
     let series = |filter: &dyn Fn(&str) -> bool| -> Vec<Series> {
         labels
@@ -476,7 +612,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .iter()
         .map(|&s| {
             pixel_variance(
-                &Renderer::new(&scene, settings(width, &scene, 3, s)),
+                &Renderer::new(scene, settings(width, scene, 3, s)),
                 heat_spp,
             )
         })
@@ -561,7 +697,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let per_spp = last.seconds / last.spp as f64;
         let spp = ((budget / per_spp).floor() as u64).max(1);
         let strategy = strategies().into_iter().find(|(n, _)| n == l).unwrap().1;
-        let r = Renderer::new(&scene, settings(width, &scene, 1, strategy));
+        let r = Renderer::new(scene, settings(width, scene, 1, strategy));
         let mut acc = r.accumulator();
         r.render_pass(&mut acc, 0, spp, &|| {});
         panels.push(Panel {
@@ -582,7 +718,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         panel_scale(width),
         2,
     )?;
-    std::fs::write(out_dir.join("render-equal-time.csv"), note)?;
+    if write_equal_time_csv {
+        std::fs::write(out_dir.join("render-equal-time.csv"), note)?;
+    }
 
     // 5. Extrapolation to 600 x 600 and an RMSE of 0.010.
     let target = 0.010;
@@ -608,12 +746,15 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let seconds = per_sample * 600.0 * 600.0 * spp;
         if last.biased {
             // its error stops falling: no number of samples reaches the target
-            println!(
-                "{l:>16} {c:>10.4} {:>12} {:>12}   biased: mean radiance {:+.1}% off the reference",
-                "-",
-                "-",
-                100.0 * last.mean_bias
-            );
+            let off = if last.mean_bias.is_finite() {
+                format!(
+                    ": mean radiance {:+.1}% off the reference",
+                    100.0 * last.mean_bias
+                )
+            } else {
+                String::from(": its error stops falling")
+            };
+            println!("{l:>16} {c:>10.4} {:>12} {:>12}   biased{off}", "-", "-");
             writeln!(table, "{l},{c:.5},biased,biased,{:.4}", per_sample * 1e6)?;
             continue;
         }
