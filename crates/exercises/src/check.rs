@@ -1,10 +1,7 @@
 //! The statistical checks every exercise shares: a z-test against an exact answer, a chi-square
-//! goodness-of-fit test of samples against a density, binning of directions on the sphere, and a
-//! scripted random number generator for the hard cases (u = 0, u = 1 - 2^-53).
 //!
-//! The rules are the workspace's (see TESTING.md): z-tests at a false-failure rate of 1e-6, chi-square
-//! with cells of expected count < 5 pooled, the p-value from statrs' `ChiSquared::sf`, rejected below
-//! alpha = 0.01 Sidak-corrected over the chi-square tests of one run, and fixed seeds so a run repeats.
+//! The checks of the exercise `crates/exercises/exercises/check.rs`, which states the task, and what
+//! that exercise is given.
 
 use glam::DVec3;
 use rand::{RngCore, SeedableRng};
