@@ -1,5 +1,7 @@
-//! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders.
+//! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders, and
+//! work through the chapter exercises.
 
+mod exercises_cmd;
 mod merge_cmd;
 mod plot;
 mod progressive;
@@ -27,6 +29,8 @@ enum Command {
     Study(study::StudyArgs),
     /// Merge partial renders (disjoint sample ranges of one scene) into one image.
     Merge(merge_cmd::MergeArgs),
+    /// The chapter exercises: list, check NAME, hint NAME, watch, reset NAME, solution NAME.
+    Exercises(exercises_cmd::ExercisesArgs),
 }
 
 fn main() {
@@ -35,6 +39,7 @@ fn main() {
         Command::Render(args) => render_cmd::run(args),
         Command::Study(args) => study::run(args),
         Command::Merge(args) => merge_cmd::run(args),
+        Command::Exercises(args) => std::process::exit(exercises_cmd::run(args)),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");
