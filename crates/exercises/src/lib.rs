@@ -33,3 +33,12 @@ pub mod ch09_quad_pdf_value;
 pub mod ch10_mixture_pdf;
 pub mod ch12_nan_guard;
 pub mod ch12_sphere_pdf_value;
+
+// The bug museum: working-looking code with the bugs the book's readers have hit for years.
+pub mod ch05_bug_normal_length;
+pub mod ch07_bug_cosine_factor_two;
+pub mod ch08_bug_left_handed_onb;
+pub mod ch10_bug_uniform_samples_cosine;
+pub mod ch12_bug_cone_cos_theta_max;
+pub mod ch12_bug_light_list_pdf;
+pub mod ch12_bug_nan_average;
