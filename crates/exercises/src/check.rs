@@ -30,7 +30,8 @@ pub const CHI_SQUARE_TESTS: u32 = 13;
 
 /// The seeded generator every check uses, so that a run is repeatable. The environment variable
 /// `RTL_EXERCISES_SEED_OFFSET` (unset: 0) shifts every seed, to measure the checks' false-failure
-/// rate over many runs (see `examples/status.rs`).
+/// rate over many runs (e.g. `RTL_EXERCISES_SEED_OFFSET=7 cargo test -p rtl-exercises --features
+/// solutions`).
 pub fn seeded(seed: u64) -> Xoshiro256PlusPlus {
     let offset = std::env::var("RTL_EXERCISES_SEED_OFFSET")
         .ok()
