@@ -5,7 +5,7 @@
 //!
 //! The check: w = +-x, +-y, +-z, the f32 case of Duff et al. near -z, and 1000 random unit vectors:
 //! u, v of unit length and orthogonal to each other and to w (to 1e-12), u x v = w, `w` kept as given;
-//! and [`Onb::transform`] of the axes gives u, v, w.
+//! and `Onb::transform` of the axes gives u, v, w.
 
 use crate::check::{self, CheckResult};
 use glam::DVec3;
