@@ -1,7 +1,9 @@
 //! `rtl`: render the books' scenes, study what accuracy costs in time, merge partial renders, and
-//! watch it all converge live in the lab.
+//! watch it all converge live in the lab, compare speed with other renderers, and work through the
+//! chapter exercises.
 
 mod bench_cmd;
+mod exercises_cmd;
 mod lab;
 mod merge_cmd;
 mod plot;
@@ -34,6 +36,8 @@ enum Command {
     Bench(bench_cmd::BenchArgs),
     /// A local web page: watch estimators, samplers and the Cornell box converge, switch strategies live.
     Lab(lab::LabArgs),
+    /// The chapter exercises: list, check NAME, hint NAME, watch, reset NAME, solution NAME.
+    Exercises(exercises_cmd::ExercisesArgs),
 }
 
 fn main() {
@@ -44,6 +48,7 @@ fn main() {
         Command::Merge(args) => merge_cmd::run(args),
         Command::Bench(args) => bench_cmd::run(args),
         Command::Lab(args) => lab::run(args),
+        Command::Exercises(args) => std::process::exit(exercises_cmd::run(args)),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

@@ -1,31 +1,11 @@
 //! # Chapter 2, "Estimating Pi": estimate pi by throwing darts
 //!
-//! **Task.** Draw `n` points uniformly in the square [-1, 1]^2 and count the ones inside the unit
-//! circle (x^2 + y^2 < 1). The fraction inside estimates the ratio of areas pi/4, so the estimate is
-//! `4 * inside / n`. Return `None` for `n = 0`: no samples, no estimate.
-//!
-//! The count is binomial with p = pi/4, so the estimate has standard error 4 sqrt(p (1 - p) / n): the
-//! check z-tests it against pi at that error, and checks that every estimate is a multiple of 4/n.
-//!
-//! Write your code in [`estimate_pi`], in place of the `todo!()`.
+//! The checks of the exercise `crates/exercises/exercises/ch02_estimate_pi.rs`, which states the task, and what
+//! that exercise is given.
 
 use crate::check::{self, CheckResult};
-use rand::{Rng, RngCore};
+use rand::RngCore;
 use std::f64::consts::PI;
-
-// ANCHOR: exercise
-/// Estimate pi from `n` uniform points in [-1, 1]^2: `4 * (points inside the unit circle) / n`,
-/// `None` when `n = 0`.
-pub fn estimate_pi<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
-    #[cfg(feature = "solutions")]
-    return solution::estimate_pi(n, rng);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (n, rng);
-        todo!("ch02 estimate_pi: count uniform points of [-1,1]^2 inside the unit circle")
-    }
-}
-// ANCHOR_END: exercise
 
 /// The estimator under test: `(n, rng) -> estimate`.
 pub trait PiEstimator: Fn(usize, &mut dyn RngCore) -> Option<f64> {}
@@ -66,43 +46,10 @@ pub fn check_estimate_pi(estimate: impl PiEstimator) -> CheckResult {
     check_value(&estimate)
 }
 
-/// This exercise's checks, run on your [`estimate_pi`].
-pub fn check() -> CheckResult {
-    check_estimate_pi(|n, rng: &mut dyn RngCore| estimate_pi(n, rng))
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use rand::Rng;
-
-    pub fn estimate_pi<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
-        if n == 0 {
-            return None;
-        }
-        let inside = (0..n)
-            .filter(|_| {
-                let x = rng.random_range(-1.0..1.0);
-                let y = rng.random_range(-1.0..1.0);
-                x * x + y * y < 1.0
-            })
-            .count();
-        Some(4.0 * inside as f64 / n as f64)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn estimate_is_within_its_standard_error_of_pi() {
-        check_value(|n, rng: &mut dyn RngCore| estimate_pi(n, rng)).unwrap();
-    }
-
-    #[test]
-    fn estimate_is_a_multiple_of_4_over_n_and_none_without_samples() {
-        check_lattice(|n, rng: &mut dyn RngCore| estimate_pi(n, rng)).unwrap();
-    }
+    use rand::Rng;
 
     /// Wrong: forgets the factor 4 (estimates pi/4); and returns NaN for n = 0.
     fn without_factor_4(n: usize, rng: &mut dyn RngCore) -> Option<f64> {

@@ -1,33 +1,12 @@
 //! # Chapter 2, "Stratified Samples (Jittering)": estimate pi with one point per grid cell
 //!
-//! **Task.** Split the square [-1, 1]^2 into `sqrt_n x sqrt_n` equal cells and draw one uniform point
-//! inside each cell (cell (i, j) spans x in [-1 + 2i/k, -1 + 2(i+1)/k), likewise y, with k = `sqrt_n`).
-//! Return `4 * inside / sqrt_n^2`, the same estimator as [`estimate_pi`](crate::ch02_estimate_pi::estimate_pi)
-//! but with stratified samples; `None` for `sqrt_n = 0`.
-//!
-//! Stratification keeps the estimator unbiased but only the cells cut by the circle contribute
-//! variance, so its variance falls well below the binomial 16 p (1 - p) / N of independent points.
-//! The check z-tests the mean of 400 estimates against pi, and tests (a chi-square test on the sample
-//! variance, false failure 1e-6) that the variance is below that of independent points.
+//! The checks of the exercise `crates/exercises/exercises/ch02_jittered_pi.rs`, which states the task, and what
+//! that exercise is given.
 
 use crate::check::{self, CheckResult};
-use rand::{Rng, RngCore};
+use rand::RngCore;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
-
-// ANCHOR: exercise
-/// Estimate pi from one uniform point in each of the `sqrt_n x sqrt_n` cells of [-1, 1]^2;
-/// `None` when `sqrt_n = 0`.
-pub fn jittered_pi<R: Rng + ?Sized>(sqrt_n: usize, rng: &mut R) -> Option<f64> {
-    #[cfg(feature = "solutions")]
-    return solution::jittered_pi(sqrt_n, rng);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (sqrt_n, rng);
-        todo!("ch02 jittered_pi: one uniform point per cell of a sqrt_n x sqrt_n grid on [-1,1]^2")
-    }
-}
-// ANCHOR_END: exercise
 
 /// Unbiased (mean of 400 estimates of 16 x 16 points z-tested against pi) and of variance below
 /// the variance of 256 independent points.
@@ -70,42 +49,10 @@ pub fn check_jittered_pi(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f6
     }
 }
 
-/// This exercise's checks, run on your [`jittered_pi`].
-pub fn check() -> CheckResult {
-    check_jittered_pi(|k, rng: &mut dyn RngCore| jittered_pi(k, rng))
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use rand::Rng;
-
-    pub fn jittered_pi<R: Rng + ?Sized>(sqrt_n: usize, rng: &mut R) -> Option<f64> {
-        if sqrt_n == 0 {
-            return None;
-        }
-        let cell = 2.0 / sqrt_n as f64;
-        let mut inside = 0usize;
-        for i in 0..sqrt_n {
-            for j in 0..sqrt_n {
-                let x = -1.0 + cell * (i as f64 + rng.random::<f64>());
-                let y = -1.0 + cell * (j as f64 + rng.random::<f64>());
-                if x * x + y * y < 1.0 {
-                    inside += 1;
-                }
-            }
-        }
-        Some(4.0 * inside as f64 / (sqrt_n * sqrt_n) as f64)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn jittered_estimate_is_unbiased_with_reduced_variance() {
-        check_jittered_pi(|k, rng: &mut dyn RngCore| jittered_pi(k, rng)).unwrap();
-    }
+    use rand::Rng;
 
     #[test]
     fn check_rejects_unstratified_points_and_cell_centres() {

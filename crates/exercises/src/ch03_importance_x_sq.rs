@@ -1,45 +1,15 @@
 //! # Chapter 3, "Importance Sampling": integrate x^2 on [0, 2] with three densities
 //!
-//! **Task.** Write the importance-sampled estimator [`importance_estimate`] of I = integral of f:
-//! draw u uniform in [0, 1), take x = `sample(u)` (distributed with density p = `pdf`), and average
-//! f(x) / p(x) over `n` samples. Where p(x) = 0 the sample contributes 0 (f must vanish there for the
-//! estimate to be unbiased), never 0/0 = NaN. `None` for `n = 0`.
+//! The checks of the exercise `crates/exercises/exercises/ch03_importance_x_sq.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check integrates f(x) = x^2 on [0, 2] (I = 8/3) with three densities, each z-tested with its
 //! exact variance Var(f/p) = integral of f^2/p - I^2:
-//!
-//! | density p(x) | sample(u)    | Var(f/p)  |
-//! |--------------|--------------|-----------|
-//! | 1/2          | 2u           | 256/45    |
-//! | x/2          | 2 sqrt(u)    | 8/9       |
-//! | 3x^2/8       | 2 cbrt(u)    | 0: every sample is exactly 8/3 |
-//!
-//! and the hard case u = 0 with p = x/2: x = 0, p = 0, f = 0, and the sample contributes 0.
 
 use crate::check::{self, CheckResult, ScriptedRng};
-use rand::{Rng, RngCore};
+use rand::RngCore;
 
-// ANCHOR: exercise
-/// The importance-sampled estimate (1/n) sum f(x_k) / p(x_k), x_k = `sample(u_k)`, counting a sample
-/// with p(x_k) = 0 as 0; `None` when `n = 0`.
-pub fn importance_estimate<R: Rng + ?Sized>(
-    n: usize,
-    rng: &mut R,
-    f: impl Fn(f64) -> f64,
-    sample: impl Fn(f64) -> f64,
-    pdf: impl Fn(f64) -> f64,
-) -> Option<f64> {
-    #[cfg(feature = "solutions")]
-    return solution::importance_estimate(n, rng, f, sample, pdf);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (n, rng, f, sample, pdf);
-        todo!("ch03 importance_estimate: average f(x)/p(x) over x = sample(u), 0 where p(x) = 0")
-    }
-}
-// ANCHOR_END: exercise
-
-type Fx<'a> = &'a dyn Fn(f64) -> f64;
+pub type Fx<'a> = &'a dyn Fn(f64) -> f64;
 
 /// The estimator under test: `(n, rng, f, sample, pdf) -> estimate`.
 pub trait Estimator: Fn(usize, &mut dyn RngCore, Fx, Fx, Fx) -> Option<f64> {}
@@ -131,59 +101,10 @@ pub fn check_importance(estimate: impl Estimator) -> CheckResult {
     check_unbiased(&estimate)
 }
 
-fn learner(n: usize, rng: &mut dyn RngCore, f: Fx, sample: Fx, pdf: Fx) -> Option<f64> {
-    importance_estimate(n, rng, f, sample, pdf)
-}
-
-/// This exercise's checks, run on your [`importance_estimate`].
-pub fn check() -> CheckResult {
-    check_importance(learner)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use rand::Rng;
-
-    pub fn importance_estimate<R: Rng + ?Sized>(
-        n: usize,
-        rng: &mut R,
-        f: impl Fn(f64) -> f64,
-        sample: impl Fn(f64) -> f64,
-        pdf: impl Fn(f64) -> f64,
-    ) -> Option<f64> {
-        if n == 0 {
-            return None;
-        }
-        let mut sum = 0.0;
-        for _ in 0..n {
-            let x = sample(rng.random());
-            let p = pdf(x);
-            if p > 0.0 {
-                sum += f(x) / p;
-            }
-        }
-        Some(sum / n as f64)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn estimates_are_unbiased_with_uniform_and_linear_pdfs() {
-        check_unbiased(learner).unwrap();
-    }
-
-    #[test]
-    fn the_pdf_proportional_to_f_has_zero_variance() {
-        check_zero_variance(learner).unwrap();
-    }
-
-    #[test]
-    fn a_sample_where_the_pdf_is_zero_contributes_zero() {
-        check_pdf_zero(learner).unwrap();
-    }
+    use rand::Rng;
 
     #[test]
     fn checks_reject_wrong_estimators() {

@@ -1,40 +1,10 @@
 //! # Chapter 3, "Inverse Transform Sampling": sample x/2 and 3x^2/8 on [0, 2]
 //!
-//! **Task.** Turn a uniform `u` in [0, 1) into a sample of a density on [0, 2] by inverting its CDF:
-//!
-//! - [`sample_linear`]: density p(x) = x/2, CDF P(x) = x^2/4, so x = P^-1(u) = 2 sqrt(u);
-//! - [`sample_quadratic`]: density p(x) = 3x^2/8, CDF P(x) = x^3/8, so x = 2 cbrt(u).
-//!
-//! Both must be monotone in `u`, give 0 at u = 0 and stay in [0, 2] up to u = 1 - 2^-53. The check
-//! compares exact values, then bins 1e5 samples into 40 equal bins of [0, 2] and chi-square tests
-//! the counts against n (P(b) - P(a)).
+//! The checks of the exercise `crates/exercises/exercises/ch03_inverse_x_sq.rs`, which states the task, and what
+//! that exercise is given.
 
 use crate::check::{self, CheckResult, U_MAX};
 use rand::Rng;
-
-// ANCHOR: exercise
-/// A sample of the density x/2 on [0, 2] from a uniform `u` in [0, 1).
-pub fn sample_linear(u: f64) -> f64 {
-    #[cfg(feature = "solutions")]
-    return 2.0 * u.sqrt();
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = u;
-        todo!("ch03 sample_linear: invert the CDF x^2/4 of the density x/2 on [0,2]")
-    }
-}
-
-/// A sample of the density 3x^2/8 on [0, 2] from a uniform `u` in [0, 1).
-pub fn sample_quadratic(u: f64) -> f64 {
-    #[cfg(feature = "solutions")]
-    return 2.0 * u.cbrt();
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = u;
-        todo!("ch03 sample_quadratic: invert the CDF x^3/8 of the density 3x^2/8 on [0,2]")
-    }
-}
-// ANCHOR_END: exercise
 
 /// Exact values, range and monotonicity of a sampler of the density with CDF `cdf`, and a chi-square
 /// test of 1e5 samples in 40 bins of [0, 2].
@@ -91,25 +61,9 @@ pub fn check_quadratic(sample: impl Fn(f64) -> f64) -> CheckResult {
     check_sampler("sample_quadratic", sample, |x| x * x * x / 8.0)
 }
 
-/// This exercise's checks, run on your [`sample_linear`] and [`sample_quadratic`].
-pub fn check() -> CheckResult {
-    check_linear(sample_linear)?;
-    check_quadratic(sample_quadratic)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn linear_sampler_follows_x_over_2() {
-        check_linear(sample_linear).unwrap();
-    }
-
-    #[test]
-    fn quadratic_sampler_follows_3x_sq_over_8() {
-        check_quadratic(sample_quadratic).unwrap();
-    }
 
     #[test]
     fn checks_reject_wrong_inverses() {

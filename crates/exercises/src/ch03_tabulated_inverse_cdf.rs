@@ -1,16 +1,7 @@
 //! # Chapter 3, "Approximating Distributions": invert a tabulated CDF by binary search
 //!
-//! A density known only as weights w_i of bins [x_i, x_(i+1)) (constant inside each bin) has a CDF
-//! tabulated at the bin edges: c_0 = 0, c_i = (w_0 + ... + w_(i-1)) / W, c_n = 1. [`CdfTable`] builds
-//! that table (given; it rejects bad weights).
-//!
-//! **Task.** Write [`invert`]: for `u` in [0, 1) find, by binary search (O(log n), e.g.
-//! `slice::partition_point`), the bin i with c_i <= u < c_(i+1), and interpolate linearly inside it:
-//! x = x_i + (u - c_i) / (c_(i+1) - c_i) (x_(i+1) - x_i). That samples the piecewise-constant density.
-//!
-//! The hard cases: a bin of zero weight has c_i = c_(i+1); it must never be returned, and its zero
-//! width (in u) must never be divided by; leading and trailing zero bins; u = 0; u = 1 - 2^-53; and a
-//! `u` outside [0, 1) (or NaN) is an error naming the value, not a panic or a NaN.
+//! The checks of the exercise `crates/exercises/exercises/ch03_tabulated_inverse_cdf.rs`, which states the task, and what
+//! that exercise is given.
 
 use crate::check::{self, CheckResult, U_MAX};
 use rand::Rng;
@@ -97,21 +88,6 @@ impl CdfTable {
         })
     }
 }
-
-// ANCHOR: exercise
-/// The sample x = P^-1(u) of the table's piecewise-constant density: the bin i with
-/// c_i <= u < c_(i+1) by binary search, then linear interpolation inside it.
-/// `Err(CdfError::UOutOfRange(u))` unless 0 <= u < 1.
-pub fn invert(table: &CdfTable, u: f64) -> Result<f64, CdfError> {
-    #[cfg(feature = "solutions")]
-    return solution::invert(table, u);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (table, u);
-        todo!("ch03 invert: binary-search the bin with c_i <= u < c_(i+1), interpolate inside it")
-    }
-}
-// ANCHOR_END: exercise
 
 /// The lookup under test.
 pub trait Invert: Fn(&CdfTable, f64) -> Result<f64, CdfError> {}
@@ -271,29 +247,6 @@ pub fn check_invert(invert: impl Invert) -> CheckResult {
     check_distribution(&invert)
 }
 
-/// This exercise's checks, run on your [`invert`].
-pub fn check() -> CheckResult {
-    check_invert(invert)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use super::{CdfError, CdfTable};
-
-    pub fn invert(table: &CdfTable, u: f64) -> Result<f64, CdfError> {
-        if !(0.0..1.0).contains(&u) {
-            return Err(CdfError::UOutOfRange(u));
-        }
-        // The last i with c_i <= u; c_0 = 0 <= u and c_n = 1 > u, so 0 <= i < n and c_(i+1) > u >= c_i:
-        // bin i has positive width in u and the division below is safe.
-        let i = table.cdf.partition_point(|&c| c <= u) - 1;
-        let (c0, c1) = (table.cdf[i], table.cdf[i + 1]);
-        let (x0, x1) = (table.edges[i], table.edges[i + 1]);
-        let t = (u - c0) / (c1 - c0);
-        Ok((x0 + t * (x1 - x0)).min(x1))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -327,26 +280,6 @@ mod tests {
         ));
         let t = CdfTable::new(&e, &[1.0, 3.0]).unwrap();
         assert_eq!(t.cdf, vec![0.0, 0.25, 1.0]);
-    }
-
-    #[test]
-    fn u_outside_0_1_is_an_error() {
-        check_out_of_range(invert).unwrap();
-    }
-
-    #[test]
-    fn exact_values_with_leading_middle_and_trailing_zero_bins() {
-        check_exact(invert).unwrap();
-    }
-
-    #[test]
-    fn zero_weight_bins_are_never_returned() {
-        check_zero_bins(invert).unwrap();
-    }
-
-    #[test]
-    fn samples_follow_the_tabulated_density() {
-        check_distribution(invert).unwrap();
     }
 
     /// Wrong: the first i with c_(i+1) >= u picks a zero bin at u = c_i and divides 0 by 0.

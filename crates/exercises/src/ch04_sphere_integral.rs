@@ -1,14 +1,7 @@
 //! # Chapter 4, "Monte Carlo Integration on the Sphere of Directions": integrate cos^2 theta
 //!
-//! **Task.** Two functions:
-//!
-//! - [`uniform_sphere`]: a direction uniform on the unit sphere (density 1/(4 pi) w.r.t. solid angle)
-//!   from two uniforms: z = 1 - 2 u1 (uniform in [-1, 1], since d omega = dz d phi), phi = 2 pi u2,
-//!   x = r cos phi, y = r sin phi with r = sqrt(1 - z^2) (clamp 1 - z^2 at 0 so rounding never gives
-//!   a NaN).
-//! - [`estimate_cos_sq`]: the Monte Carlo estimate of the integral of cos^2 theta = z^2 over the
-//!   sphere, (1/n) sum f(d) / p(d) = (1/n) sum 4 pi z^2, whose exact value is 4 pi / 3. `None` for
-//!   `n = 0`.
+//! The checks of the exercise `crates/exercises/exercises/ch04_sphere_integral.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: unit length (to 1e-12) at u = 0 and u = 1 - 2^-53; a chi-square test of 1e5 directions
 //! in 16 x 9 equal-area (phi, z) cells; and a z-test of the estimate with its exact variance
@@ -18,31 +11,6 @@ use crate::check::{self, CheckResult, SphereBins, U_MAX};
 use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
-
-// ANCHOR: exercise
-/// A direction uniform on the unit sphere, density 1/(4 pi) per steradian, from `u1`, `u2` in [0, 1).
-pub fn uniform_sphere(u1: f64, u2: f64) -> DVec3 {
-    #[cfg(feature = "solutions")]
-    return solution::uniform_sphere(u1, u2);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (u1, u2);
-        todo!("ch04 uniform_sphere: z = 1 - 2 u1, phi = 2 pi u2")
-    }
-}
-
-/// The estimate of the integral of cos^2 theta over the sphere (exactly 4 pi / 3) from `n` uniform
-/// directions; `None` when `n = 0`.
-pub fn estimate_cos_sq<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
-    #[cfg(feature = "solutions")]
-    return solution::estimate_cos_sq(n, rng);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (n, rng);
-        todo!("ch04 estimate_cos_sq: average cos^2 / (1 / (4 pi)) over uniform directions")
-    }
-}
-// ANCHOR_END: exercise
 
 /// Unit length at the corners of [0, 1)^2, and a chi-square test of 1e5 directions.
 pub fn check_uniform_sphere(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
@@ -78,53 +46,9 @@ pub fn check_estimate(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f64>)
     check::z_test("integral of cos^2 over the sphere", got, se, 4.0 * PI / 3.0)
 }
 
-/// This exercise's checks, run on your [`uniform_sphere`] and [`estimate_cos_sq`].
-pub fn check() -> CheckResult {
-    check_uniform_sphere(uniform_sphere)?;
-    check_estimate(|n, rng: &mut dyn RngCore| estimate_cos_sq(n, rng))
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use glam::DVec3;
-    use rand::Rng;
-    use std::f64::consts::PI;
-
-    pub fn uniform_sphere(u1: f64, u2: f64) -> DVec3 {
-        let z = 1.0 - 2.0 * u1;
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        let phi = 2.0 * PI * u2;
-        DVec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-
-    pub fn estimate_cos_sq<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Option<f64> {
-        if n == 0 {
-            return None;
-        }
-        let pdf = 1.0 / (4.0 * PI);
-        let sum: f64 = (0..n)
-            .map(|_| {
-                let d = uniform_sphere(rng.random(), rng.random());
-                d.z * d.z / pdf
-            })
-            .sum();
-        Some(sum / n as f64)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn uniform_sphere_directions_are_unit_and_uniform() {
-        check_uniform_sphere(uniform_sphere).unwrap();
-    }
-
-    #[test]
-    fn estimate_of_cos_sq_is_4_pi_over_3() {
-        check_estimate(|n, rng: &mut dyn RngCore| estimate_cos_sq(n, rng)).unwrap();
-    }
 
     #[test]
     fn checks_reject_wrong_samplers_and_estimators() {

@@ -1,9 +1,7 @@
 //! # Chapter 5, "Light Scattering": the scattering pdf of a Lambertian surface
 //!
-//! **Task.** Write [`lambertian_scattering_pdf`]: the density, w.r.t. solid angle, with which a
-//! Lambertian surface of unit normal `n` scatters light into the unit direction `d`:
-//! s(d) = max(0, cos theta) / pi, cos theta = n . d. It integrates to 1 over the hemisphere around
-//! `n` and is exactly 0 below it (the surface does not transmit), never negative.
+//! The checks of the exercise `crates/exercises/exercises/ch05_lambertian_pdf.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: exact values (1/pi along the normal, 1/(2 pi) at 60 degrees, 0 when grazing and below),
 //! never negative nor NaN, and a z-test (1e5 uniform directions, for a few normals) that
@@ -12,19 +10,6 @@
 use crate::check::{self, CheckResult};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
-
-// ANCHOR: exercise
-/// The Lambertian scattering density max(0, n . d) / pi per steradian, for unit `normal` and `direction`.
-pub fn lambertian_scattering_pdf(normal: DVec3, direction: DVec3) -> f64 {
-    #[cfg(feature = "solutions")]
-    return normal.dot(direction).max(0.0) * FRAC_1_PI;
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (normal, direction);
-        todo!("ch05 lambertian_scattering_pdf: max(0, cos theta) / pi")
-    }
-}
-// ANCHOR_END: exercise
 
 /// Exact values, including grazing and below the surface.
 pub fn check_values(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
@@ -74,25 +59,9 @@ pub fn check_normalised(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
     Ok(())
 }
 
-/// This exercise's checks, run on your [`lambertian_scattering_pdf`].
-pub fn check() -> CheckResult {
-    check_values(lambertian_scattering_pdf)?;
-    check_normalised(lambertian_scattering_pdf)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn exact_values_grazing_and_below() {
-        check_values(lambertian_scattering_pdf).unwrap();
-    }
-
-    #[test]
-    fn density_is_non_negative_and_integrates_to_1() {
-        check_normalised(lambertian_scattering_pdf).unwrap();
-    }
 
     #[test]
     fn checks_reject_wrong_densities() {

@@ -1,17 +1,7 @@
 //! # Chapter 6, "Playing with Importance Sampling": one bounce of `ray_color`
 //!
-//! In the book's `ray_color`, a surface hit returns its emission plus the scattered light weighted by
-//! the Monte Carlo ratio of the scattering density to the density the direction was drawn with:
-//!
-//! L = L_e + A * s(d) * L_i(d) / p(d)
-//!
-//! with albedo (attenuation) A, scattering pdf s, incoming radiance L_i along the sampled direction d,
-//! and sampling pdf p.
-//!
-//! **Task.** Write [`scatter_contribution`]. It must stay finite whatever the densities: when p(d) is
-//! 0, negative or not finite, or s(d) is negative or not finite, or the weighted product is not finite,
-//! the sample carries no scattered light and the result is the emission only. (A direction with p = 0
-//! cannot have been sampled honestly; dividing by it is how NaNs and fireflies get into images.)
+//! The checks of the exercise `crates/exercises/exercises/ch06_scatter_weight.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: exact values with dyadic inputs, every degenerate density, and a white-furnace test: a
 //! Lambertian surface (s = cos/pi) of albedo 0.75 under uniform incoming radiance 1, with directions
@@ -21,33 +11,6 @@ use crate::check::{self, CheckResult};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::PI;
-
-// ANCHOR: exercise
-/// L_e + A s L_i / p, or `emitted` alone when the densities make the ratio meaningless or infinite.
-pub fn scatter_contribution(
-    emitted: DVec3,
-    attenuation: DVec3,
-    scattering_pdf: f64,
-    pdf_value: f64,
-    incoming: DVec3,
-) -> DVec3 {
-    #[cfg(feature = "solutions")]
-    return solution::scatter_contribution(
-        emitted,
-        attenuation,
-        scattering_pdf,
-        pdf_value,
-        incoming,
-    );
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (emitted, attenuation, scattering_pdf, pdf_value, incoming);
-        todo!(
-            "ch06 scatter_contribution: emitted + attenuation * s * incoming / p, emitted only if p is 0 or bad"
-        )
-    }
-}
-// ANCHOR_END: exercise
 
 /// The function under test.
 pub trait Contribution: Fn(DVec3, DVec3, f64, f64, DVec3) -> DVec3 {}
@@ -123,41 +86,9 @@ pub fn check_scatter(contribution: impl Contribution) -> CheckResult {
     check_furnace(&contribution)
 }
 
-/// This exercise's checks, run on your [`scatter_contribution`].
-pub fn check() -> CheckResult {
-    check_scatter(scatter_contribution)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use glam::DVec3;
-
-    pub fn scatter_contribution(e: DVec3, a: DVec3, s: f64, p: f64, li: DVec3) -> DVec3 {
-        if !(p > 0.0 && p.is_finite() && s >= 0.0 && s.is_finite()) {
-            return e;
-        }
-        let scattered = a * li * (s / p);
-        if scattered.is_finite() {
-            e + scattered
-        } else {
-            e
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn exact_values_and_degenerate_densities() {
-        check_cases(scatter_contribution).unwrap();
-    }
-
-    #[test]
-    fn white_furnace_returns_the_albedo() {
-        check_furnace(scatter_contribution).unwrap();
-    }
 
     #[test]
     fn checks_reject_wrong_contributions() {

@@ -1,13 +1,7 @@
 //! # Chapter 7, "Cosine Sampling a Hemisphere": a cosine-weighted direction and its pdf
 //!
-//! **Task.** Two functions, in the frame where the surface normal is +z:
-//!
-//! - [`random_cosine_direction`]: a direction on the hemisphere z >= 0 with density cos theta / pi
-//!   w.r.t. solid angle, from two uniforms: phi = 2 pi u1, z = sqrt(1 - u2), x = cos(phi) sqrt(u2),
-//!   y = sin(phi) sqrt(u2). (Under this density z^2 is uniform in [0, 1]:
-//!   P(z <= t) = t^2, so z = sqrt(1 - u2) inverts it.)
-//! - [`cosine_pdf_value`]: that density, max(0, cos theta) / pi, given cos theta; exactly 0 below the
-//!   horizon, never negative.
+//! The checks of the exercise `crates/exercises/exercises/ch07_cosine_direction.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: unit length to 1e-12 and z >= 0 at u = 0 and u = 1 - 2^-53 (where z = sqrt(2^-53) is
 //! tiny but must not underflow the length); exact pdf values; and a chi-square test of 1e5 directions
@@ -18,30 +12,6 @@ use crate::check::{self, CheckResult, SphereBins, U_MAX};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
-
-// ANCHOR: exercise
-/// A direction on the hemisphere z >= 0 with density cos theta / pi, from `u1`, `u2` in [0, 1).
-pub fn random_cosine_direction(u1: f64, u2: f64) -> DVec3 {
-    #[cfg(feature = "solutions")]
-    return solution::random_cosine_direction(u1, u2);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (u1, u2);
-        todo!("ch07 random_cosine_direction: phi = 2 pi u1, z = sqrt(1 - u2), radius sqrt(u2)")
-    }
-}
-
-/// The cosine density max(0, cos theta) / pi per steradian.
-pub fn cosine_pdf_value(cos_theta: f64) -> f64 {
-    #[cfg(feature = "solutions")]
-    return cos_theta.max(0.0) * FRAC_1_PI;
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = cos_theta;
-        todo!("ch07 cosine_pdf_value: max(0, cos theta) / pi")
-    }
-}
-// ANCHOR_END: exercise
 
 /// Unit, upper-hemisphere directions at the corners of [0, 1)^2.
 pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
@@ -101,44 +71,10 @@ pub fn check_pdf(pdf: impl Fn(f64) -> f64) -> CheckResult {
     Ok(())
 }
 
-/// This exercise's checks, run on your [`random_cosine_direction`] and [`cosine_pdf_value`].
-pub fn check() -> CheckResult {
-    check_pdf(cosine_pdf_value)?;
-    check_corners(random_cosine_direction)?;
-    check_distribution(random_cosine_direction)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use glam::DVec3;
-    use std::f64::consts::PI;
-
-    pub fn random_cosine_direction(u1: f64, u2: f64) -> DVec3 {
-        let phi = 2.0 * PI * u1;
-        let r = u2.sqrt();
-        DVec3::new(phi.cos() * r, phi.sin() * r, (1.0 - u2).sqrt())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::f64::consts::PI;
-
-    #[test]
-    fn pdf_values_including_below_the_horizon() {
-        check_pdf(cosine_pdf_value).unwrap();
-    }
-
-    #[test]
-    fn directions_at_u_0_and_u_max_are_unit_and_above_the_horizon() {
-        check_corners(random_cosine_direction).unwrap();
-    }
-
-    #[test]
-    fn directions_follow_the_cosine_density() {
-        check_distribution(random_cosine_direction).unwrap();
-    }
 
     #[test]
     fn checks_reject_wrong_warps_and_pdfs() {

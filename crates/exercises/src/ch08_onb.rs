@@ -1,22 +1,11 @@
 //! # Chapter 8, "Orthonormal Bases": a right-handed basis around a unit vector
 //!
-//! **Task.** Write [`Onb::from_w`]: given a unit vector w, find unit u and v such that (u, v, w) is
-//! orthonormal and right-handed, u x v = w; and [`Onb::transform`], which maps local coordinates
-//! (a, b, c) to the world vector a u + b v + c w (a direction sampled around +z becomes one around w).
-//!
-//! Use the branchless construction of Duff et al., "Building an Orthonormal Basis, Revisited"
-//! (JCGT 2017): with s = sign(w.z) (+1 for w.z = +-0 as well) and a = -1 / (s + w.z),
-//! b = w.x w.y a:
-//!
-//! u = (1 + s w.x^2 a, s b, -s w.x),  v = (b, s + w.y^2 a, -w.y).
-//!
-//! It is exact at the poles and stable near them; Frisvad's earlier version (a = -1 / (1 + w.z))
-//! divides by ~0 near w = -z. Note that the book's `build_from_w` (v = w x a, u = w x v) gives a
-//! left-handed basis.
+//! The checks of the exercise `crates/exercises/exercises/ch08_onb.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: w = +-x, +-y, +-z, the f32 case of Duff et al. near -z, and 1000 random unit vectors:
 //! u, v of unit length and orthogonal to each other and to w (to 1e-12), u x v = w, `w` kept as given;
-//! and [`Onb::transform`] of the axes gives u, v, w.
+//! and `Onb::transform` of the axes gives u, v, w.
 
 use crate::check::{self, CheckResult};
 use glam::DVec3;
@@ -28,32 +17,6 @@ pub struct Onb {
     pub v: DVec3,
     pub w: DVec3,
 }
-
-// ANCHOR: exercise
-impl Onb {
-    /// The right-handed basis with third axis `w` (a unit vector), by Duff et al. (2017).
-    pub fn from_w(w: DVec3) -> Onb {
-        #[cfg(feature = "solutions")]
-        return solution::from_w(w);
-        #[cfg(not(feature = "solutions"))]
-        {
-            let _ = w;
-            todo!("ch08 Onb::from_w: Duff et al.'s branchless basis, u x v = w")
-        }
-    }
-
-    /// The world vector with local coordinates `a`: a.x u + a.y v + a.z w.
-    pub fn transform(&self, a: DVec3) -> DVec3 {
-        #[cfg(feature = "solutions")]
-        return a.x * self.u + a.y * self.v + a.z * self.w;
-        #[cfg(not(feature = "solutions"))]
-        {
-            let _ = a;
-            todo!("ch08 Onb::transform: a.x u + a.y v + a.z w")
-        }
-    }
-}
-// ANCHOR_END: exercise
 
 /// The basis under test, as a function of w.
 pub trait FromW: Fn(DVec3) -> Onb {}
@@ -143,39 +106,9 @@ pub fn check_onb(from_w: impl FromW, transform: impl Fn(&Onb, DVec3) -> DVec3) -
     check_transform(transform)
 }
 
-/// This exercise's checks, run on your [`Onb::from_w`] and [`Onb::transform`].
-pub fn check() -> CheckResult {
-    check_onb(Onb::from_w, Onb::transform)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use super::Onb;
-    use glam::DVec3;
-
-    pub fn from_w(w: DVec3) -> Onb {
-        let s = 1.0_f64.copysign(w.z);
-        let a = -1.0 / (s + w.z);
-        let b = w.x * w.y * a;
-        let u = DVec3::new(1.0 + s * w.x * w.x * a, s * b, -s * w.x);
-        let v = DVec3::new(b, s + w.y * w.y * a, -w.y);
-        Onb { u, v, w }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn bases_are_orthonormal_and_right_handed_at_the_axes_near_minus_z_and_at_random() {
-        check_basis(Onb::from_w).unwrap();
-    }
-
-    #[test]
-    fn transform_combines_the_axes() {
-        check_transform(Onb::transform).unwrap();
-    }
 
     #[test]
     fn checks_reject_the_books_left_handed_basis_and_frisvads_near_minus_z() {

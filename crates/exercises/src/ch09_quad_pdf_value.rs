@@ -1,17 +1,7 @@
 //! # Chapter 9, "Sampling Lights Directly": the solid-angle pdf of a quad light
 //!
-//! A point chosen uniformly on a light of area A has density 1/A w.r.t. area. Seen from a point p,
-//! an area element dA at distance r whose normal makes angle theta with the direction subtends a
-//! solid angle d omega = |cos theta| dA / r^2, so the same choice has density w.r.t. solid angle
-//!
-//! p(omega) = r^2 / (|cos theta| A).
-//!
-//! **Task.** Write [`quad_pdf_value`]: for the parallelogram {q + a u + b v : a, b in [0, 1]}, the
-//! origin p and a unit direction d, intersect the ray p + t d (t > 0) with the quad's plane, test the
-//! hit against the parallelogram, and return r^2 / (|cos theta| A) with r = t (d is unit),
-//! cos theta = n . d for the unit normal n, and A = |u x v|. Return 0 when the ray misses: it points
-//! away, it is parallel to the plane, the hit lies outside the parallelogram, or the origin lies in the
-//! plane (t = 0: a pdf of 0, not infinity). The light is two-sided.
+//! The checks of the exercise `crates/exercises/exercises/ch09_quad_pdf_value.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: exact values head-on and oblique, the hard cases (origin in the plane, 1e-9 above it,
 //! parallel, behind, from the back side), and a z-test that E[4 pi p(omega)] = 1 over uniform
@@ -28,20 +18,6 @@ pub struct Quad {
     pub u: DVec3,
     pub v: DVec3,
 }
-
-// ANCHOR: exercise
-/// The solid-angle density r^2 / (|cos theta| A) of the direction `direction` (unit) from `origin`
-/// towards a uniformly chosen point of `quad`; 0 when the ray misses the quad.
-pub fn quad_pdf_value(quad: &Quad, origin: DVec3, direction: DVec3) -> f64 {
-    #[cfg(feature = "solutions")]
-    return solution::quad_pdf_value(quad, origin, direction);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (quad, origin, direction);
-        todo!("ch09 quad_pdf_value: hit the quad, return distance^2 / (|cos| area), 0 on a miss")
-    }
-}
-// ANCHOR_END: exercise
 
 /// The function under test.
 pub trait QuadPdf: Fn(&Quad, DVec3, DVec3) -> f64 {}
@@ -175,53 +151,9 @@ pub fn check_quad_pdf(pdf: impl QuadPdf) -> CheckResult {
     check_normalised(&pdf)
 }
 
-/// This exercise's checks, run on your [`quad_pdf_value`].
-pub fn check() -> CheckResult {
-    check_quad_pdf(quad_pdf_value)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use super::Quad;
-    use glam::DVec3;
-
-    pub fn quad_pdf_value(quad: &Quad, origin: DVec3, direction: DVec3) -> f64 {
-        let n = quad.u.cross(quad.v);
-        let area = n.length();
-        let denom = n.dot(direction);
-        // Parallel (or degenerate): no hit. Relative threshold, so scale does not matter.
-        if denom.abs() <= 1e-12 * area {
-            return 0.0;
-        }
-        let t = n.dot(quad.q - origin) / denom;
-        if !(t > 0.0 && t.is_finite()) {
-            return 0.0;
-        }
-        // Planar coordinates of the hit: p = a u + b v, a = w . (p x v), b = w . (u x p), w = n / n.n.
-        let p = origin + t * direction - quad.q;
-        let w = n / n.length_squared();
-        let (a, b) = (w.dot(p.cross(quad.v)), w.dot(quad.u.cross(p)));
-        if !((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)) {
-            return 0.0;
-        }
-        let cosine = denom.abs() / area;
-        t * t / (cosine * area)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn exact_values_and_misses_including_origin_in_the_plane() {
-        check_values(quad_pdf_value).unwrap();
-    }
-
-    #[test]
-    fn pdf_integrates_to_1_over_the_sphere() {
-        check_normalised(quad_pdf_value).unwrap();
-    }
 
     /// A correct hit test, returning `(t, |cos theta|, area)` on a hit.
     fn hit(quad: &Quad, origin: DVec3, d: DVec3) -> Option<(f64, f64, f64)> {

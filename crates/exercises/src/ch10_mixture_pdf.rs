@@ -1,15 +1,7 @@
 //! # Chapter 10, "Mixture Densities": a mixture pdf whose value is what it generates
 //!
-//! A [`Pdf`] over directions has two halves that must agree: `generate` draws a direction, `value`
-//! says with what density (w.r.t. solid angle). The mixture of densities a and b with weight w,
-//!
-//! p(d) = w a(d) + (1 - w) b(d),
-//!
-//! is sampled by choosing a with probability w (else b) and returning that part's direction.
-//!
-//! **Task.** Implement [`Pdf`] for [`MixturePdf`]: `value` returns the weighted sum, `generate` picks
-//! a part with probability `weight_a` and delegates to it. Weights of exactly 0 or 1 must work (the
-//! unchosen part is then never sampled).
+//! The checks of the exercise `crates/exercises/exercises/ch10_mixture_pdf.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: `value` equals w a + (1 - w) b at 1000 random directions (to rounding), for weights 0,
 //! 0.3, 1; and, for the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
@@ -72,38 +64,6 @@ impl Pdf for ConePdf {
         DVec3::new(r * phi.cos(), r * phi.sin(), z)
     }
 }
-
-/// The mixture `weight_a` a + (1 - `weight_a`) b of two densities, `weight_a` in [0, 1].
-#[derive(Clone, Copy, Debug)]
-pub struct MixturePdf<A, B> {
-    pub a: A,
-    pub b: B,
-    pub weight_a: f64,
-}
-
-// ANCHOR: exercise
-impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
-    fn value(&self, direction: DVec3) -> f64 {
-        #[cfg(feature = "solutions")]
-        return solution::value(self, direction);
-        #[cfg(not(feature = "solutions"))]
-        {
-            let _ = direction;
-            todo!("ch10 MixturePdf::value: w a(d) + (1 - w) b(d)")
-        }
-    }
-
-    fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
-        #[cfg(feature = "solutions")]
-        return solution::generate(self, rng);
-        #[cfg(not(feature = "solutions"))]
-        {
-            let _ = rng;
-            todo!("ch10 MixturePdf::generate: a's direction with probability w, else b's")
-        }
-    }
-}
-// ANCHOR_END: exercise
 
 /// The cone of the checks: z >= 0.84, a cell edge of the chi-square binning.
 const CONE: ConePdf = ConePdf { cos_max: 0.84 };
@@ -169,48 +129,9 @@ pub fn check_mixture<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> Chec
     check_generate(&mix)
 }
 
-fn learner(a: CosinePdf, b: ConePdf, weight_a: f64) -> MixturePdf<CosinePdf, ConePdf> {
-    MixturePdf { a, b, weight_a }
-}
-
-/// This exercise's checks, run on your [`MixturePdf`].
-pub fn check() -> CheckResult {
-    check_mixture(learner)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use super::{MixturePdf, Pdf};
-    use glam::DVec3;
-    use rand::{Rng, RngCore};
-
-    pub fn value<A: Pdf, B: Pdf>(m: &MixturePdf<A, B>, d: DVec3) -> f64 {
-        m.weight_a * m.a.value(d) + (1.0 - m.weight_a) * m.b.value(d)
-    }
-
-    pub fn generate<A: Pdf, B: Pdf>(m: &MixturePdf<A, B>, rng: &mut dyn RngCore) -> DVec3 {
-        // u < w is never true for w = 0 and always for w = 1, as u lies in [0, 1).
-        if rng.random::<f64>() < m.weight_a {
-            m.a.generate(rng)
-        } else {
-            m.b.generate(rng)
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn value_is_the_weighted_sum_of_the_parts() {
-        check_value(learner).unwrap();
-    }
-
-    #[test]
-    fn generate_samples_the_density_value_returns() {
-        check_generate(learner).unwrap();
-    }
 
     /// A mixture that samples with one weight and values with another.
     struct Inconsistent {

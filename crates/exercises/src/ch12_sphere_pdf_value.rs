@@ -1,20 +1,7 @@
 //! # Chapter 12, "Sampling a Sphere Object": the pdf of directions towards a sphere light
 //!
-//! From a point at distance d from the centre of a sphere of radius r < d, the sphere fills a cone of
-//! half-angle theta_max with sin^2 theta_max = r^2 / d^2. Sampling directions uniformly in that cone
-//! gives the density 1 / Omega w.r.t. solid angle, with the cone's solid angle
-//!
-//! Omega = 2 pi (1 - cos theta_max).
-//!
-//! Computed as written this cancels catastrophically for a small or distant sphere: at d = 1e9 r,
-//! cos theta_max = sqrt(1 - 1e-18) rounds to exactly 1, Omega to 0 and the pdf to infinity. Multiply
-//! by (1 + cos)/(1 + cos) instead: Omega = 2 pi sin^2 theta_max / (1 + cos theta_max), with no
-//! subtraction of nearly equal numbers.
-//!
-//! **Task.** Write [`sphere_solid_angle`] (that formula for d > r; the whole sphere, 4 pi, when the
-//! point is inside or on the sphere, d <= r) and [`sphere_pdf_value`]: the density 1 / Omega for a
-//! unit direction whose ray from the origin hits the sphere (t > 0), 0 for one that misses; from
-//! inside or on the sphere every direction counts and the density is 1 / (4 pi) (uniform directions).
+//! The checks of the exercise `crates/exercises/exercises/ch12_sphere_pdf_value.rs`, which states the task, and what
+//! that exercise is given.
 //!
 //! The check: the solid angle at distances 1e2 .. 1e9 within 1e-6 relative of a series expansion,
 //! finite positive pdfs far away, inside, on and 1e-4 above the sphere, 0 on a miss, a positive pdf
@@ -25,32 +12,6 @@ use crate::check::{self, CheckResult};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::PI;
-
-// ANCHOR: exercise
-/// The solid angle of a sphere of `radius` seen from `distance` from its centre: 4 pi when
-/// `distance <= radius`, else 2 pi sin^2 theta_max / (1 + cos theta_max), sin^2 = r^2 / d^2.
-pub fn sphere_solid_angle(radius: f64, distance: f64) -> f64 {
-    #[cfg(feature = "solutions")]
-    return solution::sphere_solid_angle(radius, distance);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (radius, distance);
-        todo!("ch12 sphere_solid_angle: 2 pi sin^2 / (1 + cos) outside, 4 pi inside")
-    }
-}
-
-/// The density w.r.t. solid angle of the unit `direction` from `origin` towards the sphere
-/// (`center`, `radius`): 1 / [`sphere_solid_angle`] if the ray hits it, else 0.
-pub fn sphere_pdf_value(center: DVec3, radius: f64, origin: DVec3, direction: DVec3) -> f64 {
-    #[cfg(feature = "solutions")]
-    return solution::sphere_pdf_value(center, radius, origin, direction);
-    #[cfg(not(feature = "solutions"))]
-    {
-        let _ = (center, radius, origin, direction);
-        todo!("ch12 sphere_pdf_value: 1 / solid angle on a hit, 0 on a miss")
-    }
-}
-// ANCHOR_END: exercise
 
 /// 1 - sqrt(1 - x) by its series x/2 + x^2/8 + x^3/16 + 5x^4/128 + 7x^5/256 (x <= 1e-4: error < 1e-22).
 fn one_minus_sqrt_series(x: f64) -> f64 {
@@ -227,59 +188,9 @@ pub fn check_sphere_pdf(omega: impl Fn(f64, f64) -> f64, pdf: impl SpherePdf) ->
     check_normalised(&pdf)
 }
 
-/// This exercise's checks, run on your [`sphere_solid_angle`] and [`sphere_pdf_value`].
-pub fn check() -> CheckResult {
-    check_sphere_pdf(sphere_solid_angle, sphere_pdf_value)
-}
-
-#[cfg(feature = "solutions")]
-mod solution {
-    use glam::DVec3;
-    use std::f64::consts::PI;
-
-    pub fn sphere_solid_angle(radius: f64, distance: f64) -> f64 {
-        if distance <= radius {
-            return 4.0 * PI;
-        }
-        let sin2 = (radius / distance).powi(2);
-        let cos = (1.0 - sin2).sqrt();
-        2.0 * PI * sin2 / (1.0 + cos)
-    }
-
-    pub fn sphere_pdf_value(center: DVec3, radius: f64, origin: DVec3, direction: DVec3) -> f64 {
-        let oc = center - origin;
-        let dist2 = oc.length_squared();
-        if dist2 <= radius * radius {
-            return 1.0 / (4.0 * PI);
-        }
-        // The ray hits iff it points towards the centre and passes within the radius of it.
-        let along = oc.dot(direction);
-        let miss2 = (oc - along * direction).length_squared();
-        if along <= 0.0 || miss2 > radius * radius {
-            return 0.0;
-        }
-        1.0 / sphere_solid_angle(radius, dist2.sqrt())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn solid_angle_without_cancellation_far_away_and_4_pi_inside() {
-        check_solid_angle(sphere_solid_angle).unwrap();
-    }
-
-    #[test]
-    fn pdf_far_away_inside_on_and_just_above_the_sphere() {
-        check_values(sphere_pdf_value).unwrap();
-    }
-
-    #[test]
-    fn pdf_integrates_to_1_over_the_sphere() {
-        check_normalised(sphere_pdf_value).unwrap();
-    }
 
     /// Correct apart from the solid angle it divides by.
     fn pdf_with(omega: impl Fn(f64, f64) -> f64) -> impl SpherePdf {

@@ -1,0 +1,22 @@
+//! # Bug museum, chapter 5: find and fix the bug
+//!
+//! A renderer's spheres reflect too much light: a white sphere of radius 2 glows brighter than the
+//! light that falls on it, and the bigger the sphere, the worse. Small unit spheres look right.
+//!
+//! **Task.** [`outward_normal`] feeds the Lambertian density max(0, n . d) / pi. Find why the light
+//! grows with the radius and fix it. Keep the book's convention for the hollow glass sphere, which
+//! has a *negative* radius so that its normal points inwards.
+//!
+//! Check your code with `rtl exercises check ch05_bug_normal_length`; `rtl exercises hint
+//! ch05_bug_normal_length` gives a hint.
+
+use glam::DVec3;
+
+// ANCHOR: exercise
+/// The normal at `point` of the sphere (`center`, `radius`): outwards for a positive radius, inwards
+/// for a negative one.
+pub fn outward_normal(center: DVec3, radius: f64, point: DVec3) -> DVec3 {
+    let _ = radius;
+    point - center
+}
+// ANCHOR_END: exercise

@@ -1,0 +1,19 @@
+//! # Bug museum, chapter 12: find and fix the bug
+//!
+//! A sphere light sampled through this function comes out too dim, and more so the closer the light
+//! is; far away it is almost right.
+//!
+//! **Task.** The light is sampled uniformly in the cone of directions from the origin that just
+//! encloses the sphere (radius `radius`, centre at `distance`), with density
+//! 1 / (2 pi (1 - cos theta_max)). Find the bug in [`cos_theta_max`] and fix it.
+//!
+//! Check your code with `rtl exercises check ch12_bug_cone_cos_theta_max`; `rtl exercises hint
+//! ch12_bug_cone_cos_theta_max` gives a hint.
+
+// ANCHOR: exercise
+/// The cosine of the half-angle of the cone that encloses the sphere of `radius` whose centre is
+/// `distance` away (distance > radius).
+pub fn cos_theta_max(radius: f64, distance: f64) -> f64 {
+    1.0 - radius * radius / (distance * distance)
+}
+// ANCHOR_END: exercise

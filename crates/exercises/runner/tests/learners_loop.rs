@@ -1,0 +1,315 @@
+//! The runner driven as a learner would, on a copy of the exercises in a workspace of its own (the
+//! learner's real files are never touched), with a target directory of its own: the first run builds
+//! rand, statrs and glam there (about a minute on 2 cores), later runs reuse them.
+//!
+//! Ignored by default, as they drive cargo; `.ci/run` runs them:
+//! `cargo test -p rtl-exercises-runner --test learners_loop -- --ignored --test-threads 1`.
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../..")
+}
+
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let path = entry.path();
+        if path.is_dir() {
+            copy_dir(&path, &to.join(entry.file_name()));
+        } else {
+            std::fs::copy(&path, to.join(entry.file_name())).unwrap();
+        }
+    }
+}
+
+/// A workspace holding only crates/exercises, its learner's files the pristine stubs.
+fn workspace(name: &str) -> PathBuf {
+    let ws = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&ws);
+    let ex = ws.join("crates/exercises");
+    for sub in ["src", "tests", "solutions"] {
+        copy_dir(&repo().join("crates/exercises").join(sub), &ex.join(sub));
+    }
+    copy_dir(
+        &repo().join("crates/exercises/solutions/stubs"),
+        &ex.join("exercises"),
+    );
+    for f in ["Cargo.toml", "info.toml"] {
+        std::fs::copy(repo().join("crates/exercises").join(f), ex.join(f)).unwrap();
+    }
+    let root = std::fs::read_to_string(repo().join("Cargo.toml")).unwrap();
+    let manifest: String = root
+        .lines()
+        .filter(|l| !(l.starts_with("rtl-") && l.contains("path =")))
+        .map(|l| {
+            if l.starts_with("members = ") {
+                "members = [\"crates/exercises\"]".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(ws.join("Cargo.toml"), manifest).unwrap();
+    std::fs::copy(repo().join("Cargo.lock"), ws.join("Cargo.lock")).unwrap();
+    ws
+}
+
+fn target() -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join("learners-loop-target")
+}
+
+fn runner(ws: &Path) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_exercises"));
+    c.current_dir(ws)
+        .env_remove("RTL_EXERCISES_ROOT")
+        .env("CARGO_TARGET_DIR", target())
+        .env("CARGO_NET_OFFLINE", "true");
+    c
+}
+
+/// Runs the runner in `ws`: (exit code, stdout + stderr).
+fn run(ws: &Path, args: &[&str]) -> (i32, String) {
+    let out = runner(ws).args(args).stdin(Stdio::null()).output().unwrap();
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (out.status.code().unwrap_or(-1), text)
+}
+
+fn solve(ws: &Path, name: &str) {
+    let ex = ws.join("crates/exercises");
+    std::fs::copy(
+        ex.join(format!("solutions/{name}.rs")),
+        ex.join(format!("exercises/{name}.rs")),
+    )
+    .unwrap();
+}
+
+fn edit(ws: &Path, name: &str, f: impl FnOnce(String) -> String) {
+    let p = ws.join(format!("crates/exercises/exercises/{name}.rs"));
+    let text = std::fs::read_to_string(&p).unwrap();
+    std::fs::write(&p, f(text)).unwrap();
+}
+
+#[test]
+#[ignore = "drives cargo on a copy of the exercises (a minute the first time); .ci/run runs it"]
+fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbour() {
+    let ws = workspace("loop-ws");
+    let total = std::fs::read_dir(ws.join("crates/exercises/tests"))
+        .unwrap()
+        .count();
+
+    // Untouched stubs: nothing done, every exercise listed, the first one next.
+    let (code, out) = run(&ws, &["list"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains(&format!("0/{total} done (")), "{out}");
+    assert!(out.contains("next: ch02_estimate_pi"), "{out}");
+    assert!(out.contains("[bug]"), "{out}");
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("not started") && out.contains("your code"),
+        "{out}"
+    );
+
+    // A wrong implementation: the learner's function and what the statistics saw.
+    edit(&ws, "ch03_inverse_x_sq", |t| {
+        t.replacen(
+            "let _ = u;\n    todo!(\"ch03 sample_linear: invert the CDF x^2/4 of the density x/2 on [0,2]\")",
+            "2.0 * u",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch03_inverse_x_sq"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("failing (0/2 checks)"), "{out}");
+    assert!(
+        out.contains("|     2.0 * u"),
+        "shows the learner's function: {out}"
+    );
+    assert!(out.contains("FAIL  sample_linear"), "{out}");
+    assert!(
+        !out.contains("unwrap") && !out.contains("panicked at"),
+        "{out}"
+    );
+
+    // Solved: done, exit 0, and the progress moves on.
+    solve(&ws, "ch02_estimate_pi");
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("ch02_estimate_pi passes"), "{out}");
+    let (_, out) = run(&ws, &["list"]);
+    assert!(out.contains(&format!("1/{total} done")), "{out}");
+    assert!(out.contains("next: ch02_jittered_pi"), "{out}");
+
+    // A compile error in one exercise stops no other from being checked or listed.
+    edit(&ws, "ch02_jittered_pi", |t| {
+        t + "fn this_does_not_compile( {\n"
+    });
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        !out.contains("ch02_jittered_pi") && !out.contains("could not compile"),
+        "{out}"
+    );
+    let (code, out) = run(&ws, &["list"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("does not compile"), "{out}");
+    assert!(out.contains(&format!("1/{total} done")), "{out}");
+    assert!(
+        out.contains("ch12_bug_cone_cos_theta_max"),
+        "the exercises after it are listed: {out}"
+    );
+    let (code, out) = run(&ws, &["check", "ch02_jittered_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("does not compile") && out.contains("ch02_jittered_pi.rs"),
+        "{out}"
+    );
+
+    // reset restores the stub and keeps the learner's version.
+    let file = ws.join("crates/exercises/exercises/ch02_jittered_pi.rs");
+    let mine = std::fs::read_to_string(&file).unwrap();
+    let (code, out) = run(&ws, &["reset", "ch02_jittered_pi"]);
+    assert_eq!(code, 0, "{out}");
+    let backup = file.with_extension("rs.bak");
+    assert_eq!(std::fs::read_to_string(&backup).unwrap(), mine);
+    assert_eq!(
+        std::fs::read(&file).unwrap(),
+        std::fs::read(ws.join("crates/exercises/solutions/stubs/ch02_jittered_pi.rs")).unwrap()
+    );
+    edit(&ws, "ch02_jittered_pi", |t| t + "// a second try\n");
+    run(&ws, &["reset", "ch02_jittered_pi"]);
+    assert!(
+        file.with_extension("rs.bak2").is_file(),
+        "a second backup never overwrites the first"
+    );
+    let (_, out) = run(&ws, &["reset", "ch02_jittered_pi"]);
+    assert!(out.contains("already the stub"), "{out}");
+
+    // solution: refused before the exercise passes, shown after (or with --force and a warning).
+    let (code, out) = run(&ws, &["solution", "ch03_inverse_x_sq"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(!out.contains("u.cbrt()"), "the solution leaked: {out}");
+    assert!(out.contains("--force"), "{out}");
+    let (code, out) = run(&ws, &["solution", "ch03_inverse_x_sq", "--force"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("warning") && out.contains("u.cbrt()"), "{out}");
+    let (code, out) = run(&ws, &["solution", "ch02_estimate_pi"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("4.0 * inside as f64"), "{out}");
+}
+
+/// Reads a child's output into a shared buffer; waits for text to appear in it.
+struct Screen(Arc<Mutex<String>>);
+
+impl Screen {
+    fn start(mut from: impl Read + Send + 'static) -> Self {
+        let buf = Arc::new(Mutex::new(String::new()));
+        let b = buf.clone();
+        std::thread::spawn(move || {
+            let mut chunk = [0u8; 4096];
+            while let Ok(n) = from.read(&mut chunk) {
+                if n == 0 {
+                    break;
+                }
+                b.lock()
+                    .unwrap()
+                    .push_str(&String::from_utf8_lossy(&chunk[..n]));
+            }
+        });
+        Self(buf)
+    }
+
+    /// Waits (at most `secs`) until `text` appears after byte `from`; returns where it ends.
+    fn wait_for(&self, text: &str, from: usize, secs: u64) -> usize {
+        let start = Instant::now();
+        loop {
+            {
+                let s = self.0.lock().unwrap();
+                if let Some(i) = s.get(from..).and_then(|t| t.find(text)) {
+                    return from + i + text.len();
+                }
+            }
+            if start.elapsed() > Duration::from_secs(secs) {
+                let s = self.0.lock().unwrap();
+                panic!(
+                    "no `{text}` within {secs} s; the screen so far:\n{}",
+                    &s[from.min(s.len())..]
+                );
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+}
+
+#[test]
+#[ignore = "drives cargo and a pseudo-terminal (script(1)); .ci/run runs it"]
+fn watch_rechecks_on_save_moves_on_when_it_passes_and_obeys_h_and_q() {
+    if Command::new("script").arg("--version").output().is_err() {
+        eprintln!("script(1) (util-linux) is not installed: no pseudo-terminal to drive watch in");
+        return;
+    }
+    let ws = workspace("watch-ws");
+    // Warm the build first, so that the time limits below measure the loop, not the first build.
+    run(&ws, &["list"]);
+    let exe = env!("CARGO_BIN_EXE_exercises");
+    let mut child = Command::new("script")
+        .args(["-qfec", &format!("{exe} watch"), "/dev/null"])
+        .current_dir(&ws)
+        .env_remove("RTL_EXERCISES_ROOT")
+        .env("CARGO_TARGET_DIR", target())
+        .env("CARGO_NET_OFFLINE", "true")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut keys = child.stdin.take().unwrap();
+    let screen = Screen::start(child.stdout.take().unwrap());
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let at = screen.wait_for("checking ch02_estimate_pi on every save", 0, 120);
+        let at = screen.wait_for("[h] hint   [q] quit", at, 60);
+        // A save re-runs the check and redraws (clearing the screen).
+        edit(&ws, "ch02_estimate_pi", |t| t + "// saved\n");
+        let at = screen.wait_for("saved: checked again", at, 120);
+        let at = screen.wait_for("\x1b[2J", at.saturating_sub(400), 5);
+        let at = screen.wait_for("not started", at, 60);
+        // Solved: it moves on to the next exercise.
+        solve(&ws, "ch02_estimate_pi");
+        let at = screen.wait_for("ch02_estimate_pi passes! On to ch02_jittered_pi", at, 120);
+        let at = screen.wait_for("[h] hint", at, 60);
+        keys.write_all(b"h").unwrap();
+        keys.flush().unwrap();
+        let at = screen.wait_for("hint 1 of", at, 30);
+        keys.write_all(b"q").unwrap();
+        keys.flush().unwrap();
+        let _ = at;
+        let start = Instant::now();
+        loop {
+            if let Some(status) = child.try_wait().unwrap() {
+                assert!(status.success(), "watch exited with {status}");
+                break;
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(20),
+                "q did not quit watch"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }));
+    let _ = child.kill();
+    let _ = child.wait();
+    if let Err(e) = result {
+        std::panic::resume_unwind(e);
+    }
+}

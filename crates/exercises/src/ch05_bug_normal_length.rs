@@ -1,0 +1,93 @@
+//! # Bug museum, chapter 5: the sphere's normal that is not of unit length
+//!
+//! The checks of the exercise `crates/exercises/exercises/ch05_bug_normal_length.rs`, which holds the
+//! bug to find.
+//!
+//! The check: the normal at points of spheres of radius 0.5, 1, 2 and 100 has unit length, and on a
+//! sphere of negative radius (the book's hollow glass bubble) points inwards, (p - c) / r; and the
+//! Lambertian density built on it integrates to 1 over the sphere of directions (z-test of 1e5
+//! uniform directions, false failure 1e-6), which a normal of length r would make r.
+
+use crate::check::{self, CheckResult};
+use glam::DVec3;
+use std::f64::consts::{FRAC_1_PI, PI};
+
+/// The Lambertian density max(0, n . d) / pi (given): right only for a unit normal `n`.
+pub fn lambertian_pdf(normal: DVec3, direction: DVec3) -> f64 {
+    normal.dot(direction).max(0.0) * FRAC_1_PI
+}
+
+/// The normal under test: `(center, radius, point on the sphere) -> normal`.
+pub trait Normal: Fn(DVec3, f64, DVec3) -> DVec3 {}
+impl<F: Fn(DVec3, f64, DVec3) -> DVec3> Normal for F {}
+
+const CENTER: DVec3 = DVec3::new(1.0, -2.0, 0.5);
+
+/// Unit length and the book's sign convention (inwards for a negative radius).
+pub fn check_unit(normal: impl Normal) -> CheckResult {
+    let mut rng = check::seeded(50);
+    for radius in [0.5f64, 1.0, 2.0, 100.0, -0.4] {
+        for _ in 0..100 {
+            let d = check::uniform_direction(&mut rng);
+            let p = CENTER + radius.abs() * d;
+            let n = normal(CENTER, radius, p);
+            if !n.is_finite() || (n.length() - 1.0).abs() > 1e-12 {
+                return Err(format!(
+                    "the normal at {p} of the sphere of radius {radius} has length {} (it is {n}): \
+                     a normal must have unit length",
+                    n.length()
+                ));
+            }
+            let want = d * radius.signum();
+            if (n - want).length() > 1e-9 {
+                return Err(format!(
+                    "the normal at {p} of the sphere of radius {radius} is {n}, expected {want} \
+                     ((p - center) / radius{})",
+                    if radius < 0.0 {
+                        ": the book's hollow sphere has a negative radius so that it points inwards"
+                    } else {
+                        ""
+                    }
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The Lambertian density on the normal of a radius-2 sphere integrates to 1: E[4 pi p(d)] over
+/// 1e5 uniform directions, z-tested against 1.
+pub fn check_normalised(normal: impl Normal) -> CheckResult {
+    let radius = 2.0;
+    let p = CENTER + DVec3::new(0.0, radius, 0.0);
+    let n = normal(CENTER, radius, p);
+    let mut rng = check::seeded(51);
+    let values =
+        (0..100_000).map(|_| 4.0 * PI * lambertian_pdf(n, check::uniform_direction(&mut rng)));
+    check::z_test_mean("the Lambertian density on your normal of a radius-2 sphere, integrated over the sphere", values, 1.0)
+        .map_err(|e| {
+            format!(
+                "{e}\n(a density must integrate to 1; the cosine n . d grows with the length of n, {}, so the \
+                 surface would reflect {}x the light it receives)",
+                n.length(),
+                n.length()
+            )
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checks_reject_the_unscaled_and_the_sign_losing_normal() {
+        let unscaled = |c: DVec3, _r: f64, p: DVec3| p - c;
+        assert!(check_unit(unscaled).is_err());
+        let err = check_normalised(unscaled).unwrap_err();
+        assert!(err.contains("standard errors"), "{err}");
+        // Wrong: normalize() loses the book's inward normal of a negative radius.
+        let normalised = |c: DVec3, _r: f64, p: DVec3| (p - c).normalize();
+        assert!(check_unit(normalised).is_err());
+        assert!(check_normalised(normalised).is_ok());
+    }
+}

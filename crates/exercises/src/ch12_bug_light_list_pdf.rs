@@ -1,0 +1,145 @@
+//! # Bug museum, chapter 12: the black image of a light list without `pdf_value`
+//!
+//! The checks of the exercise `crates/exercises/exercises/ch12_bug_light_list_pdf.rs`, which holds the
+//! bug to find.
+//!
+//! The setting, in a few lines: two spherical lights seen from the origin, each a cone of directions
+//! ([`ConeLight`], given), and a list of them that samples one at random. Like the book's `hittable`,
+//! the trait [`Light`] has a default `pdf_value` of 0.
+//!
+//! The check: `pdf_value` is positive at every direction `random` generates (1000 of them) and
+//! integrates to 1 over the sphere (z-test of 1e5 uniform directions); and the estimate of the lights'
+//! total solid angle, the average of 1 / pdf_value over 1e5 generated directions, z-tested against the
+//! exact sum of the two cones (false failure 1e-6). An estimator that skips samples of density 0 (as it
+//! must, to avoid NaN) estimates 0 there: the black image.
+
+use crate::check::{self, CheckResult};
+use glam::DVec3;
+use rand::{Rng, RngCore};
+use std::f64::consts::PI;
+
+/// A light as the integrator samples it from the origin.
+pub trait Light {
+    /// The density, per steradian, with which [`Light::random`] draws `direction`. The default is
+    /// the book's `hittable::pdf_value`: 0, "not a light".
+    fn pdf_value(&self, direction: DVec3) -> f64 {
+        let _ = direction;
+        0.0
+    }
+    /// A unit direction towards the light.
+    fn random(&self, rng: &mut dyn RngCore) -> DVec3;
+}
+
+/// A sphere light seen from the origin: the cone of directions within `cos_max` of `axis` (unit),
+/// sampled uniformly (given).
+#[derive(Clone, Copy, Debug)]
+pub struct ConeLight {
+    pub axis: DVec3,
+    pub cos_max: f64,
+}
+
+impl ConeLight {
+    /// The cone's solid angle 2 pi (1 - cos_max).
+    pub fn solid_angle(&self) -> f64 {
+        2.0 * PI * (1.0 - self.cos_max)
+    }
+}
+
+impl Light for ConeLight {
+    fn pdf_value(&self, d: DVec3) -> f64 {
+        if d.dot(self.axis) >= self.cos_max {
+            1.0 / self.solid_angle()
+        } else {
+            0.0
+        }
+    }
+    fn random(&self, rng: &mut dyn RngCore) -> DVec3 {
+        let z = 1.0 - rng.random::<f64>() * (1.0 - self.cos_max);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = 2.0 * PI * rng.random::<f64>();
+        let w = self.axis;
+        let a = if w.x.abs() > 0.9 { DVec3::Y } else { DVec3::X };
+        let v = w.cross(a).normalize();
+        let u = v.cross(w);
+        r * phi.cos() * u + r * phi.sin() * v + z * w
+    }
+}
+
+/// The two lights of the checks: disjoint cones of different sizes.
+pub fn lights() -> [ConeLight; 2] {
+    [
+        ConeLight {
+            axis: DVec3::new(0.0, 0.6, 0.8),
+            cos_max: 0.95,
+        },
+        ConeLight {
+            axis: DVec3::new(0.0, -0.8, 0.6),
+            cos_max: 0.99,
+        },
+    ]
+}
+
+/// `pdf_value` is positive where `random` lands, and integrates to 1.
+pub fn check_pdf_value(list: &dyn Light) -> CheckResult {
+    let mut rng = check::seeded(120);
+    let zeros = (0..1000)
+        .filter(|_| list.pdf_value(list.random(&mut rng)) <= 0.0)
+        .count();
+    if zeros > 0 {
+        return Err(format!(
+            "pdf_value is 0 at {zeros} of 1000 directions that random() generated: a density must be \
+             positive wherever its sampler lands; an integrator that skips samples of density 0 gets \
+             nothing from them (the black image), one that divides gets infinity or NaN"
+        ));
+    }
+    let values =
+        (0..100_000).map(|_| 4.0 * PI * list.pdf_value(check::uniform_direction(&mut rng)));
+    check::z_test_mean("pdf_value integrated over the sphere", values, 1.0)
+}
+
+/// The lights' total solid angle, estimated as the mean of 1 / pdf_value over generated directions.
+pub fn check_estimate(list: &dyn Light) -> CheckResult {
+    let exact: f64 = lights().iter().map(ConeLight::solid_angle).sum();
+    let mut rng = check::seeded(121);
+    let values = (0..100_000).map(|_| {
+        let p = list.pdf_value(list.random(&mut rng));
+        if p > 0.0 { 1.0 / p } else { 0.0 }
+    });
+    check::z_test_mean(
+        "the estimate of the lights' solid angle, mean of 1 / pdf_value",
+        values,
+        exact,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct NoPdf([ConeLight; 2]);
+    impl Light for NoPdf {
+        fn random(&self, rng: &mut dyn RngCore) -> DVec3 {
+            self.0[rng.random_range(0..2)].random(rng)
+        }
+    }
+
+    /// Wrong in another way: the sum of the values, not their average.
+    struct Sum([ConeLight; 2]);
+    impl Light for Sum {
+        fn pdf_value(&self, d: DVec3) -> f64 {
+            self.0.iter().map(|l| l.pdf_value(d)).sum()
+        }
+        fn random(&self, rng: &mut dyn RngCore) -> DVec3 {
+            self.0[rng.random_range(0..2)].random(rng)
+        }
+    }
+
+    #[test]
+    fn checks_reject_the_default_pdf_value_and_a_sum() {
+        let err = check_pdf_value(&NoPdf(lights())).unwrap_err();
+        assert!(err.contains("black image"), "{err}");
+        assert!(check_estimate(&NoPdf(lights())).is_err());
+        assert!(check_pdf_value(&Sum(lights())).is_err());
+        assert!(check_estimate(&Sum(lights())).is_err());
+    }
+}

@@ -1,0 +1,342 @@
+//! The program each exercise's test target runs (`harness = false`): it runs the exercise's checks
+//! one by one, catches a `todo!()` or any other panic of the learner's code, and prints one report.
+//!
+//! The report's first line is what `rtl exercises` reads:
+//!
+//! ```text
+//! ch02_estimate_pi: failing: 1/2 checks passed: estimate_pi with 1e5 points: estimate 0.785 is ...
+//! ```
+//!
+//! (the state is `done`, `failing` or `not started`), followed by one line per check (`ok`, `FAIL`
+//! with what the statistics saw, or `todo`). The program exits 0 exactly when every check passes.
+//!
+//! With `--features solutions` it checks the reference solution instead of the learner's file, and the
+//! shipped stub too, which the checks must reject (a stub's `todo!()`, or a bug-museum exercise's bug):
+//! it exits 0 when the solution passes and the stub does not.
+
+use crate::check::CheckResult;
+use std::panic::{self, AssertUnwindSafe};
+use std::sync::Mutex;
+
+/// One named check of an exercise.
+pub struct Check {
+    label: &'static str,
+    run: Box<dyn Fn() -> CheckResult>,
+}
+
+impl Check {
+    /// The check `run`, described to the learner as `label`.
+    pub fn new(label: &'static str, run: impl Fn() -> CheckResult + 'static) -> Self {
+        Self {
+            label,
+            run: Box::new(run),
+        }
+    }
+}
+
+/// What one check found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    Pass,
+    /// The check ran and saw this.
+    Fail(String),
+    /// A `todo!()` was reached; its message.
+    Todo(String),
+    /// The code under test panicked: message and location.
+    Panic(String),
+}
+
+/// The state of an exercise from its checks' outcomes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum State {
+    Done,
+    Failing,
+    NotStarted,
+}
+
+impl State {
+    /// The word `rtl exercises` reads: `done`, `failing`, `not started`.
+    pub fn word(self) -> &'static str {
+        match self {
+            State::Done => "done",
+            State::Failing => "failing",
+            State::NotStarted => "not started",
+        }
+    }
+}
+
+static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
+
+/// Runs one check, turning a panic into an [`Outcome`] instead of a harness's backtrace.
+pub fn run_check(check: &Check) -> Outcome {
+    *LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    match panic::catch_unwind(AssertUnwindSafe(|| (check.run)())) {
+        Ok(Ok(())) => Outcome::Pass,
+        Ok(Err(why)) => Outcome::Fail(why),
+        Err(_) => {
+            let msg = LAST_PANIC
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .take()
+                .unwrap_or_else(|| "a panic".to_string());
+            match msg.split_once("not yet implemented") {
+                Some((_, rest)) => Outcome::Todo(rest.trim_start_matches(": ").to_string()),
+                None => Outcome::Panic(msg),
+            }
+        }
+    }
+}
+
+/// Records a panic's message and place (the learner's file and line) instead of printing it.
+fn quiet_panic_hook() {
+    panic::set_hook(Box::new(|info| {
+        let payload = info.payload();
+        let msg = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_else(|| "a panic".to_string());
+        let text = match info.location() {
+            Some(_) if msg.starts_with("not yet implemented") => msg,
+            Some(l) => format!(
+                "your code panicked at {}:{}:{}: {msg}",
+                l.file().replace("/tests/../", "/"),
+                l.line(),
+                l.column()
+            ),
+            None => format!("your code panicked: {msg}"),
+        };
+        *LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner()) = Some(text);
+    }));
+}
+
+/// The outcomes of all of an exercise's checks.
+pub struct Report {
+    pub outcomes: Vec<(&'static str, Outcome)>,
+}
+
+impl Report {
+    /// Runs every check.
+    pub fn run(checks: &[Check]) -> Self {
+        Self {
+            outcomes: checks.iter().map(|c| (c.label, run_check(c))).collect(),
+        }
+    }
+
+    pub fn passed(&self) -> usize {
+        self.outcomes
+            .iter()
+            .filter(|(_, o)| *o == Outcome::Pass)
+            .count()
+    }
+
+    pub fn state(&self) -> State {
+        if self.passed() == self.outcomes.len() {
+            State::Done
+        } else if self
+            .outcomes
+            .iter()
+            .all(|(_, o)| matches!(o, Outcome::Todo(_)))
+        {
+            State::NotStarted
+        } else {
+            State::Failing
+        }
+    }
+
+    /// The report: the summary line, then one line (or an indented block) per check.
+    pub fn render(&self, name: &str) -> String {
+        let state = self.state();
+        let mut out = format!(
+            "{name}: {}: {}/{} checks passed",
+            state.word(),
+            self.passed(),
+            self.outcomes.len()
+        );
+        let first = self.outcomes.iter().find_map(|(label, o)| match o {
+            Outcome::Fail(why) | Outcome::Panic(why) => Some(format!("{label}: {why}")),
+            Outcome::Todo(what) if state != State::NotStarted => {
+                Some(format!("{label}: still todo!() ({what})"))
+            }
+            _ => None,
+        });
+        if let Some(first) = first {
+            out += ": ";
+            out += first.lines().next().unwrap_or("");
+        }
+        out.push('\n');
+        for (label, o) in &self.outcomes {
+            let (tag, text) = match o {
+                Outcome::Pass => ("ok  ", String::new()),
+                Outcome::Fail(why) | Outcome::Panic(why) => ("FAIL", why.clone()),
+                Outcome::Todo(what) => ("todo", format!("todo!(\"{what}\") reached")),
+            };
+            out += &format!("  {tag}  {label}");
+            let mut lines = text.lines();
+            if let Some(l) = lines.next() {
+                out += &format!("\n          {l}");
+            }
+            for l in lines {
+                out += &format!("\n          {l}");
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// What the test target was asked to do by `cargo test ... -- ARGS`.
+enum Mode {
+    Run,
+    List,
+    Skip,
+}
+
+fn mode(name: &str) -> Mode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut filters = Vec::new();
+    let (mut exact, mut list) = (false, false);
+    let mut i = 0;
+    while i < args.len() {
+        let a = args[i].as_str();
+        match a {
+            "--list" => list = true,
+            "--exact" => exact = true,
+            // There are no ignored checks: `-- --ignored` runs none of them.
+            "--ignored" => return Mode::Skip,
+            "--skip" => {
+                i += 1;
+                if args.get(i).is_some_and(|s| name.contains(s.as_str())) {
+                    return Mode::Skip;
+                }
+            }
+            "--test-threads" | "--color" | "--format" | "--logfile" | "-Z" => i += 1,
+            _ if a.starts_with('-') => {}
+            _ => filters.push(a.to_string()),
+        }
+        i += 1;
+    }
+    let selected = filters.is_empty()
+        || filters.iter().any(|f| {
+            if exact {
+                name == f
+            } else {
+                name.contains(f.as_str())
+            }
+        });
+    match (selected, list) {
+        (false, _) => Mode::Skip,
+        (true, true) => Mode::List,
+        (true, false) => Mode::Run,
+    }
+}
+
+/// The `main` of an exercise's test target: checks the learner's code (`learner`), or with the
+/// `solutions` feature the reference solution (`learner`) and the shipped stub (`stub`).
+pub fn main(name: &str, learner: Vec<Check>, stub: Option<Vec<Check>>) -> ! {
+    match mode(name) {
+        Mode::Skip => std::process::exit(0),
+        Mode::List => {
+            println!("{name}: test");
+            std::process::exit(0)
+        }
+        Mode::Run => {}
+    }
+    quiet_panic_hook();
+    let report = Report::run(&learner);
+    let code = match stub {
+        None => {
+            print!("{}", report.render(name));
+            i32::from(report.state() != State::Done)
+        }
+        Some(stub) => {
+            let solution_ok = report.state() == State::Done;
+            print!("{}", report.render(&format!("{name} (reference solution)")));
+            let stubbed = Report::run(&stub);
+            let stub_rejected = stubbed.state() != State::Done;
+            print!("{}", stubbed.render(&format!("{name} (shipped stub)")));
+            println!(
+                "{name}: the reference solution {}; the shipped stub {}",
+                if solution_ok {
+                    "passes every check"
+                } else {
+                    "FAILS"
+                },
+                if stub_rejected {
+                    "is rejected, as it must be"
+                } else {
+                    "PASSES: a check that cannot fail"
+                }
+            );
+            i32::from(!(solution_ok && stub_rejected))
+        }
+    };
+    std::process::exit(code)
+}
+
+/// The `main` of an exercise's test target. `exercise_main!("NAME", e => { "label" => check, ... })`
+/// runs each `check`, an expression that calls the exercise's functions through the module alias `e`:
+/// `exercise` (the learner's file, or with `--features solutions` the reference solution) and, with
+/// `solutions`, `stub` (the shipped stub) as well.
+#[macro_export]
+macro_rules! exercise_main {
+    ($name:literal, $m:ident => { $( $label:literal => $check:expr ),+ $(,)? }) => {
+        fn main() {
+            fn checks() -> ::std::vec::Vec<$crate::harness::Check> {
+                use self::exercise as $m;
+                ::std::vec![$( $crate::harness::Check::new($label, move || $check) ),+]
+            }
+            #[cfg(feature = "solutions")]
+            fn stub_checks() -> ::std::option::Option<::std::vec::Vec<$crate::harness::Check>> {
+                use self::stub as $m;
+                ::std::option::Option::Some(
+                    ::std::vec![$( $crate::harness::Check::new($label, move || $check) ),+]
+                )
+            }
+            #[cfg(not(feature = "solutions"))]
+            fn stub_checks() -> ::std::option::Option<::std::vec::Vec<$crate::harness::Check>> {
+                ::std::option::Option::None
+            }
+            $crate::harness::main($name, checks(), stub_checks())
+        }
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn states_and_the_summary_line() {
+        quiet_panic_hook();
+        let checks = vec![
+            Check::new("passes", || Ok(())),
+            Check::new("fails", || Err("saw 3, expected 4\nmore".into())),
+            Check::new("todo", || todo!("write f")),
+        ];
+        let r = Report::run(&checks);
+        assert_eq!(r.state(), State::Failing);
+        let text = r.render("x");
+        assert!(
+            text.starts_with("x: failing: 1/3 checks passed: fails: saw 3, expected 4\n"),
+            "{text}"
+        );
+        assert!(text.contains("todo!(\"write f\") reached"), "{text}");
+        let todo = Report::run(&[Check::new("t", || todo!("write g"))]);
+        assert_eq!(todo.state(), State::NotStarted);
+        assert!(
+            todo.render("y")
+                .starts_with("y: not started: 0/1 checks passed\n")
+        );
+        let panics = Report::run(&[Check::new("p", || {
+            let v: Vec<u8> = Vec::new();
+            let i = v.len() + 2;
+            Err(format!("{}", v[i]))
+        })]);
+        let text = panics.render("z");
+        assert!(text.contains("your code panicked at"), "{text}");
+        assert!(text.contains("index out of bounds"), "{text}");
+        // Back to the default hook, for the other tests.
+        let _ = panic::take_hook();
+    }
+}
