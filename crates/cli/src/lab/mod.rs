@@ -122,10 +122,6 @@ pub fn run(args: LabArgs) -> Result<()> {
         std::thread::Builder::new()
             .name("render".into())
             .spawn(move || cornell::worker(b, s))?;
-        let b = Arc::clone(&bench);
-        std::thread::Builder::new()
-            .name("watchdog".into())
-            .spawn(move || cornell::watchdog(b))?;
     }
     let shown = match args.bind {
         a if a.is_unspecified() => IpAddr::V4(Ipv4Addr::LOCALHOST),
