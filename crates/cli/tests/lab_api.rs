@@ -213,6 +213,11 @@ fn every_bad_parameter_is_refused_with_a_message() {
         ("GET", "/api/sampling/line?n=1", "`n=1`"),
         ("GET", "/api/sampling/line?n=100000000", "`n="),
         ("GET", "/api/sampling/line?bins=100000", "bins"),
+        (
+            "GET",
+            "/api/sampling/line?method=numeric&samples=300000",
+            "numerical inversion",
+        ),
         ("GET", "/api/sampling/line?tolerance=NaN", "tolerance"),
         ("GET", "/api/sampling/line?tolerance=0", "tolerance"),
         ("GET", "/api/sampling/line?density=nope", "density"),
