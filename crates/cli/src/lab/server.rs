@@ -72,11 +72,20 @@ pub fn serve(server: Server, app: Arc<App>) {
             let _ = request.respond(text(503, "too many requests at once"));
             continue;
         }
-        let app = Arc::clone(&app);
-        std::thread::spawn(move || {
-            handle(&app, request);
-            app.in_flight.fetch_sub(1, Ordering::SeqCst);
-        });
+        let slot = InFlight(Arc::clone(&app));
+        // No thread to be had (the request, dropped, closes its connection): the server goes on.
+        if let Err(e) = std::thread::Builder::new().spawn(move || handle(&slot.0, request)) {
+            eprintln!("rtl lab: cannot start a thread for a request: {e}");
+        }
+    }
+}
+
+/// A request's place among the [`MAX_IN_FLIGHT`], given back when its thread ends, even by a panic.
+struct InFlight(Arc<App>);
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        self.0.in_flight.fetch_sub(1, Ordering::SeqCst);
     }
 }
 
