@@ -69,7 +69,11 @@ pub fn serve(server: Server, app: Arc<App>) {
     for request in server.incoming_requests() {
         if app.in_flight.fetch_add(1, Ordering::SeqCst) >= MAX_IN_FLIGHT {
             app.in_flight.fetch_sub(1, Ordering::SeqCst);
-            let _ = request.respond(text(503, "too many requests at once"));
+            // JSON like every other refusal: the page reads its `error`.
+            let _ = request.respond(json_response(
+                503,
+                &json!({ "error": "too many requests at once" }),
+            ));
             continue;
         }
         let slot = InFlight(Arc::clone(&app));
@@ -101,14 +105,6 @@ fn with_common<R: std::io::Read>(r: Response<R>) -> Response<R> {
             "Content-Security-Policy",
             "default-src 'self'; img-src 'self' blob: data:; style-src 'self'; script-src 'self'; connect-src 'self'",
         ))
-}
-
-fn text(status: u16, msg: &str) -> Response<std::io::Cursor<Vec<u8>>> {
-    with_common(
-        Response::from_string(msg)
-            .with_status_code(status)
-            .with_header(header("Content-Type", "text/plain; charset=utf-8")),
-    )
 }
 
 fn json_response(status: u16, v: &Value) -> Response<std::io::Cursor<Vec<u8>>> {
