@@ -53,6 +53,15 @@ pub struct App {
 }
 
 impl App {
+    /// `run` in the Monte Carlo and sampling benches' turn (the others wait).
+    fn one_at_a_time(
+        &self,
+        run: impl FnOnce() -> Result<Value, BadRequest>,
+    ) -> Result<Answer, BadRequest> {
+        let _turn = self.compute.lock().unwrap_or_else(|e| e.into_inner());
+        run().map(Answer::Json)
+    }
+
     pub fn new(bench: Arc<Bench>, hosts: Vec<String>, book_dir: PathBuf) -> App {
         App {
             bench,
@@ -186,51 +195,30 @@ fn route(app: &App, method: &Method, path: &str, query: &str) -> Answer {
     if get && let Some(rest) = path.strip_prefix("/book/") {
         return book_page(&app.book_dir, rest);
     }
-    let result: Result<Answer, BadRequest> = match (path, get, post) {
-        ("/api/mc/list", true, _) => no_query(query).map(|()| Answer::Json(mc::list())),
-        ("/api/mc/run", true, _) => {
-            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
-            mc::run(query).map(Answer::Json)
-        }
-        ("/api/sampling/list", true, _) => no_query(query).map(|()| Answer::Json(sampling::list())),
-        ("/api/sampling/line", true, _) => {
-            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
-            sampling::run_line(query).map(Answer::Json)
-        }
-        ("/api/sampling/sphere", true, _) => {
-            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
-            sampling::run_sphere(query).map(Answer::Json)
-        }
-        ("/api/render/list", true, _) => no_query(query).map(|()| Answer::Json(render_list(app))),
-        ("/api/render/settings", _, true) => set_render(app, query).map(Answer::Json),
-        ("/api/render/state", true, _) => render_state(app, query).map(Answer::Json),
-        ("/api/render/image", true, _) => render_image(app, query),
-        ("/api/render/clear", _, true) => no_query(query).map(|()| {
-            app.bench.clear_curves();
-            Answer::Json(json!({ "cleared": true }))
-        }),
-        (p, _, _) if p.starts_with("/api/") && route_exists(p) => {
-            return Answer::Error(405, format!("{p}: wrong method {method}"));
-        }
-        (p, _, _) => return Answer::Error(404, format!("no page {p}")),
+    let handler: fn(&App, &str) -> Result<Answer, BadRequest> = match path {
+        "/api/mc/list" => |_, q| no_query(q).map(|()| Answer::Json(mc::list())),
+        "/api/mc/run" => |app, q| app.one_at_a_time(|| mc::run(q)),
+        "/api/sampling/list" => |_, q| no_query(q).map(|()| Answer::Json(sampling::list())),
+        "/api/sampling/line" => |app, q| app.one_at_a_time(|| sampling::run_line(q)),
+        "/api/sampling/sphere" => |app, q| app.one_at_a_time(|| sampling::run_sphere(q)),
+        "/api/render/list" => |app, q| no_query(q).map(|()| Answer::Json(render_list(app))),
+        "/api/render/settings" => |app, q| set_render(app, q).map(Answer::Json),
+        "/api/render/state" => |app, q| render_state(app, q).map(Answer::Json),
+        "/api/render/image" => render_image,
+        "/api/render/clear" => |app, q| {
+            no_query(q).map(|()| {
+                app.bench.clear_curves();
+                Answer::Json(json!({ "cleared": true }))
+            })
+        },
+        p => return Answer::Error(404, format!("no page {p}")),
     };
-    result.unwrap_or_else(Answer::from)
-}
-
-fn route_exists(p: &str) -> bool {
-    [
-        "/api/mc/list",
-        "/api/mc/run",
-        "/api/sampling/list",
-        "/api/sampling/line",
-        "/api/sampling/sphere",
-        "/api/render/list",
-        "/api/render/settings",
-        "/api/render/state",
-        "/api/render/image",
-        "/api/render/clear",
-    ]
-    .contains(&p)
+    // What changes the render is a POST; everything else a GET (or HEAD).
+    let wants_post = matches!(path, "/api/render/settings" | "/api/render/clear");
+    if !(if wants_post { post } else { get }) {
+        return Answer::Error(405, format!("{path}: wrong method {method}"));
+    }
+    handler(app, query).unwrap_or_else(Answer::from)
 }
 
 fn no_query(query: &str) -> Result<(), BadRequest> {
