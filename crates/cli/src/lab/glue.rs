@@ -48,6 +48,15 @@ pub fn strategy(name: &str, rr: bool, lds: bool, sph_rect: bool) -> Result<Strat
     })
 }
 
+/// `mis`'s extras; the defaults for the other strategies (which ignore them), so that the page's
+/// switches keep their places across a change of strategy.
+pub fn mis_options(s: Strategy) -> MisOptions {
+    match s {
+        Strategy::Mis(o) => o,
+        _ => MisOptions::DEFAULT,
+    }
+}
+
 /// The names of the strategies, in the book's order.
 pub fn strategy_names() -> Vec<&'static str> {
     Strategy::ALL.iter().map(Strategy::name).collect()

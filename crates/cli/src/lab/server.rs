@@ -234,11 +234,7 @@ fn render_list(app: &App) -> Value {
 }
 
 fn settings_json(s: &Settings) -> Value {
-    use rtl_render::integrator::Strategy;
-    let o = match s.strategy {
-        Strategy::Mis(o) => o,
-        _ => rtl_render::integrator::MisOptions::DEFAULT,
-    };
+    let o = glue::mis_options(s.strategy);
     json!({
         "width": s.width, "strategy": s.strategy.name(), "seed": s.seed, "max_depth": s.max_depth,
         "rr": o.russian_roulette, "lds": o.low_discrepancy, "sph_rect": o.spherical_rectangles,
@@ -262,10 +258,7 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
         ],
     )?;
     let d = app.bench.settings();
-    let o = match d.strategy {
-        rtl_render::integrator::Strategy::Mis(o) => o,
-        _ => rtl_render::integrator::MisOptions::DEFAULT,
-    };
+    let o = glue::mis_options(d.strategy);
     let names = glue::strategy_names();
     let name = q.choice("strategy", d.strategy.name(), &names)?;
     let width = q.number("width", d.width, cornell::WIDTHS.0, cornell::WIDTHS.1)?;
@@ -317,16 +310,19 @@ fn render_image(app: &App, query: &str) -> Result<Answer, BadRequest> {
     let kind = q.choice("kind", "image", &["image", "variance"])?;
     q.number("frame", 0u64, 0, u64::MAX)?; // a cache-buster of the page, not used
     app.bench.touch();
-    let f = app.bench.frame.lock().unwrap();
-    if f.id == 0 {
-        return Ok(Answer::Error(503, "no frame yet".into()));
-    }
-    let png = if kind == "image" {
-        &f.image_png
-    } else {
-        &f.variance_png
+    let png = {
+        let f = app.bench.frame.lock().unwrap();
+        if f.id == 0 {
+            return Ok(Answer::Error(503, "no frame yet".into()));
+        }
+        Arc::clone(if kind == "image" {
+            &f.image_png
+        } else {
+            &f.variance_png
+        })
     };
-    Ok(Answer::Bytes("image/png", png.as_ref().clone()))
+    // Copied out of the frame's lock, which the render's worker waits for.
+    Ok(Answer::Bytes("image/png", png.to_vec()))
 }
 
 /// A file of the built book: `rest` is a relative path of plain names (no `..`, nothing hidden).
