@@ -33,8 +33,9 @@ use std::sync::Arc;
 
 #[derive(Args)]
 pub struct LabArgs {
-    /// The Cornell box's width (and height) when the page opens.
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(16..=600))]
+    /// The Cornell box's width (and height) when the page opens: the page's own range.
+    #[arg(long, default_value_t = 200,
+          value_parser = clap::value_parser!(u64).range(cornell::WIDTHS.0 as u64..=cornell::WIDTHS.1 as u64))]
     pub width: u64,
     /// Port to listen on; 0 picks a free one.
     #[arg(long, default_value_t = 8017)]
