@@ -106,7 +106,13 @@ pub fn label(s: &Settings) -> String {
         }
         other => other.name().to_string(),
     };
-    format!("{name} seed {} {}px", s.seed, s.width)
+    // The depth only where it is not the book's, but always apart: curves are kept by label.
+    let depth = if s.max_depth == glue::BOOK_DEPTH {
+        String::new()
+    } else {
+        format!(" depth {}", s.max_depth)
+    };
+    format!("{name} seed {} {}px{depth}", s.seed, s.width)
 }
 
 /// The spp of the best reference cached in `dir` at `width` (`rtl study render`'s file names).
@@ -356,6 +362,39 @@ fn render_generation(bench: &Arc<Bench>, scene: &Arc<Scene>, generation: u64, s:
 mod tests {
     use super::*;
     use rtl_render::integrator::Strategy;
+
+    #[test]
+    fn every_setting_has_a_label_of_its_own() {
+        let s = Settings {
+            width: 16,
+            strategy: Strategy::Cosine,
+            seed: 1,
+            max_depth: glue::BOOK_DEPTH,
+        };
+        let others = [
+            Settings { width: 32, ..s },
+            Settings { seed: 2, ..s },
+            Settings { max_depth: 5, ..s },
+            Settings {
+                strategy: Strategy::Uniform,
+                ..s
+            },
+            Settings {
+                strategy: glue::strategy("mis", true, false, false).unwrap(),
+                ..s
+            },
+            Settings {
+                strategy: glue::strategy("mis", false, false, false).unwrap(),
+                ..s
+            },
+        ];
+        let mut labels: Vec<String> = others.iter().map(label).collect();
+        labels.push(label(&s));
+        let n = labels.len();
+        labels.sort();
+        labels.dedup();
+        assert_eq!(labels.len(), n, "{labels:?}");
+    }
 
     #[test]
     fn a_setting_change_restarts_and_idleness_stops() {

@@ -19,6 +19,9 @@ use crate::study::render::luminance;
 /// The scene of the bench: book 3's final Cornell box.
 pub const SCENE: &str = "cornell";
 
+/// The book's `max_depth` of its Cornell box.
+pub const BOOK_DEPTH: u32 = 50;
+
 /// The settings the page can switch.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {

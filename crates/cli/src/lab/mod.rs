@@ -62,7 +62,7 @@ fn initial_settings(width: usize) -> glue::Settings {
         width,
         strategy: rtl_render::integrator::Strategy::default(),
         seed: 1,
-        max_depth: 50,
+        max_depth: glue::BOOK_DEPTH,
     }
 }
 
