@@ -117,6 +117,15 @@ fn header_number(
         })
 }
 
+/// `what` does not start as a `format` file does (its first bytes, shown).
+fn not_a(what: &str, format: &'static str, bytes: &[u8]) -> ImageError {
+    ImageError::Magic {
+        what: what.into(),
+        format,
+        found: String::from_utf8_lossy(&bytes[..bytes.len().min(8)]).into_owned(),
+    }
+}
+
 /// The number of values (three a pixel) of a `width` by `height` image, refused where it cannot be
 /// counted (a header no file could fill).
 fn value_count(what: &str, width: usize, height: usize) -> Result<usize, ImageError> {
@@ -138,13 +147,7 @@ pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
     let binary = match magic {
         b"P3" => false,
         b"P6" => true,
-        _ => {
-            return Err(ImageError::Magic {
-                what: what.into(),
-                format: "PPM (P3 or P6)",
-                found: String::from_utf8_lossy(&bytes[..bytes.len().min(8)]).into_owned(),
-            });
-        }
+        _ => return Err(not_a(what, "PPM (P3 or P6)", bytes)),
     };
     let (tokens, data) = header_tokens(bytes, 4);
     let width = header_number(what, "width", tokens.get(1))?;
@@ -210,11 +213,7 @@ pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
 /// to display values by the book's encoding ([`book_byte`]).
 pub fn parse_pfm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
     if bytes.get(..2) != Some(b"PF") {
-        return Err(ImageError::Magic {
-            what: what.into(),
-            format: "colour PFM (PF)",
-            found: String::from_utf8_lossy(&bytes[..bytes.len().min(8)]).into_owned(),
-        });
+        return Err(not_a(what, "colour PFM (PF)", bytes));
     }
     let (tokens, data) = header_tokens(bytes, 4);
     let width = header_number(what, "width", tokens.get(1))?;
