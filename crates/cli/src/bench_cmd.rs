@@ -10,6 +10,7 @@ use anyhow::{Context, Result, bail};
 use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
 use clap::{Args, Subcommand, ValueEnum};
 use noise::{DisplayImage, noise_constant, parse_pfm, parse_ppm, seconds_to};
+use rtl_render::integrator::Strategy;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -150,9 +151,8 @@ fn validate(a: &CompareArgs) -> Result<()> {
         bail!("--mitsuba: only the cornell scene is written for Mitsuba");
     }
     for s in &a.strategy {
-        if !["uniform", "cosine", "light", "mixture", "mis"].contains(&s.as_str()) {
-            bail!("--strategy: unknown strategy `{s}` (uniform, cosine, light, mixture, mis)");
-        }
+        s.parse::<Strategy>()
+            .map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
     }
     Ok(())
 }
@@ -299,19 +299,10 @@ fn timed(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, Took)> {
     let cpu = cpu0.zip(children_cpu_seconds()).map(|(a, b)| b - a);
     let secs = Took { wall, cpu };
     if !out.status.success() {
-        bail!(
-            "{what}: {cmd:?} failed ({}):\n{}",
-            out.status,
-            String::from_utf8_lossy(&out.stderr)
-                .lines()
-                .rev()
-                .take(20)
-                .collect::<Vec<_>>()
-                .into_iter()
-                .rev()
-                .collect::<Vec<_>>()
-                .join("\n")
-        );
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let lines: Vec<&str> = stderr.lines().collect();
+        let tail = lines[lines.len().saturating_sub(20)..].join("\n");
+        bail!("{what}: {cmd:?} failed ({}):\n{tail}", out.status);
     }
     Ok((out.stdout, secs))
 }
@@ -458,10 +449,9 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
     };
     let dir = a.scratch.join("rtl");
     std::fs::create_dir_all(&dir)?;
-    let scene = match a.scene {
-        CompareScene::Cornell => "cornell",
-        CompareScene::Book2Final => "book2-final",
-    };
+    // The flag's names are rtl's scene names.
+    let scene = a.scene.to_possible_value().expect("no skipped scene");
+    let scene = scene.get_name();
     let mut images = Vec::new();
     let (mut secs, mut wall) = (0.0, 0.0);
     for &seed in &a.seeds {
@@ -542,7 +532,8 @@ mod tests {
         assert!(err(&[]).contains("--target-rmse is needed"));
         assert!(err(&["--target-rmse", "0"]).contains("--target-rmse must be positive"));
         assert!(err(&["--target-rmse", "0.01", "--seeds", "3,3"]).contains("--seeds"));
-        assert!(err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]).contains("`fast`"));
+        let e = err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]);
+        assert!(e.contains("--strategy") && e.contains("fast"), "{e}");
         assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
         let dir = std::env::temp_dir().join(format!("rtl-bench-no-book-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);

@@ -41,6 +41,18 @@ fn rtl() -> Command {
     Command::new(env!("CARGO_BIN_EXE_rtl"))
 }
 
+/// The first line `child` prints on its (piped) stdout, waiting at most a minute.
+fn first_line(child: &mut Child) -> Option<String> {
+    let stdout = child.stdout.take().expect("a piped stdout");
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = BufReader::new(stdout).read_line(&mut line);
+        let _ = tx.send(line);
+    });
+    rx.recv_timeout(Duration::from_secs(60)).ok()
+}
+
 /// Start `rtl lab --port 0 ...` and read the port from the URL it prints.
 fn start(tag: &str, extra: &[&str]) -> Lab {
     let dir = temp_dir(tag);
@@ -61,16 +73,7 @@ fn start(tag: &str, extra: &[&str]) -> Lab {
         .stderr(Stdio::null())
         .spawn()
         .expect("rtl runs");
-    let stdout = child.stdout.take().unwrap();
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = BufReader::new(stdout).read_line(&mut line);
-        let _ = tx.send(line);
-    });
-    let line = rx
-        .recv_timeout(Duration::from_secs(60))
-        .expect("rtl lab prints its URL");
+    let line = first_line(&mut child).expect("rtl lab prints its URL");
     let port = line
         .split("http://127.0.0.1:")
         .nth(1)
@@ -213,6 +216,11 @@ fn every_bad_parameter_is_refused_with_a_message() {
         ("GET", "/api/sampling/line?n=1", "`n=1`"),
         ("GET", "/api/sampling/line?n=100000000", "`n="),
         ("GET", "/api/sampling/line?bins=100000", "bins"),
+        (
+            "GET",
+            "/api/sampling/line?method=numeric&samples=300000",
+            "numerical inversion",
+        ),
         ("GET", "/api/sampling/line?tolerance=NaN", "tolerance"),
         ("GET", "/api/sampling/line?tolerance=0", "tolerance"),
         ("GET", "/api/sampling/line?density=nope", "density"),
@@ -358,14 +366,7 @@ fn binding_beyond_loopback_warns() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let stdout = child.stdout.take().unwrap();
-    let (tx, rx) = mpsc::channel();
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = BufReader::new(stdout).read_line(&mut line);
-        let _ = tx.send(line);
-    });
-    let line = rx.recv_timeout(Duration::from_secs(60));
+    let line = first_line(&mut child);
     let _ = child.kill();
     let _ = child.wait();
     let mut err = String::new();

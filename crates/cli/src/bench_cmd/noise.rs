@@ -10,6 +10,7 @@
 //! differ by two independent errors, so `E[(a - b)^2] = 2 sigma^2` per value, and
 //! `c = RMS(a - b) / sqrt(2) * sqrt(spp)`, the RMS taken over every pixel and channel.
 
+use rtl_render::output::Transfer;
 use thiserror::Error;
 
 /// An image in display values (`v / 256` of the book's bytes), rows top to bottom, RGB interleaved.
@@ -60,11 +61,15 @@ pub enum ImageError {
     Size(usize, usize, usize, usize),
 }
 
-/// The book's encoding of one linear channel (`write_color` of book 3's `color.h`).
+/// The book's encoding of one linear channel (`write_color` of book 3's `color.h`): rtl's own
+/// [`Transfer::Gamma2`], but for `+inf`, which the book clamps to 255 (rtl's writer, which never
+/// meets one, writes 0).
 pub fn book_byte(linear: f32) -> u8 {
-    let x = if linear.is_nan() { 0.0 } else { linear as f64 };
-    let g = x.max(0.0).sqrt().clamp(0.0, 0.999);
-    (256.0 * g) as u8
+    if linear == f32::INFINITY {
+        255
+    } else {
+        Transfer::Gamma2.encode(linear as f64)
+    }
 }
 
 /// Splits the whitespace-separated header tokens of a netpbm file, skipping `#` comments, and
@@ -112,6 +117,29 @@ fn header_number(
         })
 }
 
+/// `what` does not start as a `format` file does (its first bytes, shown).
+fn not_a(what: &str, format: &'static str, bytes: &[u8]) -> ImageError {
+    ImageError::Magic {
+        what: what.into(),
+        format,
+        found: String::from_utf8_lossy(&bytes[..bytes.len().min(8)]).into_owned(),
+    }
+}
+
+/// The number of values (three a pixel) of a `width` by `height` image, refused where it cannot be
+/// counted (a header no file could fill).
+fn value_count(what: &str, width: usize, height: usize) -> Result<usize, ImageError> {
+    width
+        .checked_mul(height)
+        .and_then(|p| p.checked_mul(12))
+        .map(|bytes| bytes / 4)
+        .ok_or_else(|| ImageError::Header {
+            what: what.into(),
+            field: "width",
+            problem: format!("{width}x{height} is too large"),
+        })
+}
+
 /// A PPM image (`P3`, plain text, as the book writes it, or `P6`, binary), as display values
 /// `v / (maxval + 1)`: with the book's maxval of 255 that is `v / 256`. `what` names the file in errors.
 pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
@@ -119,13 +147,7 @@ pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
     let binary = match magic {
         b"P3" => false,
         b"P6" => true,
-        _ => {
-            return Err(ImageError::Magic {
-                what: what.into(),
-                format: "PPM (P3 or P6)",
-                found: String::from_utf8_lossy(&bytes[..bytes.len().min(8)]).into_owned(),
-            });
-        }
+        _ => return Err(not_a(what, "PPM (P3 or P6)", bytes)),
     };
     let (tokens, data) = header_tokens(bytes, 4);
     let width = header_number(what, "width", tokens.get(1))?;
@@ -138,7 +160,7 @@ pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
             problem: format!("{max} is not supported (at most 255 for P6, 65535 for P3)"),
         });
     }
-    let expected = width * height * 3;
+    let expected = value_count(what, width, height)?;
     let raw: Vec<u64> = if binary {
         bytes[data..]
             .iter()
@@ -146,7 +168,8 @@ pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
             .map(|&b| b as u64)
             .collect()
     } else {
-        let mut out = Vec::with_capacity(expected);
+        // No more than the file can hold: a header may claim any size.
+        let mut out = Vec::with_capacity(expected.min(bytes.len() / 2));
         for (k, token) in bytes[data..]
             .split(|b| b.is_ascii_whitespace())
             .filter(|t| !t.is_empty())
@@ -190,11 +213,7 @@ pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
 /// to display values by the book's encoding ([`book_byte`]).
 pub fn parse_pfm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
     if bytes.get(..2) != Some(b"PF") {
-        return Err(ImageError::Magic {
-            what: what.into(),
-            format: "colour PFM (PF)",
-            found: String::from_utf8_lossy(&bytes[..bytes.len().min(8)]).into_owned(),
-        });
+        return Err(not_a(what, "colour PFM (PF)", bytes));
     }
     let (tokens, data) = header_tokens(bytes, 4);
     let width = header_number(what, "width", tokens.get(1))?;
@@ -209,7 +228,7 @@ pub fn parse_pfm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
             problem: format!("expected a non-zero number, got {:?}", tokens.get(3)),
         })?;
     let little = scale < 0.0;
-    let expected = width * height * 3;
+    let expected = value_count(what, width, height)?;
     let body = &bytes[data..];
     if body.len() < expected * 4 {
         return Err(ImageError::Truncated {
@@ -341,6 +360,14 @@ mod tests {
         assert!(e.to_string().contains("`height`"), "{e}");
         let e = parse_ppm(b"P3\n1 1\n255\n1 two 3\n", "x.ppm").unwrap_err();
         assert!(e.to_string().contains("\"two\""), "{e}");
+        // A header claiming more than can be counted or held is an error, not an abort.
+        let huge = format!("P3\n{} 4\n255\n1 2 3\n", usize::MAX / 4);
+        let e = parse_ppm(huge.as_bytes(), "x.ppm").unwrap_err();
+        assert!(e.to_string().contains("too large"), "{e}");
+        let e = parse_ppm(b"P3\n100000 100000\n255\n1 2 3\n", "x.ppm").unwrap_err();
+        assert!(matches!(e, ImageError::Truncated { found: 3, .. }), "{e}");
+        let e = parse_pfm(huge.replacen("P3", "PF", 1).as_bytes(), "x.pfm").unwrap_err();
+        assert!(e.to_string().contains("too large"), "{e}");
         let e = parse_ppm(b"P3\n1 1", "x.ppm").unwrap_err();
         assert!(e.to_string().contains("maxval"), "{e}");
     }

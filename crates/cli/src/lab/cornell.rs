@@ -3,8 +3,8 @@
 //!
 //! The worker renders passes (1 spp first, then passes of about [`PASS_TIME`]) on every core (the
 //! global rayon pool). Before each pixel it checks the generation counter, bumped by every change of
-//! settings, and the idle flag, set by the watchdog when no request about the render has come for
-//! [`IDLE_AFTER`]: either ends the pass at once. After each pass it publishes a frame: the image (the
+//! settings, and whether a request about the render has come in the last [`IDLE_AFTER`]: a new
+//! generation or an idle page ends the pass at once. After each pass it publishes a frame: the image (the
 //! book's gamma 2), the per-pixel variance of one sample's luminance as `rtl study render`'s heat
 //! map (log10 from -4 to 3), and a point `(seconds, RMSE)` of the curve of the current settings,
 //! against the reference of `rtl study render` at that width (cached in its directory, or rendered
@@ -70,16 +70,21 @@ pub enum Reference {
 pub struct Bench {
     settings: Mutex<Settings>,
     generation: AtomicU64,
-    idle: AtomicBool,
-    last_seen: Mutex<Instant>,
+    /// When the bench was made: the origin of `last_seen_ms`.
+    epoch: Instant,
+    /// Milliseconds after `epoch` of the last request about the render ([`NEVER`]: none yet).
+    last_seen_ms: AtomicU64,
     pub frame: Mutex<Frame>,
     pub curves: Mutex<Vec<Curve>>,
     references: Mutex<HashMap<usize, Reference>>,
-    /// One reference rendered at a time.
-    reference_turn: Mutex<()>,
+    /// A reference is being rendered (one at a time: the others are asked for again later).
+    reference_busy: AtomicBool,
     reference_dir: PathBuf,
     reference_spp: u64,
 }
+
+/// `last_seen_ms` before the first request.
+const NEVER: u64 = u64::MAX;
 
 /// A label of the settings, for a curve's legend.
 pub fn label(s: &Settings) -> String {
@@ -101,7 +106,13 @@ pub fn label(s: &Settings) -> String {
         }
         other => other.name().to_string(),
     };
-    format!("{name} seed {} {}px", s.seed, s.width)
+    // The depth only where it is not the book's, but always apart: curves are kept by label.
+    let depth = if s.max_depth == glue::BOOK_DEPTH {
+        String::new()
+    } else {
+        format!(" depth {}", s.max_depth)
+    };
+    format!("{name} seed {} {}px{depth}", s.seed, s.width)
 }
 
 /// The spp of the best reference cached in `dir` at `width` (`rtl study render`'s file names).
@@ -124,12 +135,12 @@ impl Bench {
         Bench {
             settings: Mutex::new(initial),
             generation: AtomicU64::new(1),
-            idle: AtomicBool::new(true),
-            last_seen: Mutex::new(Instant::now() - IDLE_AFTER),
+            epoch: Instant::now(),
+            last_seen_ms: AtomicU64::new(NEVER),
             frame: Mutex::new(Frame::default()),
             curves: Mutex::new(Vec::new()),
             references: Mutex::new(HashMap::new()),
-            reference_turn: Mutex::new(()),
+            reference_busy: AtomicBool::new(false),
             reference_dir,
             reference_spp,
         }
@@ -152,36 +163,37 @@ impl Bench {
 
     /// The page is watching: keep rendering.
     pub fn touch(&self) {
-        *self.last_seen.lock().unwrap() = Instant::now();
-        self.idle.store(false, Ordering::SeqCst);
+        self.last_seen_ms.store(self.now_ms(), Ordering::SeqCst);
     }
 
+    /// No request about the render for [`IDLE_AFTER`] (the page closed or is on another bench).
     pub fn is_idle(&self) -> bool {
-        self.idle.load(Ordering::SeqCst)
+        let last = self.last_seen_ms.load(Ordering::SeqCst);
+        last == NEVER || self.now_ms().saturating_sub(last) > IDLE_AFTER.as_millis() as u64
+    }
+
+    fn now_ms(&self) -> u64 {
+        self.epoch.elapsed().as_millis() as u64
     }
 
     pub fn clear_curves(&self) {
         self.curves.lock().unwrap().clear();
     }
 
-    /// The state of the reference at `width`, starting its render if there is none.
+    /// The state of the reference at `width`, starting its render if there is none and no other
+    /// reference is being rendered (then it is asked for again after the next pass). So at most one
+    /// thread renders references, and none waits.
     pub fn reference(self: &Arc<Self>, scene: &Arc<Scene>, width: usize) -> Reference {
         let mut refs = self.references.lock().unwrap();
         if let Some(r) = refs.get(&width) {
             return r.clone();
         }
+        if self.reference_busy.swap(true, Ordering::SeqCst) {
+            return Reference::Rendering;
+        }
         refs.insert(width, Reference::Rendering);
         let (me, scene) = (Arc::clone(self), Arc::clone(scene));
         std::thread::spawn(move || {
-            let _turn = me.reference_turn.lock().unwrap_or_else(|e| e.into_inner());
-            // The page moved on to another width while this one waited: forget it (asked again if
-            // the page comes back to it).
-            if me.settings().width != width
-                && cached_reference_spp(&me.reference_dir, width).is_none()
-            {
-                me.references.lock().unwrap().remove(&width);
-                return;
-            }
             let dir = &me.reference_dir;
             let spp = cached_reference_spp(dir, width).unwrap_or(me.reference_spp);
             // A pool of its own: in the render's pool its long passes would hold up the frames
@@ -199,6 +211,7 @@ impl Bench {
                 Err(e) => Reference::Failed(format!("{e:#}")),
             };
             me.references.lock().unwrap().insert(width, state);
+            me.reference_busy.store(false, Ordering::SeqCst);
         });
         Reference::Rendering
     }
@@ -206,6 +219,9 @@ impl Bench {
     /// A description of the reference at `width` for the page.
     pub fn reference_note(&self, width: usize) -> String {
         match self.references.lock().unwrap().get(&width) {
+            None if self.reference_busy.load(Ordering::SeqCst) => {
+                "waiting: a reference at another width is being rendered".into()
+            }
             None => "not asked for yet".into(),
             Some(Reference::Rendering) => format!(
                 "rendering the reference ({} spp of mis, seed 999) in {}: curves start when it is done",
@@ -219,16 +235,6 @@ impl Bench {
                 cached_reference_spp(&self.reference_dir, width).unwrap_or(self.reference_spp)
             ),
             Some(Reference::Failed(e)) => format!("no reference: {e}"),
-        }
-    }
-}
-
-/// The watchdog: marks the bench idle when the page has not asked for [`IDLE_AFTER`].
-pub fn watchdog(bench: Arc<Bench>) {
-    loop {
-        std::thread::sleep(Duration::from_millis(200));
-        if bench.last_seen.lock().unwrap().elapsed() > IDLE_AFTER {
-            bench.idle.store(true, Ordering::SeqCst);
         }
     }
 }
@@ -358,6 +364,39 @@ mod tests {
     use rtl_render::integrator::Strategy;
 
     #[test]
+    fn every_setting_has_a_label_of_its_own() {
+        let s = Settings {
+            width: 16,
+            strategy: Strategy::Cosine,
+            seed: 1,
+            max_depth: glue::BOOK_DEPTH,
+        };
+        let others = [
+            Settings { width: 32, ..s },
+            Settings { seed: 2, ..s },
+            Settings { max_depth: 5, ..s },
+            Settings {
+                strategy: Strategy::Uniform,
+                ..s
+            },
+            Settings {
+                strategy: glue::strategy("mis", true, false, false).unwrap(),
+                ..s
+            },
+            Settings {
+                strategy: glue::strategy("mis", false, false, false).unwrap(),
+                ..s
+            },
+        ];
+        let mut labels: Vec<String> = others.iter().map(label).collect();
+        labels.push(label(&s));
+        let n = labels.len();
+        labels.sort();
+        labels.dedup();
+        assert_eq!(labels.len(), n, "{labels:?}");
+    }
+
+    #[test]
     fn a_setting_change_restarts_and_idleness_stops() {
         let scene = Arc::new(glue::scene().unwrap());
         let dir = std::env::temp_dir().join(format!("rtl-lab-test-{}", std::process::id()));
@@ -400,8 +439,8 @@ mod tests {
                 .iter()
                 .any(|c| c.label == label(&bench.settings()))
         );
-        // Nobody asks: the watchdog's flag stops the passes.
-        bench.idle.store(true, Ordering::SeqCst);
+        // Nobody asks: the passes stop.
+        bench.last_seen_ms.store(NEVER, Ordering::SeqCst);
         std::thread::sleep(Duration::from_millis(300));
         let spp = bench.frame.lock().unwrap().spp;
         std::thread::sleep(Duration::from_millis(500));

@@ -19,6 +19,9 @@ use crate::study::render::luminance;
 /// The scene of the bench: book 3's final Cornell box.
 pub const SCENE: &str = "cornell";
 
+/// The book's `max_depth` of its Cornell box.
+pub const BOOK_DEPTH: u32 = 50;
+
 /// The settings the page can switch.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -46,6 +49,15 @@ pub fn strategy(name: &str, rr: bool, lds: bool, sph_rect: bool) -> Result<Strat
         }),
         other => other,
     })
+}
+
+/// `mis`'s extras; the defaults for the other strategies (which ignore them), so that the page's
+/// switches keep their places across a change of strategy.
+pub fn mis_options(s: Strategy) -> MisOptions {
+    match s {
+        Strategy::Mis(o) => o,
+        _ => MisOptions::DEFAULT,
+    }
 }
 
 /// The names of the strategies, in the book's order.

@@ -16,21 +16,28 @@ use serde_json::{Value, json};
 /// full study at 24; 30 estimates of 2^20 samples take about a second on two cores).
 pub const LOG2_N: (u32, u32) = (4, 20);
 
-/// The integrals and their estimators, for the page's menus.
-pub fn list() -> Value {
-    let mut integrals: Vec<Value> = Vec::new();
-    let all = cases();
+/// The integrals' slugs, in the study's order (its cases come grouped by integral).
+fn slugs(all: &[Case]) -> Vec<&'static str> {
     let mut slugs: Vec<&str> = all.iter().map(|c| c.slug).collect();
     slugs.dedup();
-    for slug in slugs {
-        let mine: Vec<&Case> = all.iter().filter(|c| c.slug == slug).collect();
-        integrals.push(json!({
-            "slug": slug,
-            "integral": mine[0].integral,
-            "exact": mine[0].exact,
-            "estimators": mine.iter().map(|c| c.estimator).collect::<Vec<_>>(),
-        }));
-    }
+    slugs
+}
+
+/// The integrals and their estimators, for the page's menus.
+pub fn list() -> Value {
+    let all = cases();
+    let integrals: Vec<Value> = slugs(&all)
+        .into_iter()
+        .map(|slug| {
+            let mine: Vec<&Case> = all.iter().filter(|c| c.slug == slug).collect();
+            json!({
+                "slug": slug,
+                "integral": mine[0].integral,
+                "exact": mine[0].exact,
+                "estimators": mine.iter().map(|c| c.estimator).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
     json!({ "integrals": integrals, "log2_n": [LOG2_N.0, LOG2_N.1], "repetitions": crate::study::mc::REPETITIONS })
 }
 
@@ -42,11 +49,9 @@ pub fn run(query: &str) -> Result<Value, BadRequest> {
     let log2_n = q.number("log2_n", 10, LOG2_N.0, LOG2_N.1)?;
     let all = cases();
     if !all.iter().any(|c| c.slug == slug) {
-        let mut slugs: Vec<&str> = all.iter().map(|c| c.slug).collect();
-        slugs.dedup();
         return Err(bad(format!(
             "`integral={slug}`: expected one of {}",
-            slugs.join(", ")
+            slugs(&all).join(", ")
         )));
     }
     let Some(index) = all

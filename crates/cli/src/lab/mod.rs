@@ -33,8 +33,9 @@ use std::sync::Arc;
 
 #[derive(Args)]
 pub struct LabArgs {
-    /// The Cornell box's width (and height) when the page opens.
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(16..=600))]
+    /// The Cornell box's width (and height) when the page opens: the page's own range.
+    #[arg(long, default_value_t = 200,
+          value_parser = clap::value_parser!(u64).range(cornell::WIDTHS.0 as u64..=cornell::WIDTHS.1 as u64))]
     pub width: u64,
     /// Port to listen on; 0 picks a free one.
     #[arg(long, default_value_t = 8017)]
@@ -61,7 +62,7 @@ fn initial_settings(width: usize) -> glue::Settings {
         width,
         strategy: rtl_render::integrator::Strategy::default(),
         seed: 1,
-        max_depth: 50,
+        max_depth: glue::BOOK_DEPTH,
     }
 }
 
@@ -122,10 +123,6 @@ pub fn run(args: LabArgs) -> Result<()> {
         std::thread::Builder::new()
             .name("render".into())
             .spawn(move || cornell::worker(b, s))?;
-        let b = Arc::clone(&bench);
-        std::thread::Builder::new()
-            .name("watchdog".into())
-            .spawn(move || cornell::watchdog(b))?;
     }
     let shown = match args.bind {
         a if a.is_unspecified() => IpAddr::V4(Ipv4Addr::LOCALHOST),

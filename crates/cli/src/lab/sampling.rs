@@ -22,7 +22,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_pdf::chi2::{ChiSquareTest, SphereDomain};
 use rtl_pdf::{CosinePdf, HemispherePdf, MixturePdf, Onb, Pdf, SpherePdf};
 use rtl_sampling::analytic::{Linear, Quadratic};
-use rtl_sampling::chi_square::chi_square;
+use rtl_sampling::chi_square::{chi_square, histogram};
 use rtl_sampling::numeric::NumericInverse;
 use rtl_sampling::targets::{BookSinSquared, SpikeOnBase, Target, TruncatedNormal};
 use rtl_sampling::{AliasPiecewise, GuideTable, Sample, TabulatedCdf};
@@ -32,6 +32,8 @@ use std::time::Instant;
 
 /// Caps of one request.
 pub const SAMPLES: (u64, u64) = (1_000, 2_000_000);
+/// The most samples of numerical inversion (some targets take tens of microseconds a sample).
+pub const NUMERIC_SAMPLES: u64 = 200_000;
 pub const TABLE_BINS: (usize, usize) = (2, 1_000_000);
 pub const HISTOGRAM_BINS: (usize, usize) = (8, 200);
 pub const TOLERANCE: (f64, f64) = (1e-12, 1e-2);
@@ -108,7 +110,7 @@ pub fn list() -> Value {
         "methods": METHODS,
         "directions": DIRECTIONS.iter().map(|(n, about)| json!({"name": n, "about": about})).collect::<Vec<_>>(),
         "caps": {
-            "samples": SAMPLES, "n": TABLE_BINS, "bins": HISTOGRAM_BINS,
+            "samples": SAMPLES, "numeric_samples": NUMERIC_SAMPLES, "n": TABLE_BINS, "bins": HISTOGRAM_BINS,
             "tolerance": TOLERANCE, "cells": SPHERE_CELLS,
         },
     })
@@ -145,6 +147,11 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
     let samples = q.number("samples", 100_000u64, SAMPLES.0, SAMPLES.1)?;
     let bins = q.number("bins", 64usize, HISTOGRAM_BINS.0, HISTOGRAM_BINS.1)?;
     let seed = q.number("seed", 1u64, 0, u64::MAX)?;
+    if method == "numeric" && samples > NUMERIC_SAMPLES {
+        return Err(bad(format!(
+            "`samples={samples}`: numerical inversion takes at most {NUMERIC_SAMPLES} samples"
+        )));
+    }
     if method == "analytic" && !has_analytic {
         return Err(bad(format!(
             "`method=analytic`: {name} has no inverse on paper; the densities that have one: linear, quadratic"
@@ -211,23 +218,18 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
         }
     };
 
-    let width = (b - a) / bins as f64;
-    let mut counts = vec![0u64; bins];
-    for &u in &us {
-        let x = sampler(u).x;
-        if x.is_finite() {
-            let i = (((x - a) / width) as usize).min(bins - 1);
-            counts[i] += 1;
-        }
-    }
-    let expected: Vec<f64> = (0..bins)
-        .map(|i| {
-            let (x0, x1) = (a + i as f64 * width, a + (i + 1) as f64 * width);
-            samples as f64 * (target.cdf(x1) - target.cdf(x0)).max(0.0)
-        })
+    // The last edge is `b` itself: a sample at `b` is inside.
+    let edges: Vec<f64> = (0..=bins)
+        .map(|i| a + (b - a) * i as f64 / bins as f64)
         .collect();
-    let observed: Vec<f64> = counts.iter().map(|&c| c as f64).collect();
+    let (observed, outside) = histogram(us.iter().map(|&u| sampler(u).x), &edges);
+    let expected: Vec<f64> = edges
+        .windows(2)
+        .map(|e| samples as f64 * (target.cdf(e[1]) - target.cdf(e[0])).max(0.0))
+        .collect();
     let chi2 = chi_square(&observed, &expected).map_err(|e| bad(format!("chi-square: {e}")))?;
+    // A sample outside the domain (or NaN) fails the test outright, as in `ChiSquareTest::run`.
+    let p_value = if outside > 0 { 0.0 } else { chi2.p_value };
     let curve: Vec<(f64, f64)> = (0..=400)
         .map(|i| {
             let x = a + (b - a) * i as f64 / 400.0;
@@ -237,10 +239,10 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
     Ok(json!({
         "density": name, "method": method, "domain": [a, b],
         "n": table.as_ref().map(|_| n), "tolerance": (method == "numeric").then_some(tolerance),
-        "samples": samples, "bins": counts, "expected": expected, "curve": curve,
+        "samples": samples, "bins": observed, "expected": expected, "outside_domain": outside, "curve": curve,
         "u_error": u_error, "x_error": x_error,
         "ns_per_sample": ns_per_sample, "build_ms": build_ms,
-        "chi2": { "statistic": chi2.statistic, "dof": chi2.dof, "p_value": chi2.p_value, "pooled": chi2.pooled },
+        "chi2": { "statistic": chi2.statistic, "dof": chi2.dof, "p_value": p_value, "pooled": chi2.pooled },
     }))
 }
 
@@ -382,6 +384,7 @@ mod tests {
             "bins=100000",
             "tolerance=0",
             "tolerance=abc",
+            "density=normal&method=numeric&samples=200001",
         ] {
             assert!(run_line(q).is_err(), "{q}");
         }

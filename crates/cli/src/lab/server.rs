@@ -53,6 +53,15 @@ pub struct App {
 }
 
 impl App {
+    /// `run` in the Monte Carlo and sampling benches' turn (the others wait).
+    fn one_at_a_time(
+        &self,
+        run: impl FnOnce() -> Result<Value, BadRequest>,
+    ) -> Result<Answer, BadRequest> {
+        let _turn = self.compute.lock().unwrap_or_else(|e| e.into_inner());
+        run().map(Answer::Json)
+    }
+
     pub fn new(bench: Arc<Bench>, hosts: Vec<String>, book_dir: PathBuf) -> App {
         App {
             bench,
@@ -69,14 +78,27 @@ pub fn serve(server: Server, app: Arc<App>) {
     for request in server.incoming_requests() {
         if app.in_flight.fetch_add(1, Ordering::SeqCst) >= MAX_IN_FLIGHT {
             app.in_flight.fetch_sub(1, Ordering::SeqCst);
-            let _ = request.respond(text(503, "too many requests at once"));
+            // JSON like every other refusal: the page reads its `error`.
+            let _ = request.respond(json_response(
+                503,
+                &json!({ "error": "too many requests at once" }),
+            ));
             continue;
         }
-        let app = Arc::clone(&app);
-        std::thread::spawn(move || {
-            handle(&app, request);
-            app.in_flight.fetch_sub(1, Ordering::SeqCst);
-        });
+        let slot = InFlight(Arc::clone(&app));
+        // No thread to be had (the request, dropped, closes its connection): the server goes on.
+        if let Err(e) = std::thread::Builder::new().spawn(move || handle(&slot.0, request)) {
+            eprintln!("rtl lab: cannot start a thread for a request: {e}");
+        }
+    }
+}
+
+/// A request's place among the [`MAX_IN_FLIGHT`], given back when its thread ends, even by a panic.
+struct InFlight(Arc<App>);
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        self.0.in_flight.fetch_sub(1, Ordering::SeqCst);
     }
 }
 
@@ -92,14 +114,6 @@ fn with_common<R: std::io::Read>(r: Response<R>) -> Response<R> {
             "Content-Security-Policy",
             "default-src 'self'; img-src 'self' blob: data:; style-src 'self'; script-src 'self'; connect-src 'self'",
         ))
-}
-
-fn text(status: u16, msg: &str) -> Response<std::io::Cursor<Vec<u8>>> {
-    with_common(
-        Response::from_string(msg)
-            .with_status_code(status)
-            .with_header(header("Content-Type", "text/plain; charset=utf-8")),
-    )
 }
 
 fn json_response(status: u16, v: &Value) -> Response<std::io::Cursor<Vec<u8>>> {
@@ -181,51 +195,30 @@ fn route(app: &App, method: &Method, path: &str, query: &str) -> Answer {
     if get && let Some(rest) = path.strip_prefix("/book/") {
         return book_page(&app.book_dir, rest);
     }
-    let result: Result<Answer, BadRequest> = match (path, get, post) {
-        ("/api/mc/list", true, _) => no_query(query).map(|()| Answer::Json(mc::list())),
-        ("/api/mc/run", true, _) => {
-            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
-            mc::run(query).map(Answer::Json)
-        }
-        ("/api/sampling/list", true, _) => no_query(query).map(|()| Answer::Json(sampling::list())),
-        ("/api/sampling/line", true, _) => {
-            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
-            sampling::run_line(query).map(Answer::Json)
-        }
-        ("/api/sampling/sphere", true, _) => {
-            let _turn = app.compute.lock().unwrap_or_else(|e| e.into_inner());
-            sampling::run_sphere(query).map(Answer::Json)
-        }
-        ("/api/render/list", true, _) => no_query(query).map(|()| Answer::Json(render_list(app))),
-        ("/api/render/settings", _, true) => set_render(app, query).map(Answer::Json),
-        ("/api/render/state", true, _) => render_state(app, query).map(Answer::Json),
-        ("/api/render/image", true, _) => render_image(app, query),
-        ("/api/render/clear", _, true) => no_query(query).map(|()| {
-            app.bench.clear_curves();
-            Answer::Json(json!({ "cleared": true }))
-        }),
-        (p, _, _) if p.starts_with("/api/") && route_exists(p) => {
-            return Answer::Error(405, format!("{p}: wrong method {method}"));
-        }
-        (p, _, _) => return Answer::Error(404, format!("no page {p}")),
+    let handler: fn(&App, &str) -> Result<Answer, BadRequest> = match path {
+        "/api/mc/list" => |_, q| no_query(q).map(|()| Answer::Json(mc::list())),
+        "/api/mc/run" => |app, q| app.one_at_a_time(|| mc::run(q)),
+        "/api/sampling/list" => |_, q| no_query(q).map(|()| Answer::Json(sampling::list())),
+        "/api/sampling/line" => |app, q| app.one_at_a_time(|| sampling::run_line(q)),
+        "/api/sampling/sphere" => |app, q| app.one_at_a_time(|| sampling::run_sphere(q)),
+        "/api/render/list" => |app, q| no_query(q).map(|()| Answer::Json(render_list(app))),
+        "/api/render/settings" => |app, q| set_render(app, q).map(Answer::Json),
+        "/api/render/state" => |app, q| render_state(app, q).map(Answer::Json),
+        "/api/render/image" => render_image,
+        "/api/render/clear" => |app, q| {
+            no_query(q).map(|()| {
+                app.bench.clear_curves();
+                Answer::Json(json!({ "cleared": true }))
+            })
+        },
+        p => return Answer::Error(404, format!("no page {p}")),
     };
-    result.unwrap_or_else(Answer::from)
-}
-
-fn route_exists(p: &str) -> bool {
-    [
-        "/api/mc/list",
-        "/api/mc/run",
-        "/api/sampling/list",
-        "/api/sampling/line",
-        "/api/sampling/sphere",
-        "/api/render/list",
-        "/api/render/settings",
-        "/api/render/state",
-        "/api/render/image",
-        "/api/render/clear",
-    ]
-    .contains(&p)
+    // What changes the render is a POST; everything else a GET (or HEAD).
+    let wants_post = matches!(path, "/api/render/settings" | "/api/render/clear");
+    if !(if wants_post { post } else { get }) {
+        return Answer::Error(405, format!("{path}: wrong method {method}"));
+    }
+    handler(app, query).unwrap_or_else(Answer::from)
 }
 
 fn no_query(query: &str) -> Result<(), BadRequest> {
@@ -241,11 +234,7 @@ fn render_list(app: &App) -> Value {
 }
 
 fn settings_json(s: &Settings) -> Value {
-    use rtl_render::integrator::Strategy;
-    let o = match s.strategy {
-        Strategy::Mis(o) => o,
-        _ => rtl_render::integrator::MisOptions::DEFAULT,
-    };
+    let o = glue::mis_options(s.strategy);
     json!({
         "width": s.width, "strategy": s.strategy.name(), "seed": s.seed, "max_depth": s.max_depth,
         "rr": o.russian_roulette, "lds": o.low_discrepancy, "sph_rect": o.spherical_rectangles,
@@ -269,10 +258,7 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
         ],
     )?;
     let d = app.bench.settings();
-    let o = match d.strategy {
-        rtl_render::integrator::Strategy::Mis(o) => o,
-        _ => rtl_render::integrator::MisOptions::DEFAULT,
-    };
+    let o = glue::mis_options(d.strategy);
     let names = glue::strategy_names();
     let name = q.choice("strategy", d.strategy.name(), &names)?;
     let width = q.number("width", d.width, cornell::WIDTHS.0, cornell::WIDTHS.1)?;
@@ -324,16 +310,19 @@ fn render_image(app: &App, query: &str) -> Result<Answer, BadRequest> {
     let kind = q.choice("kind", "image", &["image", "variance"])?;
     q.number("frame", 0u64, 0, u64::MAX)?; // a cache-buster of the page, not used
     app.bench.touch();
-    let f = app.bench.frame.lock().unwrap();
-    if f.id == 0 {
-        return Ok(Answer::Error(503, "no frame yet".into()));
-    }
-    let png = if kind == "image" {
-        &f.image_png
-    } else {
-        &f.variance_png
+    let png = {
+        let f = app.bench.frame.lock().unwrap();
+        if f.id == 0 {
+            return Ok(Answer::Error(503, "no frame yet".into()));
+        }
+        Arc::clone(if kind == "image" {
+            &f.image_png
+        } else {
+            &f.variance_png
+        })
     };
-    Ok(Answer::Bytes("image/png", png.as_ref().clone()))
+    // Copied out of the frame's lock, which the render's worker waits for.
+    Ok(Answer::Bytes("image/png", png.to_vec()))
 }
 
 /// A file of the built book: `rest` is a relative path of plain names (no `..`, nothing hidden).

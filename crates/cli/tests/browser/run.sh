@@ -24,7 +24,7 @@ cp "$here/lab.test.cjs" "$work/"
 
 cargo build --release -q -p rtl
 # A reference directory of its own holding the study's cached 128-wide reference, so the test writes
-# nothing into docs/ and renders no reference.
+# nothing into book/src/figures and renders no reference.
 refs=$(mktemp -d)
 log=$refs/lab.log
 cp book/src/figures/render-reference-cornell-128-*.pfm "$refs/"

@@ -273,6 +273,7 @@ async function sRun() {
       ["build", fmt(r.build_ms) + " ms"],
       ["chi-square", `${fmt(r.chi2.statistic, 4)} on ${r.chi2.dof} dof`],
       ["p-value", fmt(r.chi2.p_value)],
+      ["outside the domain", r.outside_domain],
     ]);
     $("s-status").textContent = `${r.samples} samples`;
   } catch (e) {
