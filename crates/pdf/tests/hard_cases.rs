@@ -8,7 +8,7 @@ use rtl_pdf::chi2::{ChiSquareTest, ParallelogramDomain};
 use rtl_pdf::warp;
 use rtl_pdf::{
     CosinePdf, HemispherePdf, HittablePdf, MixtureError, MixturePdf, Onb, Pdf, QuadTarget,
-    Selection, SelectionError, SpherePdf, SphereTarget, Target,
+    Selection, SelectionError, ShapeSampler, SpherePdf, SphereTarget, SphereView,
 };
 use std::f64::consts::{PI, TAU};
 
@@ -196,7 +196,14 @@ fn sphere_light_far_away_solid_angle_without_cancellation() {
         // exact: 2 pi (1 - sqrt(1 - x)), x = 1/d^2, by its series x/2 + x^2/8 + x^3/16 + 5 x^4 / 128
         let x = 1.0 / (d * d);
         let exact = TAU * (x / 2.0 + x * x / 8.0 + x * x * x / 16.0 + 5.0 * x.powi(4) / 128.0);
-        let got = s.solid_angle(o);
+        // the solid angle of the cone sampled: 2 pi (1 - cos theta_max)
+        let SphereView::Cone {
+            one_minus_cos_max, ..
+        } = s.view(o)
+        else {
+            panic!("outside the sphere")
+        };
+        let got = TAU * one_minus_cos_max;
         assert!(
             ((got - exact) / exact).abs() < 1e-6,
             "d = {d}: solid angle {got} vs {exact}"
@@ -373,11 +380,11 @@ fn mixture_of_a_part_with_weight_zero_never_evaluates_it() {
     // a part whose value is NaN must not poison a mixture that never samples it
     struct Broken;
     impl Pdf for Broken {
-        fn value(&self, _: DVec3) -> f64 {
+        fn pdf(&self, _: DVec3) -> f64 {
             f64::NAN
         }
-        fn generate<R: Rng + ?Sized>(&self, _: &mut R) -> DVec3 {
-            DVec3::X
+        fn sample(&self, _: DVec2) -> Option<rtl_pdf::DirectionSample> {
+            rtl_pdf::DirectionSample::new(DVec3::X, 1.0)
         }
     }
     let m = MixturePdf::with_weight(Broken, SpherePdf, 0.0).unwrap();
