@@ -114,6 +114,62 @@ pub fn three_kinds_of_emitters() -> Scene {
     b.build().unwrap()
 }
 
+/// A floor, a one-sided ceiling light (listed as the scene's only target) and a box of smoke
+/// (constant density 0.6, albedo 0.8) with an emitting ball inside it that no list names: next-event
+/// estimation must find the ball by itself and weight shadow rays by the smoke's transmittance.
+pub fn medium_and_lights() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let smoke = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.8)),
+    });
+    let ceiling = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(6.0)),
+        two_sided: false,
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(3.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    let lamp = b
+        .quad(
+            w,
+            Point3::new(-1.0, 4.0, -1.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 2.0),
+            ceiling,
+        )
+        .unwrap();
+    b.targets.push(Target::Quad(lamp));
+    let boundary = b
+        .box_group(
+            Point3::new(-1.5, 0.5, -1.5),
+            Point3::new(1.5, 2.5, 1.5),
+            white,
+        )
+        .unwrap();
+    b.medium(w, boundary, 0.6, smoke).unwrap();
+    b.sphere(w, Point3::new(0.3, 1.5, 0.0), 0.3, glow).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 2.0, 7.0),
+        lookat: Point3::new(0.0, 1.8, 0.0),
+        vfov: 55.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = 50;
+    b.build().unwrap()
+}
+
 fn settings(seed: u64, strategy: Strategy) -> RenderSettings {
     RenderSettings {
         width: WIDTH,
@@ -193,23 +249,9 @@ fn compare(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<(f64, String)> {
         .collect()
 }
 
-#[test]
-fn several_emitters_cosine_mixture_and_mis_agree() {
-    let scene = three_kinds_of_emitters();
-    let strategies = [
-        Strategy::Cosine,
-        Strategy::Mixture,
-        Strategy::Mis(MisOptions::default()),
-        Strategy::Mis(MisOptions {
-            low_discrepancy: false,
-            ..MisOptions::default()
-        }),
-        Strategy::Mis(MisOptions {
-            spherical_rectangles: true,
-            ..MisOptions::default()
-        }),
-    ];
-    let means: Vec<_> = strategies.iter().map(|&s| batch_means(&scene, s)).collect();
+/// Every pair of `strategies` agrees on every region's mean.
+fn agree(scene: &Scene, strategies: &[Strategy]) {
+    let means: Vec<_> = strategies.iter().map(|&s| batch_means(scene, s)).collect();
     let pairs = strategies.len() * (strategies.len() - 1) / 2;
     // Family-wise false-failure rate 1e-6, Bonferroni over every comparison.
     let alpha = 1e-6 / (pairs * GRID * GRID) as f64;
@@ -230,5 +272,49 @@ fn several_emitters_cosine_mixture_and_mis_agree() {
         failures.is_empty(),
         "alpha {alpha:.1e}:\n{}",
         failures.join("\n")
+    );
+}
+
+#[test]
+fn several_emitters_cosine_mixture_and_mis_agree() {
+    agree(
+        &three_kinds_of_emitters(),
+        &[
+            Strategy::Cosine,
+            Strategy::Mixture,
+            Strategy::Mis(MisOptions::default()),
+            Strategy::Mis(MisOptions {
+                low_discrepancy: false,
+                ..MisOptions::default()
+            }),
+            Strategy::Mis(MisOptions {
+                spherical_rectangles: true,
+                ..MisOptions::default()
+            }),
+        ],
+    );
+}
+
+#[test]
+fn a_medium_with_lights_cosine_mixture_and_mis_agree() {
+    let scene = medium_and_lights();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(
+        (lights.emitters.len(), lights.listed_emitters),
+        (2, 1),
+        "the ball in the smoke is found without being listed"
+    );
+    agree(
+        &scene,
+        &[
+            Strategy::Cosine,
+            Strategy::Mixture,
+            Strategy::Mis(MisOptions::default()),
+            Strategy::Mis(MisOptions {
+                low_discrepancy: false,
+                russian_roulette: false,
+                ..MisOptions::default()
+            }),
+        ],
     );
 }
