@@ -279,28 +279,31 @@ fn light_pdf(origin: Point3, emitters: &[LightTarget], direction: Vec3) -> f64 {
 /// The transmittance is computed exactly, not estimated: a constant medium's is known in closed form,
 /// so a shadow ray needs no random number and adds no variance (a delta-tracking or track-length
 /// estimate would be 0 or 1 at random, with variance `T (1 - T)`; ratio tracking is for media whose
-/// density varies). Without media this is one traversal; with media, a second one gathers the optical
-/// depth up to the surface the first found (media are transparent to the first).
+/// density varies). One traversal: media let the ray through and record where it was inside them
+/// (the BVH never skips a medium that starts before the closest surface), and the stretches are
+/// clipped at the surface found. Only if more media were crossed than can be recorded without
+/// allocating is the traversal repeated up to the surface.
 #[inline]
 fn trace_shadow(scene: &Scene, ray: &Ray, ctx: &mut Ctx) -> Option<(Hit, f64)> {
     ctx.stats.rays += 1;
     if scene.features.media == 0 {
         return scene.hit(ray, ctx).map(|h| (h, 1.0));
     }
-    ctx.media = MediumMode::Transparent;
+    ctx.media = MediumMode::Record;
+    ctx.crossed.clear();
     let hit = scene.hit(ray, ctx);
-    let hit = match hit {
-        Some(h) => h,
-        None => {
-            ctx.media = MediumMode::Scatter;
-            return None;
+    let depth = match &hit {
+        Some(h) if ctx.crossed.overflow => {
+            ctx.crossed.clear();
+            // every medium before the surface, and nothing else, up to the surface
+            let _ = scene.hit_group(GroupId(0), ray, Interval::new(0.0, h.t), ctx);
+            ctx.crossed.optical_depth(h.t)
         }
+        Some(h) => ctx.crossed.optical_depth(h.t),
+        None => 0.0,
     };
-    ctx.media = MediumMode::Attenuate { t_max: hit.t };
-    ctx.optical_depth = 0.0;
-    let _ = scene.hit_group(GroupId(0), ray, Interval::new(0.0, hit.t), ctx);
     ctx.media = MediumMode::Scatter;
-    Some((hit, (-ctx.optical_depth).exp()))
+    hit.map(|h| (h, (-depth).exp()))
 }
 // ANCHOR_END: shadow_ray
 

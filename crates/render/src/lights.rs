@@ -138,10 +138,9 @@ impl Lights {
         match self.emitters.len() {
             0 => "none (no emitter in the scene)".into(),
             n => format!(
-                "{n} emitter{} ({} listed as targets, {} found in the scene)",
+                "{n} emitter{} ({} of them in the list of targets)",
                 if n == 1 { "" } else { "s" },
                 self.listed_emitters,
-                n - self.listed_emitters
             ),
         }
     }

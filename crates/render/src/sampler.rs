@@ -244,20 +244,67 @@ pub struct Ctx {
     pub bounce: u32,
     /// How a ray meets participating media (set only while a shadow ray is traced).
     pub media: MediumMode,
-    /// The optical depth collected by [`MediumMode::Attenuate`].
-    pub optical_depth: f64,
+    /// The stretches of media a shadow ray crossed, collected by [`MediumMode::Record`].
+    pub crossed: MediaCrossed,
 }
 
 /// What a constant medium does to a ray that crosses it.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MediumMode {
     /// Scatter at an exponentially distributed distance (book 2): the path's own rays.
     #[default]
     Scatter,
-    /// Pass through untouched: finding a shadow ray's surface.
-    Transparent,
-    /// Pass through, adding `density * length inside` (up to `t_max`) to `Ctx::optical_depth`.
-    Attenuate { t_max: f64 },
+    /// Pass through, recording the stretch inside in [`Ctx::crossed`]: a shadow ray.
+    Record,
+}
+
+/// The stretches `(t0, t1, density)` of media a shadow ray passed through, in the order they were
+/// tested; stretches beyond the ray's surface are clipped when the optical depth is taken.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MediaCrossed {
+    stretches: [(f64, f64, f64); MediaCrossed::CAPACITY],
+    len: usize,
+    /// The optical depth of the stretches that did not fit, unclipped.
+    spill: f64,
+    /// More stretches than fit: the optical depth is then found by a second traversal whose range
+    /// ends at the surface (so every stretch, spilled or not, is already clipped).
+    pub overflow: bool,
+}
+
+impl MediaCrossed {
+    /// Stretches held without allocating.
+    pub const CAPACITY: usize = 8;
+
+    /// Forget every stretch.
+    #[inline]
+    pub fn clear(&mut self) {
+        self.len = 0;
+        self.spill = 0.0;
+        self.overflow = false;
+    }
+
+    /// Record the stretch `t0..t1` (ray parameter) of a medium of `density` per unit length of the
+    /// ray's direction (`density * |direction|`).
+    #[inline]
+    pub fn push(&mut self, t0: f64, t1: f64, density: f64) {
+        if self.len < Self::CAPACITY {
+            self.stretches[self.len] = (t0, t1, density);
+            self.len += 1;
+        } else {
+            self.spill += (t1 - t0).max(0.0) * density;
+            self.overflow = true;
+        }
+    }
+
+    /// `sum_i density_i * |[t0_i, t1_i] clipped to t < t_max|` (the spilled stretches unclipped).
+    #[inline]
+    pub fn optical_depth(&self, t_max: f64) -> f64 {
+        self.spill
+            + self.stretches[..self.len]
+                .iter()
+                .map(|&(t0, t1, density)| (t1.min(t_max) - t0).max(0.0) * density)
+                .sum::<f64>()
+    }
 }
 
 impl Ctx {
@@ -268,7 +315,7 @@ impl Ctx {
             sampler: Sampler::default(),
             bounce: 0,
             media: MediumMode::Scatter,
-            optical_depth: 0.0,
+            crossed: MediaCrossed::default(),
         }
     }
 
@@ -390,6 +437,46 @@ mod tests {
                 padded_sobol_2d(key, dim, k),
                 padded_sobol_2d_reference(key, dim, k)
             );
+        }
+    }
+
+    #[test]
+    fn media_crossed_clips_at_the_surface_and_spills_past_capacity() {
+        let mut m = MediaCrossed::default();
+        m.push(1.0, 3.0, 0.5);
+        m.push(2.0, 10.0, 0.25);
+        // clipped at t = 4: 2 * 0.5 + 2 * 0.25
+        assert_eq!(m.optical_depth(4.0), 1.5);
+        assert!(!m.overflow);
+        for i in 0..MediaCrossed::CAPACITY {
+            m.push(i as f64, i as f64 + 1.0, 1.0);
+        }
+        assert!(m.overflow);
+        // the two that did not fit are counted whole
+        assert_eq!(m.optical_depth(f64::INFINITY), 1.0 + 2.0 + 6.0 + 2.0);
+        m.clear();
+        assert_eq!((m.optical_depth(1e9), m.overflow), (0.0, false));
+    }
+
+    #[test]
+    fn sample_indices_past_2_pow_32_do_not_repeat() {
+        let key = 0x1234_5678_9abc_def0;
+        for k in [0u64, 1, 77, (1 << 32) - 1] {
+            let wrapped = k + (1 << 32);
+            assert_ne!(
+                pixel_position(key, k),
+                pixel_position(key, wrapped),
+                "k = {k}"
+            );
+            assert_ne!(padded_sobol_2d(key, 3, k), padded_sobol_2d(key, 3, wrapped));
+        }
+        // the second block is again a (0,2)-sequence: 16 points, one per cell of a 4 x 4 grid
+        let mut seen = [false; 16];
+        for k in 0..16u64 {
+            let (x, y) = pixel_position(key, (1 << 32) + k);
+            let cell = (x * 4.0) as usize * 4 + (y * 4.0) as usize;
+            assert!(!seen[cell]);
+            seen[cell] = true;
         }
     }
 

@@ -834,17 +834,10 @@ impl Scene {
             return None;
         }
         let inside = (t1 - t0) * len;
-        match ctx.media {
-            crate::sampler::MediumMode::Scatter => {}
-            crate::sampler::MediumMode::Transparent => return None,
-            crate::sampler::MediumMode::Attenuate { t_max } => {
-                // a shadow ray: the optical depth `density * length inside`, up to its surface
-                let t1 = t1.min(t_max);
-                if t1 > t0 {
-                    ctx.optical_depth += (t1 - t0) * len / -m.neg_inv_density;
-                }
-                return None;
-            }
+        if ctx.media == crate::sampler::MediumMode::Record {
+            // a shadow ray passes through; its transmittance is taken from the stretches inside
+            ctx.crossed.push(t0, t1, len / -m.neg_inv_density);
+            return None;
         }
         // 1 - u lies in (0, 1], so the logarithm is finite.
         let distance = m.neg_inv_density * (1.0 - ctx.uniform()).ln();
