@@ -470,3 +470,47 @@ fn light_list_two_disjoint_quads_value_is_weighted_and_integrates_to_one() {
         assert!((total - 1.0).abs() < 1e-9, "{name}: integrates to {total}");
     }
 }
+
+// ---------------------------------------------------------------- chosen inputs
+
+#[test]
+fn samples_carry_their_own_density_for_chosen_inputs() {
+    // u at the corners of the square and on the boundary of every discrete choice: each sample's
+    // density is `pdf` of its direction, and the rest of a choice's number is handed on.
+    let lights = [
+        QuadTarget::new(DVec3::new(-1.0, 2.0, -1.0), DVec3::X * 2.0, DVec3::Z * 2.0),
+        QuadTarget::new(DVec3::new(2.0, 1.0, -1.0), DVec3::Z * 2.0, DVec3::Y),
+    ];
+    let origin = DVec3::new(0.1, 0.0, 0.2);
+    let towards = HittablePdf::new(origin, &lights).unwrap();
+    let mixture = MixturePdf::with_weight(towards, CosinePdf::new(DVec3::Y), 0.25).unwrap();
+    let top = 1.0 - f64::EPSILON / 2.0;
+    fn check(what: &str, u: DVec2, pdf: &impl Pdf) {
+        let Some(s) = pdf.sample(u) else { return };
+        assert_unit(s.direction, what);
+        let want = pdf.pdf(s.direction);
+        assert!(
+            (s.pdf - want).abs() <= 1e-12 * want,
+            "{what} at {u}: sample says {}, pdf {want}",
+            s.pdf
+        );
+    }
+    for ux in [0.0, 0.125, 0.25, 0.5, 0.625, top] {
+        for uy in [0.0, 0.5, top] {
+            let u = DVec2::new(ux, uy);
+            check("lights", u, &towards);
+            check("mixture", u, &mixture);
+        }
+    }
+    // the choice's rest is handed on: u.x = 1/8 < 1/4 picks the lights with u.x' = 1/2, which picks
+    // the second quad (u.x'' = 0) ...
+    let s = mixture.sample(DVec2::new(0.125, 0.5)).unwrap();
+    let direct = lights[1].sample(origin, DVec2::new(0.0, 0.5)).unwrap();
+    assert_eq!(s.direction, direct.direction);
+    // ... and u.x = 1/4 + 3/8 picks the cosine part with its rest 1/2
+    let s = mixture.sample(DVec2::new(0.625, 0.5)).unwrap();
+    let cosine = CosinePdf::new(DVec3::Y)
+        .sample(DVec2::new(0.5, 0.5))
+        .unwrap();
+    assert_eq!(s.direction, cosine.direction);
+}
