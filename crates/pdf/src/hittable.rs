@@ -139,7 +139,18 @@ impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
         };
         let s = self.targets[i].sample(self.origin, DVec2::new(u0, u.y))?;
         // The chosen shape's density comes with its sample; only the others are evaluated.
-        let pdf = self.pmf(i) * s.pdf + self.others_pdf(i, s.direction);
+        let pdf = match self.selection {
+            Some(_) => self.pmf(i) * s.pdf + self.others_pdf(i, s.direction),
+            None => {
+                let mut sum = s.pdf;
+                for (j, t) in self.targets.iter().enumerate() {
+                    if j != i {
+                        sum += t.pdf(self.origin, s.direction);
+                    }
+                }
+                sum / self.targets.len() as f64
+            }
+        };
         DirectionSample::new(s.direction, pdf)
     }
 }

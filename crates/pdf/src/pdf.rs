@@ -171,6 +171,13 @@ impl CosinePdf {
             uvw: Onb::new(normal),
         }
     }
+
+    /// The direction [`Pdf::sample`] gives for `u`, without its density (for callers whose weight is
+    /// exactly 1, such as a Lambertian surface sampled by its own density).
+    #[inline]
+    pub fn direction(&self, u: DVec2) -> DVec3 {
+        self.uvw.transform(warp::sample_cosine_hemisphere(u))
+    }
 }
 
 impl Pdf for CosinePdf {
@@ -191,8 +198,7 @@ impl Pdf for CosinePdf {
     /// The book's `generate`: the warp's direction even on the horizon (where `value` is 0).
     #[inline]
     fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        self.uvw
-            .transform(warp::sample_cosine_hemisphere(random_unit_square(rng)))
+        self.direction(random_unit_square(rng))
     }
 }
 // ANCHOR_END: cosine_pdf

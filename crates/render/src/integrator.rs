@@ -178,7 +178,7 @@ fn sample_diffuse(
     match (strategy, pdf) {
         // Sampling s itself: s / p = 1 exactly.
         (Strategy::Cosine, _) | (Strategy::Uniform, ScatterPdf::Sphere(_)) => {
-            Some((pdf.sample(u)?.direction, 1.0))
+            Some((pdf.direction(u), 1.0))
         }
         (Strategy::Uniform, ScatterPdf::Cosine(_)) => {
             weighted(HemispherePdf::new(normal).sample(u)?)

@@ -79,6 +79,17 @@ impl Pdf for ScatterPdf {
         }
     }
 }
+impl ScatterPdf {
+    /// A direction of [`Pdf::sample`] without its density: for the `cosine` strategy, whose weight
+    /// `s / p` is exactly 1 (the book's `generate`).
+    #[inline]
+    pub fn direction(&self, u: DVec2) -> Vec3 {
+        match self {
+            ScatterPdf::Cosine(p) => p.direction(u),
+            ScatterPdf::Sphere(_) => warp::sample_uniform_sphere(u),
+        }
+    }
+}
 // ANCHOR_END: scatter_pdf
 
 // ANCHOR: scatter

@@ -105,6 +105,17 @@ pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
 }
 // ANCHOR_END: padded_sobol
 
+/// The first coordinate of [`padded_sobol_2d`] alone (a 1D dimension), without the second's work.
+#[inline]
+pub fn padded_sobol_1d(pixel_key: u64, dim: u32, k: u64) -> u64 {
+    let pixel_key = block_key(pixel_key, k);
+    let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
+    let r = laine_karras((k as u32).reverse_bits(), (h >> 32) as u32);
+    let x = laine_karras(r.reverse_bits(), h as u32).reverse_bits();
+    let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    ((x as u64) << 32) | (low & 0xffff_ffff)
+}
+
 // ANCHOR: dimensions
 /// The dimensions of one sample after the pixel position, in the order a path uses them. Each is a
 /// 2D pair (a 1D dimension takes the first coordinate of its pair), so the layout is fixed: pair
@@ -328,12 +339,10 @@ impl Ctx {
 
     /// Two uniform numbers in `[0, 1)` for dimension `d`: the padded Sobol pair `d.pair()` if
     /// low-discrepancy sampling is on, else two draws of the generator.
-    #[inline]
+    #[inline(always)]
     pub fn sample_2d(&mut self, d: Dimension) -> DVec2 {
         if self.sampler.low_discrepancy {
-            self.stats.random_numbers += 2;
-            let [x, y] = padded_sobol_2d(self.sampler.key, d.pair(), self.sampler.index);
-            DVec2::new(unit(x), unit(y))
+            self.low_discrepancy_2d(d)
         } else {
             let x = unit(self.rng.next_u64());
             DVec2::new(x, unit(self.rng.next_u64()))
@@ -341,14 +350,30 @@ impl Ctx {
     }
 
     /// One uniform number in `[0, 1)` for dimension `d` (the first coordinate of its pair).
-    #[inline]
+    #[inline(always)]
     pub fn sample_1d(&mut self, d: Dimension) -> f64 {
         if self.sampler.low_discrepancy {
-            self.stats.random_numbers += 1;
-            unit(padded_sobol_2d(self.sampler.key, d.pair(), self.sampler.index)[0])
+            self.low_discrepancy_1d(d)
         } else {
             unit(self.rng.next_u64())
         }
+    }
+
+    #[inline(never)]
+    fn low_discrepancy_2d(&mut self, d: Dimension) -> DVec2 {
+        self.stats.random_numbers += 2;
+        let [x, y] = padded_sobol_2d(self.sampler.key, d.pair(), self.sampler.index);
+        DVec2::new(unit(x), unit(y))
+    }
+
+    #[inline(never)]
+    fn low_discrepancy_1d(&mut self, d: Dimension) -> f64 {
+        self.stats.random_numbers += 1;
+        unit(padded_sobol_1d(
+            self.sampler.key,
+            d.pair(),
+            self.sampler.index,
+        ))
     }
 }
 
@@ -477,6 +502,17 @@ mod tests {
             let cell = (x * 4.0) as usize * 4 + (y * 4.0) as usize;
             assert!(!seen[cell]);
             seen[cell] = true;
+        }
+    }
+
+    #[test]
+    fn padded_sobol_1d_is_the_first_coordinate_of_the_pair() {
+        for i in 0..5000u64 {
+            let (key, dim, k) = (mix64(i), (i % 37) as u32, i * 7919 + (i << 33));
+            assert_eq!(
+                padded_sobol_1d(key, dim, k),
+                padded_sobol_2d(key, dim, k)[0]
+            );
         }
     }
 
