@@ -151,7 +151,11 @@ impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
                 sum / self.targets.len() as f64
             }
         };
-        DirectionSample::new(s.direction, pdf)
+        // positive (the chosen part's density is) and finite (every density is): no check needed
+        Some(DirectionSample {
+            direction: s.direction,
+            pdf,
+        })
     }
 }
 // ANCHOR_END: hittable_pdf

@@ -111,7 +111,11 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
             };
             (s.direction, va + (1.0 - wa) * s.pdf)
         };
-        DirectionSample::new(pdf.0, pdf.1)
+        // positive (the chosen part's density is) and finite (every density is): no check needed
+        Some(DirectionSample {
+            direction: pdf.0,
+            pdf: pdf.1,
+        })
     }
 }
 // ANCHOR_END: mixture_pdf
