@@ -69,8 +69,9 @@ pub enum Strategy {
     Light,
     /// The book's final method: a 50/50 mixture of the targets' density and the material's.
     Mixture,
-    /// Next-event estimation to the emitters combined with material sampling (mixed with the
-    /// non-emitting targets) by the power heuristic, plus the extras of [`MisOptions`].
+    /// Next-event estimation to every emitter of the scene, listed or not (through media with their
+    /// transmittance), combined with material sampling (mixed with the non-emitting targets) by the
+    /// power heuristic, plus the extras of [`MisOptions`].
     Mis(MisOptions),
 }
 // ANCHOR_END: strategy
@@ -118,9 +119,10 @@ impl Strategy {
             Strategy::Mis(o) => {
                 let on_off = |b: bool| if b { "on" } else { "off" };
                 format!(
-                    "next-event estimation to the emitters + material sampling mixed with the \
-                     other targets, power heuristic; Russian roulette {}, spherical rectangles {}, \
-                     low-discrepancy samples {}",
+                    "next-event estimation to every emitter (through media with their \
+                     transmittance) + material sampling mixed with the other targets, power \
+                     heuristic; Russian roulette {}, spherical rectangles {}, low-discrepancy \
+                     samples {}",
                     on_off(o.russian_roulette),
                     on_off(o.spherical_rectangles),
                     on_off(o.low_discrepancy)
