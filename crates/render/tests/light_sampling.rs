@@ -354,3 +354,65 @@ fn the_stratification_test_sees_a_choice_that_breaks_the_point() {
         "slope {broken:.2}: the check cannot see a broken point"
     );
 }
+
+// ---------------------------------------------------------------------------------------------------
+// Every emitter, wherever it is placed
+
+#[test]
+fn emitters_in_instanced_groups_are_found_in_world_space() {
+    use rtl_render::ray::Ray;
+    use rtl_render::scene::Transform;
+    // One emitting quad in a group, placed twice (rotated and moved), and an emitting sphere in a
+    // nested group; nothing listed.
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let light = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::ONE),
+        two_sided: true,
+    });
+    let g = b.group();
+    b.quad(
+        g,
+        Point3::new(-0.5, 0.0, -0.5),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+        light,
+    )
+    .unwrap();
+    b.instance(
+        w,
+        g,
+        Transform::rotate_y(30.0).then(Transform::translate(Vec3::new(0.0, 3.0, 0.0))),
+    );
+    b.instance(
+        w,
+        g,
+        Transform::rotate_y(-45.0).then(Transform::translate(Vec3::new(4.0, 2.0, 1.0))),
+    );
+    let inner = b.group();
+    b.sphere(inner, Point3::new(-3.0, 1.0, 0.0), 0.5, light)
+        .unwrap();
+    b.add_to(w, rtl_render::scene::Object::Group(inner));
+    let scene = b.build().unwrap();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(lights.emitters.len(), 3);
+    assert_eq!(lights.listed_emitters, 0);
+    // From a point below them, every direction sampled towards an emitter meets an emitter there.
+    let origin = Point3::new(0.5, -1.0, 0.3);
+    let pdf = HittablePdf::new(origin, &lights.emitters).unwrap();
+    let mut ctx = Ctx::new();
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
+    for _ in 0..2000 {
+        let s = pdf
+            .sample(DVec2::new(rng.random(), rng.random()))
+            .expect("two-sided emitters are never behind");
+        let hit = scene
+            .hit(&Ray::new(origin, s.direction, 0.0), &mut ctx)
+            .expect("the sampled direction meets the scene");
+        assert!(
+            scene.materials[hit.material as usize].is_emitter(),
+            "a direction towards an emitter met something else"
+        );
+        assert!(pdf.pdf(s.direction) > 0.0);
+    }
+}
