@@ -229,6 +229,22 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             )
         }
     );
+    let spherical = settings
+        .strategy
+        .mis_options()
+        .is_some_and(|o| o.spherical_rectangles);
+    let lights = rtl_render::lights::Lights::new(scene, spherical);
+    println!(
+        "  next-event estimation: {}",
+        match settings.strategy {
+            Strategy::Mis(_) => format!(
+                "shadow rays to every emitter, listed or not, through media with their \
+                 transmittance: {}",
+                lights.describe_emitters()
+            ),
+            s => format!("not used by the '{}' strategy", s.name()),
+        }
+    );
     let background = match scene.background {
         rtl_render::scene::Background::Solid(c) => format!("solid ({}, {}, {})", c.x, c.y, c.z),
         rtl_render::scene::Background::Sky => "book 1's sky gradient".to_string(),

@@ -17,7 +17,6 @@ use glam::{DVec2, DVec3};
 pub use rtl_sampling::chi_square::sidak_alpha;
 use rtl_sampling::chi_square::{ChiSquareError, chi_square};
 use std::f64::consts::{PI, TAU};
-use std::fmt;
 
 // ANCHOR: domain
 /// A parametrisation of a set of directions by the unit square, used to bin samples.
@@ -159,32 +158,30 @@ pub struct Chi2Report {
 }
 
 /// Why a chi-square test failed outright, before any p-value.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, thiserror::Error)]
 pub enum Chi2Failure {
     /// A sample fell outside the domain (where the caller said the sampler cannot go).
+    #[error("chi-square: sample {direction} lies outside the domain")]
     OutsideDomain { direction: DVec3 },
     /// A sample fell in a cell that lies wholly outside the density's support.
+    #[error("chi-square: sample {direction} in cell {cell:?}, which lies outside the support")]
     OutsideSupport {
         cell: (usize, usize),
         direction: DVec3,
     },
     /// The density was negative or not finite at this direction.
+    #[error("chi-square: the density at {direction} is {value}")]
     BadDensity { direction: DVec3, value: f64 },
     /// A sample was not a finite unit vector.
+    #[error("chi-square: sample {direction} is not a finite unit vector")]
     NotUnit { direction: DVec3 },
     /// Too few cells with enough expectation to test anything.
+    #[error("chi-square: too few cells with enough expected samples to test anything")]
     NoDegreesOfFreedom,
     /// The counts were refused by the statistic (a bug in the caller).
+    #[error("chi-square: {0}")]
     Statistic(ChiSquareError),
 }
-
-impl fmt::Display for Chi2Failure {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "chi-square: {self:?}")
-    }
-}
-
-impl std::error::Error for Chi2Failure {}
 
 // 4-point Gauss-Legendre nodes and weights on [-1, 1].
 const GL_X: [f64; 4] = [

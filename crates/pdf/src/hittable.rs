@@ -1,38 +1,44 @@
-//! `HittablePdf`: directions towards one or more targets, seen from a point (book 3, chapters 9 and 12).
+//! `HittablePdf`: directions towards one or more shapes, seen from a point (book 3, chapters 9 and 12).
 
-use crate::selection::{Selection, SelectionError};
-use crate::{Pdf, Target};
-use glam::DVec3;
-use rand::Rng;
+use crate::selection::{Selection, SelectionError, choose_uniform};
+use crate::{DirectionSample, Pdf, ShapeSampler};
+use glam::{DVec2, DVec3};
 
 // ANCHOR: hittable_pdf
-/// Directions from `origin` towards a list of targets: choose target `i` with probability `p_i` (uniform,
-/// or from a precomputed [`Selection`], e.g. by power), then sample towards it. The density of a
-/// direction is the total over every target it could have come from:
-/// `value(d) = sum_i p_i target_i.pdf_value(origin, d)`.
+/// Directions from `origin` towards a list of shapes: choose shape `i` with probability `p_i` (uniform,
+/// or from a precomputed [`Selection`], e.g. by power) by `u.x`, then sample towards it with the rest
+/// of `u.x` and `u.y`. The density of a direction is the total over every shape it could have come
+/// from: `pdf(d) = sum_i p_i shape_i.pdf(origin, d)`.
 ///
-/// Borrows the targets (and the table), so building one per scattering event allocates nothing.
+/// A shape with no directions from `origin` (a one-sided light seen from behind: `sample` gives
+/// `None`, `pdf` 0) makes the sample fail rather than return a direction it did not draw by its
+/// density: so `pdf` describes exactly what `sample` draws, a sub-probability density when some shape
+/// cannot be sampled from here.
+///
+/// Borrows the shapes (and the table), so building one per scattering event allocates nothing.
 ///
 /// ```
-/// use glam::DVec3;
+/// use glam::{DVec2, DVec3};
 /// use rtl_pdf::{HittablePdf, Pdf, SphereTarget};
 /// let lights = [SphereTarget::new(DVec3::new(0.0, 0.0, -10.0), 1.0)];
 /// let pdf = HittablePdf::new(DVec3::ZERO, &lights).expect("at least one light");
-/// assert!(pdf.value(DVec3::new(0.0, 0.0, -1.0)) > 0.0); // towards the centre
-/// assert_eq!(pdf.value(DVec3::new(0.0, 0.0, 1.0)), 0.0); // away from it
+/// assert!(pdf.pdf(DVec3::new(0.0, 0.0, -1.0)) > 0.0); // towards the centre
+/// assert_eq!(pdf.pdf(DVec3::new(0.0, 0.0, 1.0)), 0.0); // away from it
+/// let s = pdf.sample(DVec2::new(0.3, 0.7)).unwrap();
+/// assert!((s.pdf - pdf.pdf(s.direction)).abs() <= 1e-12 * s.pdf);
 /// let none: [SphereTarget; 0] = [];
 /// assert!(HittablePdf::new(DVec3::ZERO, &none).is_none());
 /// ```
 #[derive(Clone, Copy, Debug)]
-pub struct HittablePdf<'a, T: Target> {
+pub struct HittablePdf<'a, T: ShapeSampler> {
     origin: DVec3,
     targets: &'a [T],
     /// `None`: uniform, `1 / n` each.
     selection: Option<&'a Selection>,
 }
 
-impl<'a, T: Target> HittablePdf<'a, T> {
-    /// Each target with probability `1 / n`; `None` for an empty list (there is nothing to sample).
+impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
+    /// Each shape with probability `1 / n`; `None` for an empty list (there is nothing to sample).
     #[inline]
     pub fn new(origin: DVec3, targets: &'a [T]) -> Option<HittablePdf<'a, T>> {
         (!targets.is_empty()).then_some(HittablePdf {
@@ -42,7 +48,7 @@ impl<'a, T: Target> HittablePdf<'a, T> {
         })
     }
 
-    /// Targets chosen with the probabilities of `selection`, which must have one entry per target.
+    /// Shapes chosen with the probabilities of `selection`, which must have one entry per shape.
     pub fn with_selection(
         origin: DVec3,
         targets: &'a [T],
@@ -69,58 +75,87 @@ impl<'a, T: Target> HittablePdf<'a, T> {
         self.origin
     }
 
-    /// The probability of choosing target `i`.
+    /// The probability of choosing shape `i`.
     #[inline]
-    pub fn probability(&self, i: usize) -> f64 {
+    #[doc(alias = "probability")]
+    pub fn pmf(&self, i: usize) -> f64 {
         match self.selection {
-            Some(s) => s.probability(i),
+            Some(s) => s.pmf(i),
             None => 1.0 / self.targets.len() as f64,
         }
     }
+
+    /// The book-style name of [`HittablePdf::pmf`].
+    #[inline]
+    pub fn probability(&self, i: usize) -> f64 {
+        self.pmf(i)
+    }
+
+    /// `sum_{j != skip} p_j pdf_j(d)`: the density the other shapes give `direction`.
+    #[inline]
+    fn others_pdf(&self, skip: usize, direction: DVec3) -> f64 {
+        let mut sum = 0.0;
+        for (j, t) in self.targets.iter().enumerate() {
+            if j != skip {
+                let p = self.pmf(j);
+                if p > 0.0 {
+                    sum += p * t.pdf(self.origin, direction);
+                }
+            }
+        }
+        sum
+    }
 }
 
-impl<T: Target> Pdf for HittablePdf<'_, T> {
+impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
     #[inline]
-    fn value(&self, direction: DVec3) -> f64 {
+    fn pdf(&self, direction: DVec3) -> f64 {
         if let [only] = self.targets {
-            return only.pdf_value(self.origin, direction);
+            return only.pdf(self.origin, direction);
         }
         if self.selection.is_none() {
-            // Uniform: `(1 / n) sum_i pdf_i`, one division rather than one a target.
+            // Uniform: `(1 / n) sum_i pdf_i`, one division rather than one a shape.
             let sum: f64 = self
                 .targets
                 .iter()
-                .map(|t| t.pdf_value(self.origin, direction))
+                .map(|t| t.pdf(self.origin, direction))
                 .sum();
             return sum / self.targets.len() as f64;
         }
-        self.targets
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let p = self.probability(i);
-                if p > 0.0 {
-                    p * t.pdf_value(self.origin, direction)
-                } else {
-                    0.0
-                }
-            })
-            .sum()
+        self.others_pdf(usize::MAX, direction)
     }
 
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        let i = match self.selection {
-            Some(s) => s.choose(rng.random::<f64>()),
-            None if self.targets.len() == 1 => 0,
-            // `floor(n u)` for `u` uniform in [0, 1) (the `min` guards rounding up to `n`): uniform on
-            // 0..n to within 2^-53 relative, without `random_range`'s rejection loop.
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        if let [only] = self.targets {
+            return only.sample(self.origin, u);
+        }
+        let (i, u0) = match self.selection {
+            Some(s) => {
+                let c = s.sample(u.x);
+                (c.index, c.u_remapped)
+            }
+            None => choose_uniform(self.targets.len(), u.x),
+        };
+        let s = self.targets[i].sample(self.origin, DVec2::new(u0, u.y))?;
+        // The chosen shape's density comes with its sample; only the others are evaluated.
+        let pdf = match self.selection {
+            Some(_) => self.pmf(i) * s.pdf + self.others_pdf(i, s.direction),
             None => {
-                let n = self.targets.len();
-                ((rng.random::<f64>() * n as f64) as usize).min(n - 1)
+                let mut sum = s.pdf;
+                for (j, t) in self.targets.iter().enumerate() {
+                    if j != i {
+                        sum += t.pdf(self.origin, s.direction);
+                    }
+                }
+                sum / self.targets.len() as f64
             }
         };
-        self.targets[i].random(self.origin, rng)
+        // positive (the chosen part's density is) and finite (every density is): no check needed
+        Some(DirectionSample {
+            direction: s.direction,
+            pdf,
+        })
     }
 }
 // ANCHOR_END: hittable_pdf

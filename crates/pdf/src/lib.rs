@@ -6,14 +6,16 @@
 //! - [`warp`]: maps from the unit square to directions (uniform sphere, hemisphere, cosine, cone,
 //!   parallelogram, spherical rectangle), each with its density and inverse;
 //! - [`Onb`]: an orthonormal basis from one vector, to carry local directions to the world;
-//! - [`Pdf`] with [`SpherePdf`], [`HemispherePdf`], [`CosinePdf`], [`HittablePdf`] (towards [`Target`]s
+//! - [`Pdf`] with [`SpherePdf`], [`HemispherePdf`], [`CosinePdf`], [`HittablePdf`] (towards [`ShapeSampler`]s
 //!   such as [`SphereTarget`] and [`QuadTarget`]) and [`MixturePdf`];
 //! - [`mis`]: balance and power heuristics for multiple importance sampling;
 //! - [`chi2`]: the chi-square goodness-of-fit test that checks every sampler against its density.
 //!
-//! Everything per sample is static dispatch and allocation-free: `Pdf::generate` is generic over the
-//! random number generator, mixtures are generic over their parts, and lists of targets are borrowed
-//! slices.
+//! One vocabulary throughout: `sample(u)` takes its uniform numbers and returns the direction with its
+//! density ([`DirectionSample`]), `pdf(d)` evaluates that density, and `invert` (the warps, the
+//! [`Selection`]) maps a result back to its `u`. The book's `generate(rng)` / `value(d)` are thin
+//! wrappers. Everything per sample is static dispatch and allocation-free: mixtures are generic over
+//! their parts, and lists of targets are borrowed slices.
 //!
 //! ```
 //! use glam::DVec3;
@@ -24,8 +26,11 @@
 //! let light = [QuadTarget::new(DVec3::new(-1.0, 5.0, -1.0), DVec3::X * 2.0, DVec3::Z * 2.0)];
 //! let towards_light = HittablePdf::new(DVec3::ZERO, &light).unwrap();
 //! let pdf = MixturePdf::new(towards_light, CosinePdf::new(DVec3::Y));
-//! let d = pdf.generate(&mut rng);
+//! let d = pdf.generate(&mut rng); // the book's way: a random number generator
 //! assert!(d.y > 0.0 && pdf.value(d) > 0.0);
+//! // ours: chosen numbers in, the direction and its density out
+//! let s = pdf.sample(glam::DVec2::new(0.25, 0.5)).unwrap();
+//! assert!((s.pdf - pdf.pdf(s.direction)).abs() < 1e-12 * s.pdf);
 //! ```
 
 pub mod chi2;
@@ -42,9 +47,9 @@ pub use hittable::HittablePdf;
 pub use mis::{balance_heuristic, power_heuristic};
 pub use mixture::{MixtureError, MixtureOfPdfs, MixturePdf};
 pub use onb::Onb;
-pub use pdf::{CosinePdf, HemispherePdf, Pdf, SpherePdf};
-pub use selection::{Selection, SelectionError};
+pub use pdf::{CosinePdf, DirectionSample, HemispherePdf, Pdf, SpherePdf};
+pub use selection::{Choice, Selection, SelectionError};
 pub use target::{
     MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE, MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE, QuadSampling,
-    QuadTarget, SphereTarget, SphereView, Target,
+    QuadTarget, ShapeSampler, SphereTarget, SphereView,
 };

@@ -1,39 +1,26 @@
 //! Mixture densities (book 3, chapter 10): pick a part at random, sample it; the density is the
 //! weighted sum of the parts' densities.
 
-use crate::Pdf;
-use crate::selection::{Selection, SelectionError};
-use glam::DVec3;
-use rand::Rng;
+use crate::selection::{Selection, SelectionError, remap};
+use crate::{DirectionSample, Pdf};
+use glam::{DVec2, DVec3};
 
 /// Why a mixture was refused.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MixtureError {
     /// The weight of the first part must be in `[0, 1]`.
+    #[error("MixturePdf: the weight of the first part is {0}, not in [0, 1]")]
     BadWeight(f64),
     /// The parts' selection table was refused.
+    #[error("mixture of pdfs: {0}")]
     Selection(SelectionError),
 }
 
-impl std::fmt::Display for MixtureError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            MixtureError::BadWeight(w) => {
-                write!(
-                    f,
-                    "MixturePdf: the weight of the first part is {w}, not in [0, 1]"
-                )
-            }
-            MixtureError::Selection(e) => write!(f, "mixture of pdfs: {e}"),
-        }
-    }
-}
-
-impl std::error::Error for MixtureError {}
-
 // ANCHOR: mixture_pdf
-/// The mixture `w a + (1 - w) b` of two densities: `generate` samples `a` with probability `w`, else
-/// `b`; `value` is exactly `w a.value + (1 - w) b.value`. The book's 50/50 mixture is
+/// The mixture `w a + (1 - w) b` of two densities: `sample(u)` samples `a` if `u.x < w`, else `b`,
+/// handing the rest of `u.x` on (`u.x / w` or `(u.x - w) / (1 - w)`); `pdf` is exactly
+/// `w a.pdf + (1 - w) b.pdf`, and a sample carries the same sum, with the chosen part's density
+/// taken from its sample. The book's 50/50 mixture is
 /// [`MixturePdf::new`].
 ///
 /// Generic over its parts, so a mixture is a plain value (no `Box`, no virtual calls) and mixtures nest:
@@ -45,7 +32,7 @@ impl std::error::Error for MixtureError {}
 /// let m = MixturePdf::new(CosinePdf::new(DVec3::Z), SpherePdf);
 /// let d = DVec3::Z;
 /// let expected = 0.5 * (1.0 / std::f64::consts::PI) + 0.5 / (4.0 * std::f64::consts::PI);
-/// assert!((m.value(d) - expected).abs() < 1e-15);
+/// assert!((m.pdf(d) - expected).abs() < 1e-15);
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct MixturePdf<A: Pdf, B: Pdf> {
@@ -88,16 +75,16 @@ impl<A: Pdf, B: Pdf> MixturePdf<A, B> {
 
 impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
     #[inline]
-    fn value(&self, direction: DVec3) -> f64 {
+    fn pdf(&self, direction: DVec3) -> f64 {
         // A part of weight 0 is never sampled and never evaluated (its value may be anything).
         let wa = self.weight_a;
         let va = if wa > 0.0 {
-            wa * self.a.value(direction)
+            wa * self.a.pdf(direction)
         } else {
             0.0
         };
         let vb = if wa < 1.0 {
-            (1.0 - wa) * self.b.value(direction)
+            (1.0 - wa) * self.b.pdf(direction)
         } else {
             0.0
         };
@@ -105,12 +92,30 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
     }
 
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        if rng.random::<f64>() < self.weight_a {
-            self.a.generate(rng)
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        let wa = self.weight_a;
+        let pdf = if u.x < wa {
+            let s = self.a.sample(DVec2::new(remap(u.x, 0.0, wa), u.y))?;
+            let vb = if wa < 1.0 {
+                (1.0 - wa) * self.b.pdf(s.direction)
+            } else {
+                0.0
+            };
+            (s.direction, wa * s.pdf + vb)
         } else {
-            self.b.generate(rng)
-        }
+            let s = self.b.sample(DVec2::new(remap(u.x, wa, 1.0 - wa), u.y))?;
+            let va = if wa > 0.0 {
+                wa * self.a.pdf(s.direction)
+            } else {
+                0.0
+            };
+            (s.direction, va + (1.0 - wa) * s.pdf)
+        };
+        // positive (the chosen part's density is) and finite (every density is): no check needed
+        Some(DirectionSample {
+            direction: pdf.0,
+            pdf: pdf.1,
+        })
     }
 }
 // ANCHOR_END: mixture_pdf
@@ -142,14 +147,14 @@ impl<'a, P: Pdf> MixtureOfPdfs<'a, P> {
 
 impl<P: Pdf> Pdf for MixtureOfPdfs<'_, P> {
     #[inline]
-    fn value(&self, direction: DVec3) -> f64 {
+    fn pdf(&self, direction: DVec3) -> f64 {
         self.parts
             .iter()
             .enumerate()
             .map(|(i, part)| {
-                let p = self.selection.probability(i);
+                let p = self.selection.pmf(i);
                 if p > 0.0 {
-                    p * part.value(direction)
+                    p * part.pdf(direction)
                 } else {
                     0.0
                 }
@@ -158,8 +163,23 @@ impl<P: Pdf> Pdf for MixtureOfPdfs<'_, P> {
     }
 
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        let i = self.selection.choose(rng.random::<f64>());
-        self.parts[i].generate(rng)
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        let c = self.selection.sample(u.x);
+        let s = self.parts[c.index].sample(DVec2::new(c.u_remapped, u.y))?;
+        let others: f64 = self
+            .parts
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != c.index)
+            .map(|(j, part)| {
+                let p = self.selection.pmf(j);
+                if p > 0.0 {
+                    p * part.pdf(s.direction)
+                } else {
+                    0.0
+                }
+            })
+            .sum();
+        DirectionSample::new(s.direction, c.pmf * s.pdf + others)
     }
 }

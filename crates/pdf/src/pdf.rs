@@ -10,33 +10,84 @@ pub(crate) fn random_unit_square<R: Rng + ?Sized>(rng: &mut R) -> DVec2 {
     DVec2::new(rng.random::<f64>(), rng.random::<f64>())
 }
 
+/// A direction drawn by a sampler, with the density it was drawn with (per steradian).
+///
+/// Returning both at once is what pbrt-v4's samplers do (`SampleLi` returns `{L, wi, pdf}`): the
+/// density is known where the direction is made (a spherical rectangle's `1 / S`, a cone's
+/// `1 / (2 pi (1 - cos theta_max))`), so nothing is set up a second time to evaluate it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionSample {
+    /// A unit vector.
+    pub direction: DVec3,
+    /// Its density per unit solid angle, `> 0` and finite.
+    pub pdf: f64,
+}
+
+impl DirectionSample {
+    /// A sample if `pdf` is positive and finite, else `None` (a direction that cannot be weighted).
+    #[inline]
+    pub fn new(direction: DVec3, pdf: f64) -> Option<DirectionSample> {
+        (pdf > 0.0 && pdf.is_finite()).then_some(DirectionSample { direction, pdf })
+    }
+}
+
 // ANCHOR: pdf_trait
 /// A density over the sphere of directions, with a way to sample it (book 3, chapter 10).
 ///
-/// `value` and `generate` must agree: the directions `generate` returns are distributed with density
-/// `value`, per steradian. Callers divide by `value` of the direction they got, so a mismatch is a bias.
+/// `sample` and `pdf` must agree: the directions `sample(u)` returns for `u` uniform on `[0, 1)^2`
+/// are distributed with density `pdf`, per steradian, and the density each sample carries is `pdf` of
+/// its direction. A sampler may fail (`None`) for some `u`, a light seen from behind, say: then `pdf`
+/// is a *sub*-probability density, integrating to the probability of success, and a failed sample
+/// contributes nothing. That keeps an estimator unbiased; a direction drawn while `pdf` says 0 would not.
 ///
-/// The trait is used by static dispatch: `generate` is generic over the random number generator, so
-/// `Pdf` is not object safe, and mixtures are generic over their parts ([`MixturePdf<A, B>`]) instead of
-/// holding `Box<dyn Pdf>` as the book's `shared_ptr<pdf>` does. Nothing here allocates per sample.
+/// The sampler takes its uniform numbers explicitly (pbrt-v4's `Sample(u)`), instead of a random
+/// number generator: so a low-discrepancy point can be fed in (stratification), a render is
+/// reproducible number by number, and tests can feed chosen inputs (`u = 0`, `u -> 1`). A discrete
+/// choice inside a sampler (a mixture's part, a light) uses `u.x` and hands the rest of it on, remapped
+/// onto `[0, 1)`. The book's interface, `generate(rng)` and `value(d)`, is kept as thin wrappers.
+///
+/// The trait is used by static dispatch: mixtures are generic over their parts ([`MixturePdf<A, B>`])
+/// instead of holding `Box<dyn Pdf>` as the book's `shared_ptr<pdf>` does. Nothing here allocates per
+/// sample.
 ///
 /// [`MixturePdf<A, B>`]: crate::MixturePdf
 pub trait Pdf {
     /// The density per unit solid angle of `direction` (a unit vector); never negative or NaN.
-    fn value(&self, direction: DVec3) -> f64;
-    /// A unit direction distributed with density [`Pdf::value`].
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3;
+    #[doc(alias = "value")]
+    fn pdf(&self, direction: DVec3) -> f64;
+
+    /// A unit direction for the uniform numbers `u` in `[0, 1)^2`, with its density [`Pdf::pdf`];
+    /// `None` where this sampler has no direction to give.
+    #[doc(alias = "generate")]
+    fn sample(&self, u: DVec2) -> Option<DirectionSample>;
+
+    /// The book's name for [`Pdf::pdf`].
+    #[inline]
+    fn value(&self, direction: DVec3) -> f64 {
+        self.pdf(direction)
+    }
+
+    /// The book's `generate()`: [`Pdf::sample`] of two numbers from `rng`, the direction only (the
+    /// zero vector where `sample` fails, a direction no caller can weight).
+    #[inline]
+    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3
+    where
+        Self: Sized,
+    {
+        self.sample(random_unit_square(rng))
+            .map_or(DVec3::ZERO, |s| s.direction)
+    }
 }
 // ANCHOR_END: pdf_trait
 
 impl<P: Pdf + ?Sized> Pdf for &P {
     #[inline]
-    fn value(&self, direction: DVec3) -> f64 {
-        (**self).value(direction)
+    fn pdf(&self, direction: DVec3) -> f64 {
+        (**self).pdf(direction)
     }
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        (**self).generate(rng)
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        (**self).sample(u)
     }
 }
 
@@ -56,12 +107,15 @@ pub struct SpherePdf;
 
 impl Pdf for SpherePdf {
     #[inline]
-    fn value(&self, _direction: DVec3) -> f64 {
+    fn pdf(&self, _direction: DVec3) -> f64 {
         warp::uniform_sphere_pdf()
     }
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        warp::sample_uniform_sphere(random_unit_square(rng))
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        Some(DirectionSample {
+            direction: warp::sample_uniform_sphere(u),
+            pdf: warp::uniform_sphere_pdf(),
+        })
     }
 }
 // ANCHOR_END: sphere_pdf
@@ -84,7 +138,7 @@ impl HemispherePdf {
 
 impl Pdf for HemispherePdf {
     #[inline]
-    fn value(&self, direction: DVec3) -> f64 {
+    fn pdf(&self, direction: DVec3) -> f64 {
         if direction.dot(self.uvw.w()) >= 0.0 {
             warp::uniform_hemisphere_pdf()
         } else {
@@ -92,9 +146,11 @@ impl Pdf for HemispherePdf {
         }
     }
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        self.uvw
-            .transform(warp::sample_uniform_hemisphere(random_unit_square(rng)))
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        Some(DirectionSample {
+            direction: self.uvw.transform(warp::sample_uniform_hemisphere(u)),
+            pdf: warp::uniform_hemisphere_pdf(),
+        })
     }
 }
 
@@ -115,17 +171,34 @@ impl CosinePdf {
             uvw: Onb::new(normal),
         }
     }
+
+    /// The direction [`Pdf::sample`] gives for `u`, without its density (for callers whose weight is
+    /// exactly 1, such as a Lambertian surface sampled by its own density).
+    #[inline]
+    pub fn direction(&self, u: DVec2) -> DVec3 {
+        self.uvw.transform(warp::sample_cosine_hemisphere(u))
+    }
 }
 
 impl Pdf for CosinePdf {
     #[inline]
-    fn value(&self, direction: DVec3) -> f64 {
+    fn pdf(&self, direction: DVec3) -> f64 {
         warp::cosine_hemisphere_pdf(direction.dot(self.uvw.w()))
     }
+    /// The concentric cosine warp; its density is `cos theta / pi` of the local direction (`None` for
+    /// the measure-zero `u` that lands on the horizon, where the density is 0).
+    #[inline]
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
+        let local = warp::sample_cosine_hemisphere(u);
+        DirectionSample::new(
+            self.uvw.transform(local),
+            warp::cosine_hemisphere_pdf(local.z),
+        )
+    }
+    /// The book's `generate`: the warp's direction even on the horizon (where `value` is 0).
     #[inline]
     fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        self.uvw
-            .transform(warp::sample_cosine_hemisphere(random_unit_square(rng)))
+        self.direction(random_unit_square(rng))
     }
 }
 // ANCHOR_END: cosine_pdf

@@ -1,52 +1,61 @@
 //! Choosing one of several parts (lights, or the components of a mixture) with fixed probabilities.
 
-use std::fmt;
+use rtl_sampling::{ONE_MINUS_EPSILON, SamplingError, TabulatedCdf};
 
 /// Why a table of selection weights was refused.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SelectionError {
     /// No parts to choose from.
+    #[error("selection: there is nothing to choose from (empty list)")]
     Empty,
     /// Weight `index` is negative, infinite or NaN.
+    #[error("selection: weight {index} is {weight}; weights must be finite and >= 0")]
     BadWeight { index: usize, weight: f64 },
     /// Every weight is 0.
+    #[error("selection: every weight is 0")]
     AllZero,
     /// The table has `table` entries but there are `parts` parts.
+    #[error("selection: the table has {table} weights but there are {parts} parts")]
     LengthMismatch { table: usize, parts: usize },
 }
 
-impl fmt::Display for SelectionError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SelectionError::Empty => {
-                write!(f, "selection: there is nothing to choose from (empty list)")
-            }
-            SelectionError::BadWeight { index, weight } => write!(
-                f,
-                "selection: weight {index} is {weight}; weights must be finite and >= 0"
-            ),
-            SelectionError::AllZero => write!(f, "selection: every weight is 0"),
-            SelectionError::LengthMismatch { table, parts } => write!(
-                f,
-                "selection: the table has {table} weights but there are {parts} parts"
-            ),
-        }
-    }
+/// One discrete choice: the part, its probability, and the rest of the uniform number that chose it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Choice {
+    /// The part chosen.
+    pub index: usize,
+    /// Its probability (`> 0`).
+    pub pmf: f64,
+    /// `(u - F_i) / p_i`: uniform on `[0, 1)` again given the choice, to be handed on (so the choice
+    /// and what follows come from one stratified number).
+    pub u_remapped: f64,
 }
 
-impl std::error::Error for SelectionError {}
+/// `(u - lo) / p`, the leftover of `u` in `[lo, lo + p)`, kept below 1.
+#[inline]
+pub(crate) fn remap(u: f64, lo: f64, p: f64) -> f64 {
+    ((u - lo) / p).clamp(0.0, ONE_MINUS_EPSILON)
+}
+
+/// The uniform choice among `n` parts by `u`: `i = floor(n u)` (kept below `n`), and `n u - i`.
+#[inline]
+pub(crate) fn choose_uniform(n: usize, u: f64) -> (usize, f64) {
+    let scaled = u * n as f64;
+    let i = (scaled as usize).min(n - 1);
+    (i, (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON))
+}
 
 // ANCHOR: selection
 /// Fixed probabilities `p_i = w_i / sum w` of choosing part `i`, built once (e.g. per scene, from the
 /// lights' powers) and borrowed by the per-sample code, which then allocates nothing.
-/// Choosing is a binary search of the cumulative sums, `O(log n)`; parts of weight 0 are never chosen.
+///
+/// Built on rtl-sampling's [`TabulatedCdf`] over `[0, n)` with one bin per part: choosing is its
+/// binary search of the cumulative sums, `O(log n)`, which never returns a part of weight 0. The
+/// inversion keeps each part's share of `[0, 1)` in one piece, so the remapped rest of `u` of a
+/// stratified `u` is stratified again for every part (an alias table would cut shares into pieces).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Selection {
-    probabilities: Vec<f64>,
-    /// `cdf[i] = p_0 + ... + p_i`, the last forced to exactly 1.
-    cdf: Vec<f64>,
-    /// the last part with a positive probability
-    last: usize,
+    cdf: TabulatedCdf,
 }
 
 impl Selection {
@@ -71,51 +80,72 @@ impl Selection {
         if !(total > 0.0 && total.is_finite()) {
             return Err(SelectionError::AllZero);
         }
-        let probabilities: Vec<f64> = weights.iter().map(|w| w / total).collect();
-        let mut cdf = Vec::with_capacity(weights.len());
-        let mut acc = 0.0;
-        for p in &probabilities {
-            acc += p;
-            cdf.push(acc);
-        }
-        // The last part with a positive weight ends the table at exactly 1.
-        let last = probabilities.iter().rposition(|&p| p > 0.0).unwrap_or(0);
-        for c in &mut cdf[last..] {
-            *c = 1.0;
-        }
-        Ok(Selection {
-            probabilities,
-            cdf,
-            last,
-        })
+        let cdf =
+            TabulatedCdf::from_weights(0.0, weights.len() as f64, weights).map_err(
+                |e| match e {
+                    SamplingError::BadWeight { bin, value } => SelectionError::BadWeight {
+                        index: bin,
+                        weight: value,
+                    },
+                    _ => SelectionError::AllZero,
+                },
+            )?;
+        Ok(Selection { cdf })
     }
 
     /// The number of parts.
     pub fn len(&self) -> usize {
-        self.probabilities.len()
+        self.cdf.len()
     }
 
     /// Never true: a selection has at least one part.
     pub fn is_empty(&self) -> bool {
-        self.probabilities.is_empty()
+        false
     }
 
-    /// The probability of choosing part `i`.
+    /// The probability of choosing part `i` (0 outside the table).
+    #[inline]
+    #[doc(alias = "probability")]
+    pub fn pmf(&self, i: usize) -> f64 {
+        if i < self.len() {
+            self.cdf.bin_probability(i)
+        } else {
+            0.0
+        }
+    }
+
+    /// The book-style name of [`Selection::pmf`].
     #[inline]
     pub fn probability(&self, i: usize) -> f64 {
-        self.probabilities[i]
+        self.pmf(i)
     }
 
-    /// All the probabilities, summing to 1.
-    pub fn probabilities(&self) -> &[f64] {
-        &self.probabilities
+    /// The part chosen by `u` in `[0, 1)`, the first `i` with `u < F_{i+1}` (which has `p_i > 0`),
+    /// with its probability and the remapped rest of `u`.
+    #[inline]
+    #[doc(alias = "choose")]
+    pub fn sample(&self, u: f64) -> Choice {
+        let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        let index = self.cdf.bin(u);
+        let lo = self.cdf.cdf_values()[index];
+        let pmf = self.cdf.bin_probability(index);
+        Choice {
+            index,
+            pmf,
+            u_remapped: remap(u, lo, pmf),
+        }
     }
 
-    /// The part chosen by `u` in `[0, 1)`: the first `i` with `u < cdf[i]`, which has `p_i > 0`.
+    /// The part chosen by `u` (the index of [`Selection::sample`]).
     #[inline]
     pub fn choose(&self, u: f64) -> usize {
-        let i = self.cdf.partition_point(|&c| c <= u);
-        i.min(self.last) // only reached for u >= 1, outside the contract
+        self.sample(u).index
+    }
+
+    /// The `u` that chooses part `i` and leaves `u_remapped`: the inverse of [`Selection::sample`].
+    pub fn invert(&self, i: usize, u_remapped: f64) -> f64 {
+        let lo = self.cdf.cdf_values()[i];
+        (lo + u_remapped * self.pmf(i)).min(ONE_MINUS_EPSILON)
     }
 }
 // ANCHOR_END: selection
@@ -163,6 +193,11 @@ mod tests {
         }
         assert_eq!(s.choose(0.1), 1);
         assert_eq!(s.choose(0.3), 3);
-        assert_eq!(s.probabilities(), &[0.0, 0.25, 0.0, 0.75, 0.0]);
+        let p: Vec<f64> = (0..5).map(|i| s.pmf(i)).collect();
+        assert_eq!(p, [0.0, 0.25, 0.0, 0.75, 0.0]);
+        // the rest of u is handed on, and inverting gives u back
+        let c = s.sample(0.25 + 0.75 * 0.5);
+        assert_eq!((c.index, c.pmf, c.u_remapped), (3, 0.75, 0.5));
+        assert_eq!(s.invert(3, 0.5), 0.625);
     }
 }

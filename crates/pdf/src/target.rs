@@ -6,31 +6,54 @@
 //! renderer's sphere or quad can delegate to them.
 
 use crate::pdf::random_unit_square;
-use crate::{Onb, warp};
-use glam::DVec3;
+use crate::{DirectionSample, Onb, warp};
+use glam::{DVec2, DVec3};
 use rand::Rng;
-use std::f64::consts::TAU;
 
 // ANCHOR: target_trait
-/// Something that can be sampled towards from a point: the book's `hittable::pdf_value` and
-/// `hittable::random`.
-pub trait Target {
-    /// The density per steradian, seen from `origin`, with which [`Target::random`] picks the unit vector
-    /// `direction`: 0 when the ray `origin + t direction` misses the target.
-    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64;
-    /// A unit direction from `origin` towards the target.
-    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3;
+/// A shape that directions can be sampled towards from a point: the book's `hittable::random` and
+/// `hittable::pdf_value` ("lights", chapter 9), with the same contract as [`Pdf`](crate::Pdf): what
+/// `sample` draws is distributed with density `pdf`, and a shape with no directions from `origin` (a
+/// one-sided light seen from behind) returns `None` there while its `pdf` is 0.
+#[doc(alias = "Target")]
+pub trait ShapeSampler {
+    /// The density per steradian, seen from `origin`, with which [`ShapeSampler::sample`] picks the
+    /// unit vector `direction`: 0 when the ray `origin + t direction` misses the shape.
+    #[doc(alias = "pdf_value")]
+    fn pdf(&self, origin: DVec3, direction: DVec3) -> f64;
+
+    /// A unit direction from `origin` towards the shape for the uniform numbers `u` in `[0, 1)^2`, with
+    /// its density; `None` where the shape offers no direction.
+    #[doc(alias = "random")]
+    fn sample(&self, origin: DVec3, u: DVec2) -> Option<DirectionSample>;
+
+    /// The book's name for [`ShapeSampler::pdf`].
+    #[inline]
+    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
+        self.pdf(origin, direction)
+    }
+
+    /// The book's `random(origin)`: [`ShapeSampler::sample`] of two numbers from `rng`, the direction
+    /// only (the zero vector where `sample` fails).
+    #[inline]
+    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3
+    where
+        Self: Sized,
+    {
+        self.sample(origin, random_unit_square(rng))
+            .map_or(DVec3::ZERO, |s| s.direction)
+    }
 }
 // ANCHOR_END: target_trait
 
-impl<T: Target + ?Sized> Target for &T {
+impl<T: ShapeSampler + ?Sized> ShapeSampler for &T {
     #[inline]
-    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
-        (**self).pdf_value(origin, direction)
+    fn pdf(&self, origin: DVec3, direction: DVec3) -> f64 {
+        (**self).pdf(origin, direction)
     }
     #[inline]
-    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3 {
-        (**self).random(origin, rng)
+    fn sample(&self, origin: DVec3, u: DVec2) -> Option<DirectionSample> {
+        (**self).sample(origin, u)
     }
 }
 
@@ -85,27 +108,16 @@ impl SphereTarget {
         }
     }
     // ANCHOR_END: sphere_view
-
-    /// The solid angle of the directions sampled from `origin`: `2 pi (1 - cos theta_max)` from outside,
-    /// `4 pi` from inside.
-    pub fn solid_angle(&self, origin: DVec3) -> f64 {
-        match self.view(origin) {
-            SphereView::Cone {
-                one_minus_cos_max, ..
-            } => TAU * one_minus_cos_max,
-            SphereView::Surrounding => 2.0 * TAU,
-        }
-    }
 }
 
 // ANCHOR: sphere_target
-impl Target for SphereTarget {
+impl ShapeSampler for SphereTarget {
     /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside. "Inside the cone" is
     /// the same as "the ray hits the sphere": the ray points towards the centre `c` and passes within
     /// `r` of it, `|(c - o) x d|^2 <= r^2` (a cross product, so no cancellation near the axis, and no
     /// square root or division before a hit). From inside the sphere: `1 / (4 pi)`.
     #[inline]
-    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
+    fn pdf(&self, origin: DVec3, direction: DVec3) -> f64 {
         let to_center = self.center - origin;
         let d2 = to_center.length_squared();
         let r2 = self.radius * self.radius;
@@ -124,15 +136,22 @@ impl Target for SphereTarget {
         }
     }
 
+    /// Uniform in the cone the sphere subtends (`None` for a sphere too small to see from `origin`),
+    /// uniform over the sphere of directions from inside.
     #[inline]
-    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3 {
-        let u = random_unit_square(rng);
+    fn sample(&self, origin: DVec3, u: DVec2) -> Option<DirectionSample> {
         match self.view(origin) {
             SphereView::Cone {
                 axis,
                 one_minus_cos_max,
-            } => Onb::new(axis).transform(warp::sample_uniform_cone(u, one_minus_cos_max)),
-            SphereView::Surrounding => warp::sample_uniform_sphere(u),
+            } => DirectionSample::new(
+                Onb::new(axis).transform(warp::sample_uniform_cone(u, one_minus_cos_max)),
+                warp::uniform_cone_pdf(one_minus_cos_max),
+            ),
+            SphereView::Surrounding => Some(DirectionSample {
+                direction: warp::sample_uniform_sphere(u),
+                pdf: warp::uniform_sphere_pdf(),
+            }),
         }
     }
 }
@@ -273,30 +292,36 @@ impl QuadTarget {
 }
 
 // ANCHOR: quad_target
-impl Target for QuadTarget {
+impl ShapeSampler for QuadTarget {
     /// Area sampling: `d^2 / (|cos theta_light| A)` where the ray hits; spherical rectangles: `1 / S`
     /// where it hits; 0 on a miss and from an origin in the quad's plane.
     #[inline]
-    fn pdf_value(&self, origin: DVec3, direction: DVec3) -> f64 {
+    fn pdf(&self, origin: DVec3, direction: DVec3) -> f64 {
         let Some(t) = self.hit(origin, direction) else {
             return 0.0;
         };
         if let Some(sr) = self.spherical_rectangle(origin) {
             return sr.pdf();
         }
-        let cos_light = self.normal.dot(direction).abs();
-        let pdf = t * t / (cos_light * self.area);
-        if pdf.is_finite() { pdf } else { 0.0 }
+        // the hit point at distance t along the unit direction
+        warp::area_to_solid_angle(1.0 / self.area, origin, origin + t * direction, self.normal)
     }
 
+    /// A point uniform on the quad (or a direction uniform in its spherical rectangle); the density is
+    /// made where the point is: `d^2 / (|cos theta_light| A)` of that point, or `1 / S`. `None` from an
+    /// origin in the quad's plane, where it has no solid angle.
     #[inline]
-    fn random<R: Rng + ?Sized>(&self, origin: DVec3, rng: &mut R) -> DVec3 {
-        let u = random_unit_square(rng);
+    fn sample(&self, origin: DVec3, u: DVec2) -> Option<DirectionSample> {
+        self.height(origin)?;
         if let Some(sr) = self.spherical_rectangle(origin) {
-            return sr.sample_direction(u);
+            return DirectionSample::new(sr.sample_direction(u), sr.pdf());
         }
         let p = warp::sample_parallelogram(u, self.q, self.u, self.v);
-        (p - origin).normalize_or(self.normal)
+        let direction = (p - origin).try_normalize()?;
+        DirectionSample::new(
+            direction,
+            warp::area_to_solid_angle(1.0 / self.area, origin, p, self.normal),
+        )
     }
 }
 // ANCHOR_END: quad_target

@@ -449,18 +449,18 @@ fn mixture_of_three_pdfs(n: usize) {
         Hemisphere(HemispherePdf),
     }
     impl Pdf for Part {
-        fn value(&self, d: DVec3) -> f64 {
+        fn pdf(&self, d: DVec3) -> f64 {
             match self {
-                Part::Cosine(p) => p.value(d),
-                Part::Sphere(p) => p.value(d),
-                Part::Hemisphere(p) => p.value(d),
+                Part::Cosine(p) => p.pdf(d),
+                Part::Sphere(p) => p.pdf(d),
+                Part::Hemisphere(p) => p.pdf(d),
             }
         }
-        fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
+        fn sample(&self, u: DVec2) -> Option<rtl_pdf::DirectionSample> {
             match self {
-                Part::Cosine(p) => p.generate(rng),
-                Part::Sphere(p) => p.generate(rng),
-                Part::Hemisphere(p) => p.generate(rng),
+                Part::Cosine(p) => p.sample(u),
+                Part::Sphere(p) => p.sample(u),
+                Part::Hemisphere(p) => p.sample(u),
             }
         }
     }

@@ -8,7 +8,7 @@ use rtl_pdf::chi2::{ChiSquareTest, ParallelogramDomain};
 use rtl_pdf::warp;
 use rtl_pdf::{
     CosinePdf, HemispherePdf, HittablePdf, MixtureError, MixturePdf, Onb, Pdf, QuadTarget,
-    Selection, SelectionError, SpherePdf, SphereTarget, Target,
+    Selection, SelectionError, ShapeSampler, SpherePdf, SphereTarget, SphereView,
 };
 use std::f64::consts::{PI, TAU};
 
@@ -196,7 +196,14 @@ fn sphere_light_far_away_solid_angle_without_cancellation() {
         // exact: 2 pi (1 - sqrt(1 - x)), x = 1/d^2, by its series x/2 + x^2/8 + x^3/16 + 5 x^4 / 128
         let x = 1.0 / (d * d);
         let exact = TAU * (x / 2.0 + x * x / 8.0 + x * x * x / 16.0 + 5.0 * x.powi(4) / 128.0);
-        let got = s.solid_angle(o);
+        // the solid angle of the cone sampled: 2 pi (1 - cos theta_max)
+        let SphereView::Cone {
+            one_minus_cos_max, ..
+        } = s.view(o)
+        else {
+            panic!("outside the sphere")
+        };
+        let got = TAU * one_minus_cos_max;
         assert!(
             ((got - exact) / exact).abs() < 1e-6,
             "d = {d}: solid angle {got} vs {exact}"
@@ -373,11 +380,11 @@ fn mixture_of_a_part_with_weight_zero_never_evaluates_it() {
     // a part whose value is NaN must not poison a mixture that never samples it
     struct Broken;
     impl Pdf for Broken {
-        fn value(&self, _: DVec3) -> f64 {
+        fn pdf(&self, _: DVec3) -> f64 {
             f64::NAN
         }
-        fn generate<R: Rng + ?Sized>(&self, _: &mut R) -> DVec3 {
-            DVec3::X
+        fn sample(&self, _: DVec2) -> Option<rtl_pdf::DirectionSample> {
+            rtl_pdf::DirectionSample::new(DVec3::X, 1.0)
         }
     }
     let m = MixturePdf::with_weight(Broken, SpherePdf, 0.0).unwrap();
@@ -462,4 +469,48 @@ fn light_list_two_disjoint_quads_value_is_weighted_and_integrates_to_one() {
             .sum();
         assert!((total - 1.0).abs() < 1e-9, "{name}: integrates to {total}");
     }
+}
+
+// ---------------------------------------------------------------- chosen inputs
+
+#[test]
+fn samples_carry_their_own_density_for_chosen_inputs() {
+    // u at the corners of the square and on the boundary of every discrete choice: each sample's
+    // density is `pdf` of its direction, and the rest of a choice's number is handed on.
+    let lights = [
+        QuadTarget::new(DVec3::new(-1.0, 2.0, -1.0), DVec3::X * 2.0, DVec3::Z * 2.0),
+        QuadTarget::new(DVec3::new(2.0, 1.0, -1.0), DVec3::Z * 2.0, DVec3::Y),
+    ];
+    let origin = DVec3::new(0.1, 0.0, 0.2);
+    let towards = HittablePdf::new(origin, &lights).unwrap();
+    let mixture = MixturePdf::with_weight(towards, CosinePdf::new(DVec3::Y), 0.25).unwrap();
+    let top = 1.0 - f64::EPSILON / 2.0;
+    fn check(what: &str, u: DVec2, pdf: &impl Pdf) {
+        let Some(s) = pdf.sample(u) else { return };
+        assert_unit(s.direction, what);
+        let want = pdf.pdf(s.direction);
+        assert!(
+            (s.pdf - want).abs() <= 1e-12 * want,
+            "{what} at {u}: sample says {}, pdf {want}",
+            s.pdf
+        );
+    }
+    for ux in [0.0, 0.125, 0.25, 0.5, 0.625, top] {
+        for uy in [0.0, 0.5, top] {
+            let u = DVec2::new(ux, uy);
+            check("lights", u, &towards);
+            check("mixture", u, &mixture);
+        }
+    }
+    // the choice's rest is handed on: u.x = 1/8 < 1/4 picks the lights with u.x' = 1/2, which picks
+    // the second quad (u.x'' = 0) ...
+    let s = mixture.sample(DVec2::new(0.125, 0.5)).unwrap();
+    let direct = lights[1].sample(origin, DVec2::new(0.0, 0.5)).unwrap();
+    assert_eq!(s.direction, direct.direction);
+    // ... and u.x = 1/4 + 3/8 picks the cosine part with its rest 1/2
+    let s = mixture.sample(DVec2::new(0.625, 0.5)).unwrap();
+    let cosine = CosinePdf::new(DVec3::Y)
+        .sample(DVec2::new(0.5, 0.5))
+        .unwrap();
+    assert_eq!(s.direction, cosine.direction);
 }

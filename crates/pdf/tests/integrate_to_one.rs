@@ -69,11 +69,11 @@ fn tilted() -> DVec3 {
 struct OnePercentHeavy(CosinePdf);
 
 impl Pdf for OnePercentHeavy {
-    fn value(&self, direction: DVec3) -> f64 {
-        1.01 * self.0.value(direction)
+    fn pdf(&self, direction: DVec3) -> f64 {
+        1.01 * self.0.pdf(direction)
     }
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        self.0.generate(rng)
+    fn sample(&self, u: glam::DVec2) -> Option<rtl_pdf::DirectionSample> {
+        self.0.sample(u)
     }
 }
 

@@ -2,9 +2,9 @@
 //! blur and a shutter open over the time interval [0, 1).
 
 use crate::ray::Ray;
-use crate::sampler::{Ctx, pixel_position};
+use crate::sampler::{Ctx, Dimension, pixel_position};
 use crate::vec::{Point3, Vec3};
-use std::f64::consts::PI;
+use rtl_pdf::warp;
 
 /// How a scene places its camera (the book's public `camera` members).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -86,7 +86,8 @@ impl Camera {
 
     /// The camera ray of sample `k` of pixel `(i, j)` (`j` counted from the top): through the point of the
     /// pixel square given by the pixel's scrambled Sobol sequence, from a uniform point on the lens disk
-    /// if the camera has a lens, at a uniform time in [0, 1) if the scene moves. A pinhole camera in a
+    /// ([`Dimension::Lens`]) if the camera has a lens, at a uniform time in [0, 1) ([`Dimension::Time`])
+    /// if the scene moves. A pinhole camera in a
     /// static scene draws no random numbers here at all.
     #[inline]
     pub fn ray(&self, i: usize, j: usize, pixel_key: u64, k: u64, ctx: &mut Ctx) -> Ray {
@@ -94,17 +95,16 @@ impl Camera {
         let target = self.pixel00 + (i as f64 + sx) * self.delta_u + (j as f64 + sy) * self.delta_v;
         let origin = if self.has_lens {
             ctx.stats.lens_samples += 1;
-            // Uniform on the unit disk: r = sqrt(u1), phi = 2 pi u2.
-            let (u1, u2) = (ctx.uniform(), ctx.uniform());
-            let r = u1.sqrt();
-            let (s, c) = (2.0 * PI * u2).sin_cos();
-            self.center + (r * c) * self.defocus_u + (r * s) * self.defocus_v
+            // Uniform on the unit disk by rtl-pdf's concentric map (area-preserving, low distortion,
+            // so a stratified pair stays stratified on the lens).
+            let d = warp::sample_uniform_disk_concentric(ctx.sample_2d(Dimension::Lens));
+            self.center + d.x * self.defocus_u + d.y * self.defocus_v
         } else {
             self.center
         };
         let time = if self.has_time {
             ctx.stats.time_samples += 1;
-            ctx.uniform()
+            ctx.sample_1d(Dimension::Time)
         } else {
             0.0
         };

@@ -6,14 +6,14 @@
 //! mixture sampling (one direction per bounce, weighted by `s(omega) / p(omega)`), and `mis`, next-event
 //! estimation combined with material sampling by multiple importance sampling.
 
+use crate::hit::Hit;
 use crate::lights::{LightTarget, Lights};
 use crate::material::{Material, Scatter, ScatterPdf};
-use crate::ray::Ray;
-use crate::sampler::{Ctx, Preset};
-use crate::scene::Scene;
+use crate::ray::{Interval, Ray};
+use crate::sampler::{Ctx, Dimension, MediumMode};
+use crate::scene::{GroupId, Scene};
 use crate::vec::{Color, Point3, Vec3};
-use rand::RngCore;
-use rtl_pdf::{HemispherePdf, HittablePdf, MixturePdf, Pdf, power_heuristic};
+use rtl_pdf::{DirectionSample, HemispherePdf, HittablePdf, MixturePdf, Pdf, power_heuristic};
 
 // ANCHOR: mis_options
 /// The extras of the `mis` strategy, each unbiased and each switchable off to measure its share.
@@ -24,8 +24,8 @@ pub struct MisOptions {
     pub russian_roulette: bool,
     /// Sample rectangular lights uniformly in solid angle (spherical rectangles) instead of by area.
     pub spherical_rectangles: bool,
-    /// Take the light and material directions from low-discrepancy (padded Owen-scrambled Sobol)
-    /// points instead of independent random numbers.
+    /// Take every dimension after the pixel position (lens, time, light, material, roulette) from
+    /// low-discrepancy (padded Owen-scrambled Sobol) points instead of independent random numbers.
     pub low_discrepancy: bool,
 }
 
@@ -69,8 +69,9 @@ pub enum Strategy {
     Light,
     /// The book's final method: a 50/50 mixture of the targets' density and the material's.
     Mixture,
-    /// Next-event estimation to the emitters combined with material sampling (mixed with the
-    /// non-emitting targets) by the power heuristic, plus the extras of [`MisOptions`].
+    /// Next-event estimation to every emitter of the scene, listed or not (through media with their
+    /// transmittance), combined with material sampling (mixed with the non-emitting targets) by the
+    /// power heuristic, plus the extras of [`MisOptions`].
     Mis(MisOptions),
 }
 // ANCHOR_END: strategy
@@ -118,9 +119,10 @@ impl Strategy {
             Strategy::Mis(o) => {
                 let on_off = |b: bool| if b { "on" } else { "off" };
                 format!(
-                    "next-event estimation to the emitters + material sampling mixed with the \
-                     other targets, power heuristic; Russian roulette {}, spherical rectangles {}, \
-                     low-discrepancy samples {}",
+                    "next-event estimation to every emitter (through media with their \
+                     transmittance) + material sampling mixed with the other targets, power \
+                     heuristic; Russian roulette {}, spherical rectangles {}, low-discrepancy \
+                     samples {}",
                     on_off(o.russian_roulette),
                     on_off(o.spherical_rectangles),
                     on_off(o.low_discrepancy)
@@ -162,7 +164,8 @@ fn ratio(s: f64, p: f64) -> Option<f64> {
 // ANCHOR: sample_diffuse
 /// A scattered direction (unit) for the book's one-sample strategies and the factor
 /// `s(omega) / p(omega)` the throughput is multiplied by (besides the attenuation), or `None` if the
-/// sample contributes nothing further (`p = 0`, `s = 0` or a non-finite quotient).
+/// sample contributes nothing further (`p = 0`, `s = 0` or a non-finite quotient). `u` is the bounce's
+/// material pair ([`Dimension::Material`]); a mixture picks its part with `u.x` and hands the rest on.
 #[inline]
 fn sample_diffuse(
     strategy: Strategy,
@@ -170,35 +173,27 @@ fn sample_diffuse(
     p: Point3,
     normal: Vec3,
     lights: &Lights,
-    ctx: &mut Ctx,
+    u: glam::DVec2,
 ) -> Option<(Vec3, f64)> {
-    let rng = &mut ctx.rng;
+    // `p` of the sample is its own density, made with the direction: nothing is evaluated twice.
+    let weighted = |s: DirectionSample| Some((s.direction, ratio(pdf.pdf(s.direction), s.pdf)?));
     match (strategy, pdf) {
         // Sampling s itself: s / p = 1 exactly.
         (Strategy::Cosine, _) | (Strategy::Uniform, ScatterPdf::Sphere(_)) => {
-            Some((pdf.generate(rng), 1.0))
+            Some((pdf.direction(u), 1.0))
         }
         (Strategy::Uniform, ScatterPdf::Cosine(_)) => {
-            let hemisphere = HemispherePdf::new(normal);
-            let d = hemisphere.generate(rng);
-            Some((d, ratio(pdf.value(d), hemisphere.value(d))?))
+            weighted(HemispherePdf::new(normal).sample(u)?)
         }
         (Strategy::Light, _) => match HittablePdf::new(p, &lights.all) {
             // With no targets there is nothing to aim at: sample the material.
-            None => Some((pdf.generate(rng), 1.0)),
-            Some(towards) => {
-                let d = towards.generate(rng);
-                Some((d, ratio(pdf.value(d), towards.value(d))?))
-            }
+            None => Some((pdf.sample(u)?.direction, 1.0)),
+            Some(towards) => weighted(towards.sample(u)?),
         },
         // (`mis` has its own integrator; were it asked here, it would get the book's mixture.)
         (Strategy::Mixture, _) | (Strategy::Mis(_), _) => match HittablePdf::new(p, &lights.all) {
-            None => Some((pdf.generate(rng), 1.0)),
-            Some(towards) => {
-                let mixed = MixturePdf::new(towards, *pdf);
-                let d = mixed.generate(rng);
-                Some((d, ratio(pdf.value(d), mixed.value(d))?))
-            }
+            None => Some((pdf.sample(u)?.direction, 1.0)),
+            Some(towards) => weighted(MixturePdf::new(towards, *pdf).sample(u)?),
         },
     }
 }
@@ -234,8 +229,9 @@ fn radiance_one_sample(
     let mut ray = ray;
     let mut throughput = Color::ONE;
     let mut l = Color::ZERO;
-    for _ in 0..max_depth {
+    for depth in 0..max_depth {
         ctx.stats.rays += 1;
+        ctx.bounce = depth;
         let Some(hit) = scene.hit(&ray, ctx) else {
             l += throughput * scene.background.value(&ray);
             break;
@@ -254,8 +250,9 @@ fn radiance_one_sample(
                 ray = hit.spawn(direction, ray.time);
             }
             Some(Scatter::Diffuse { attenuation, pdf }) => {
+                let u = ctx.sample_2d(Dimension::Material(depth));
                 let Some((direction, weight)) =
-                    sample_diffuse(strategy, &pdf, hit.p, hit.normal, lights, ctx)
+                    sample_diffuse(strategy, &pdf, hit.p, hit.normal, lights, u)
                 else {
                     break; // p = 0 or s = 0: the sample keeps the emission it has
                 };
@@ -274,20 +271,60 @@ fn radiance_one_sample(
 /// The density with which next-event estimation from `origin` picks `direction` (0 without emitters).
 #[inline]
 fn light_pdf(origin: Point3, emitters: &[LightTarget], direction: Vec3) -> f64 {
-    HittablePdf::new(origin, emitters).map_or(0.0, |h| h.value(direction))
+    HittablePdf::new(origin, emitters).map_or(0.0, |h| h.pdf(direction))
 }
+
+// ANCHOR: shadow_ray
+/// What a shadow ray meets: the first surface along `ray`, and the transmittance of the media before
+/// it, `exp(-sum_i sigma_i l_i)` for constant media of density `sigma_i` crossed over length `l_i`.
+///
+/// The transmittance is computed exactly, not estimated: a constant medium's is known in closed form,
+/// so a shadow ray needs no random number and adds no variance (a delta-tracking or track-length
+/// estimate would be 0 or 1 at random, with variance `T (1 - T)`; ratio tracking is for media whose
+/// density varies). One traversal: media let the ray through and record where it was inside them
+/// (the BVH never skips a medium that starts before the closest surface), and the stretches are
+/// clipped at the surface found. Only if more media were crossed than can be recorded without
+/// allocating is the traversal repeated up to the surface.
+#[inline]
+fn trace_shadow(scene: &Scene, ray: &Ray, ctx: &mut Ctx) -> Option<(Hit, f64)> {
+    ctx.stats.rays += 1;
+    if scene.features.media == 0 {
+        return scene.hit(ray, ctx).map(|h| (h, 1.0));
+    }
+    ctx.media = MediumMode::Record;
+    ctx.crossed.clear();
+    let hit = scene.hit(ray, ctx);
+    let depth = match &hit {
+        Some(h) if ctx.crossed.overflow => {
+            ctx.crossed.clear();
+            // every medium before the surface, and nothing else, up to the surface
+            let _ = scene.hit_group(GroupId(0), ray, Interval::new(0.0, h.t), ctx);
+            ctx.crossed.optical_depth(h.t)
+        }
+        Some(h) => ctx.crossed.optical_depth(h.t),
+        None => 0.0,
+    };
+    ctx.media = MediumMode::Scatter;
+    hit.map(|h| (h, (-depth).exp()))
+}
+// ANCHOR_END: shadow_ray
 
 // ANCHOR: radiance_mis
 /// Next-event estimation with multiple importance sampling (Veach 1997, ch. 9; pbrt-v4's path
 /// integrator). At every diffuse vertex two directions are drawn:
-/// - towards the emitters (`p_l`): a shadow ray, whose emission counts with weight
+/// - towards the emitters (`p_l`), every emitter of the scene, listed or not: a shadow ray, whose
+///   emission, times the transmittance of the media it crosses, counts with weight
 ///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
 /// - from the material's density mixed 50/50 with the non-emitting targets (`p_m`): the path goes on
 ///   that way, and emission it meets at the next vertex counts with `w_m = p_m^2 / (p_l^2 + p_m^2)`.
 ///
 /// The two weights of every direction sum to 1, so light reaching a vertex directly is counted once in
-/// expectation, by whichever strategy sees it better. After a specular (delta) bounce only the material
-/// could have found the emitter: full weight.
+/// expectation, by whichever strategy sees it better (through a medium too: the path's own rays meet
+/// the emitter with the transmittance's probability, the shadow ray carries it as a factor). After a
+/// specular (delta) bounce only the material could have found the emitter: full weight.
+///
+/// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
+/// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
 fn radiance_mis(
     scene: &Scene,
     lights: &Lights,
@@ -304,6 +341,7 @@ fn radiance_mis(
     let mut previous: Option<(Point3, f64)> = None;
     for depth in 0..max_depth {
         ctx.stats.rays += 1;
+        ctx.bounce = depth;
         let Some(hit) = scene.hit(&ray, ctx) else {
             l += throughput * scene.background.value(&ray);
             break;
@@ -336,57 +374,49 @@ fn radiance_mis(
             Some(Scatter::Diffuse { attenuation, pdf }) => (attenuation, pdf),
         };
         let towards_others = HittablePdf::new(hit.p, &lights.others);
-        let material_pdf = |d: Vec3| match &towards_others {
-            Some(t) => MixturePdf::new(*t, pdf).value(d),
-            None => pdf.value(d),
-        };
-        let dim = 2 + 2 * depth;
 
         // Next-event estimation: only if the shadow ray's hit is within the path's depth.
         if depth + 1 < max_depth
             && let Some(towards_lights) = HittablePdf::new(hit.p, &lights.emitters)
+            && let Some(ls) = towards_lights.sample(ctx.sample_2d(Dimension::Light(depth)))
+            && let Some(s_over_p) = ratio(pdf.pdf(ls.direction), ls.pdf)
+            && let Some((lh, transmittance)) =
+                trace_shadow(scene, &hit.spawn(ls.direction, ray.time), ctx)
         {
-            let u = ctx.sample_2d(dim);
-            let d = towards_lights.generate(&mut Preset::new(&u, &mut ctx.rng));
-            let p_light = towards_lights.value(d);
-            let s = pdf.value(d);
-            if let Some(s_over_p) = ratio(s, p_light) {
-                ctx.stats.rays += 1;
-                if let Some(lh) = scene.hit(&hit.spawn(d, ray.time), ctx) {
-                    let m: &Material = &scene.materials[lh.material as usize];
-                    if m.is_emitter() {
-                        let emitted = m.emitted(&lh, &scene.textures, ctx);
-                        let w = power_heuristic(1.0, p_light, 1.0, material_pdf(d));
-                        l += throughput * attenuation * emitted * (w * s_over_p);
-                    }
-                }
+            let m: &Material = &scene.materials[lh.material as usize];
+            if m.is_emitter() && transmittance > 0.0 {
+                let emitted = m.emitted(&lh, &scene.textures, ctx);
+                let p_material = match &towards_others {
+                    Some(t) => MixturePdf::new(*t, pdf).pdf(ls.direction),
+                    None => pdf.pdf(ls.direction),
+                };
+                let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
+                l += throughput * attenuation * emitted * (w * s_over_p * transmittance);
             }
         }
 
         // Material sampling (mixed with the non-emitting targets): the path goes on this way.
-        let u = ctx.sample_2d(dim + 1);
-        let d = match &towards_others {
-            Some(t) => {
-                let choice = ctx.rng.next_u64();
-                MixturePdf::new(*t, pdf)
-                    .generate(&mut Preset::new(&[choice, u[0], u[1]], &mut ctx.rng))
-            }
-            None => pdf.generate(&mut Preset::new(&u, &mut ctx.rng)),
+        let u = ctx.sample_2d(Dimension::Material(depth));
+        let sampled = match &towards_others {
+            Some(t) => MixturePdf::new(*t, pdf).sample(u),
+            None => pdf.sample(u),
         };
-        let p_material = material_pdf(d);
-        let Some(s_over_p) = ratio(pdf.value(d), p_material) else {
+        let Some(ms) = sampled else {
+            break;
+        };
+        let Some(s_over_p) = ratio(pdf.pdf(ms.direction), ms.pdf) else {
             break;
         };
         throughput *= attenuation * s_over_p;
-        previous = Some((hit.p, p_material));
-        ray = hit.spawn(d, ray.time);
+        previous = Some((hit.p, ms.pdf));
+        ray = hit.spawn(ms.direction, ray.time);
 
         // Russian roulette: survive with probability q = min(1, max throughput / ROULETTE_BELOW),
         // reweight by 1 / q.
         if options.russian_roulette && depth >= ROULETTE_AFTER {
             let q = (throughput.max_element() / ROULETTE_BELOW).min(1.0);
             if q < 1.0 {
-                if q <= 0.0 || ctx.uniform() >= q {
+                if q <= 0.0 || ctx.sample_1d(Dimension::Roulette(depth)) >= q {
                     break;
                 }
                 throughput /= q;

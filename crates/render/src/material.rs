@@ -3,17 +3,17 @@
 //! Scattering returns a record in book 3's form, so the importance-sampling strategies can plug in:
 //! either a *specular* ray that skips densities (metal, glass), or the material's own density of
 //! scattered directions (`ScatterPdf`: Lambertian = cosine, isotropic = uniform sphere) together with
-//! its attenuation. That density's `value` (the `Pdf` trait of rtl-pdf) is the book's
+//! its attenuation. That density's `pdf` (the book's `value`, the `Pdf` trait of rtl-pdf) is the book's
 //! `scattering_pdf`, the `s(omega)` of the estimator `color * s(omega) / p(omega)`.
 
 use crate::hit::Hit;
 use crate::ray::Ray;
 use crate::sampler::Ctx;
+use crate::sampler::Dimension;
 use crate::texture::Texture;
 use crate::vec::{Color, Vec3, reflect, refract};
 use glam::DVec2;
-use rand::Rng;
-use rtl_pdf::{CosinePdf, Pdf, SpherePdf, warp};
+use rtl_pdf::{CosinePdf, DirectionSample, Pdf, SpherePdf, warp};
 
 /// A reflectance or emission: a plain colour (no texture lookup at all) or a texture of the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,18 +64,29 @@ pub enum ScatterPdf {
 
 impl Pdf for ScatterPdf {
     #[inline]
-    fn value(&self, direction: Vec3) -> f64 {
+    fn pdf(&self, direction: Vec3) -> f64 {
         match self {
-            ScatterPdf::Cosine(p) => p.value(direction),
-            ScatterPdf::Sphere(p) => p.value(direction),
+            ScatterPdf::Cosine(p) => p.pdf(direction),
+            ScatterPdf::Sphere(p) => p.pdf(direction),
         }
     }
 
     #[inline]
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> Vec3 {
+    fn sample(&self, u: DVec2) -> Option<DirectionSample> {
         match self {
-            ScatterPdf::Cosine(p) => p.generate(rng),
-            ScatterPdf::Sphere(p) => p.generate(rng),
+            ScatterPdf::Cosine(p) => p.sample(u),
+            ScatterPdf::Sphere(p) => p.sample(u),
+        }
+    }
+}
+impl ScatterPdf {
+    /// A direction of [`Pdf::sample`] without its density: for the `cosine` strategy, whose weight
+    /// `s / p` is exactly 1 (the book's `generate`).
+    #[inline]
+    pub fn direction(&self, u: DVec2) -> Vec3 {
+        match self {
+            ScatterPdf::Cosine(p) => p.direction(u),
+            ScatterPdf::Sphere(_) => warp::sample_uniform_sphere(u),
         }
     }
 }
@@ -122,7 +133,8 @@ impl Material {
         }
     }
 
-    /// How the ray scatters at the hit; `None` if it is absorbed.
+    /// How the ray scatters at the hit; `None` if it is absorbed. A metal's fuzz and a dielectric's
+    /// coin come from [`Dimension::Material`] of bounce `ctx.bounce`.
     #[inline]
     pub fn scatter(
         &self,
@@ -143,7 +155,8 @@ impl Material {
             Material::Metal { albedo, fuzz } => {
                 let reflected = reflect(ray.direction, hit.normal).normalize();
                 let direction = if *fuzz > 0.0 {
-                    let d = warp::sample_uniform_sphere(DVec2::new(ctx.uniform(), ctx.uniform()));
+                    let u = ctx.sample_2d(Dimension::Material(ctx.bounce));
+                    let d = warp::sample_uniform_sphere(u);
                     reflected + *fuzz * d
                 } else {
                     reflected
@@ -158,7 +171,9 @@ impl Material {
                 let unit = ray.direction.normalize();
                 let cos_theta = (-unit).dot(hit.normal).min(1.0);
                 let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-                let direction = if ri * sin_theta > 1.0 || schlick(cos_theta, ri) > ctx.uniform() {
+                let direction = if ri * sin_theta > 1.0
+                    || schlick(cos_theta, ri) > ctx.sample_1d(Dimension::Material(ctx.bounce))
+                {
                     reflect(unit, hit.normal)
                 } else {
                     refract(unit, hit.normal, ri)

@@ -7,7 +7,7 @@
 use crate::camera::Camera;
 use crate::integrator::{Strategy, radiance};
 use crate::lights::Lights;
-use crate::sampler::{Ctx, Lds, SampleRng, Stats, sample_key};
+use crate::sampler::{Ctx, SampleRng, Sampler, Stats, sample_key};
 use crate::scene::Scene;
 use crate::vec::Color;
 use rayon::prelude::*;
@@ -89,20 +89,22 @@ pub struct Renderer<'a> {
     pub settings: RenderSettings,
     /// The scene's importance targets, built once for the strategy.
     pub lights: Lights,
+    /// Whether every dimension after the pixel position is low-discrepancy (`mis`'s option, resolved
+    /// once here rather than per sample).
+    low_discrepancy: bool,
 }
 
 impl<'a> Renderer<'a> {
     pub fn new(scene: &'a Scene, settings: RenderSettings) -> Self {
         let camera = Camera::new(&scene.camera, settings.width, scene.features.motion);
-        let spherical_rectangles = settings
-            .strategy
-            .mis_options()
-            .is_some_and(|o| o.spherical_rectangles);
+        let options = settings.strategy.mis_options();
+        let spherical_rectangles = options.is_some_and(|o| o.spherical_rectangles);
         Renderer {
             scene,
             camera,
             settings,
             lights: Lights::new(scene, spherical_rectangles),
+            low_discrepancy: options.is_some_and(|o| o.low_discrepancy),
         }
     }
 
@@ -122,12 +124,8 @@ impl<'a> Renderer<'a> {
         let pixel = (j * self.camera.width + i) as u64;
         ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
         let pixel_key = self.pixel_key(pixel);
-        ctx.lds = Lds {
-            on: self
-                .settings
-                .strategy
-                .mis_options()
-                .is_some_and(|o| o.low_discrepancy),
+        ctx.sampler = Sampler {
+            low_discrepancy: self.low_discrepancy,
             key: pixel_key,
             index: k,
         };

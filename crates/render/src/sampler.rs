@@ -7,7 +7,16 @@
 //! - Sub-pixel positions: the first two dimensions of the Sobol sequence (a (0,2)-sequence: every
 //!   power-of-two prefix is stratified), Owen-scrambled per pixel by hashing, as in Burley,
 //!   "Practical Hash-based Owen Scrambling" (JCGT 2020), built on Laine and Karras' permutation.
+//! - Every other dimension of a sample ([`Dimension`]: lens, time, and per bounce the light, the
+//!   material and Russian roulette) from the [`Sampler`]: padded Owen-scrambled Sobol pairs when
+//!   low-discrepancy sampling is on, the sample's generator otherwise.
+//!
+//! The sample index is 64-bit throughout. A 32-bit Sobol (0,2)-sequence has 2^32 points; sample
+//! `k >= 2^32` takes point `k mod 2^32` of a sequence scrambled afresh for block `k >> 32` (its key
+//! hashed with the block number), so no sample repeats another and every block of 2^32 is again a
+//! stratified (0,2)-sequence. Indices below 2^32 use the key unchanged.
 
+use glam::DVec2;
 use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -48,6 +57,7 @@ fn sobol1_reversed(r: u32) -> u32 {
 /// shape; a prefix that is not a power of two is still well spread.
 #[inline]
 pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
+    let pixel_key = block_key(pixel_key, k);
     let i = k as u32;
     let s0 = pixel_key as u32;
     let s1 = (pixel_key >> 32) as u32;
@@ -56,6 +66,15 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
     const SCALE: f64 = 1.0 / 4_294_967_296.0;
     // Add half an ulp of the 32-bit grid so positions are centred in their cells and never exactly 0.
     ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
+}
+
+/// The scramble key for the block of 2^32 samples that `k` lies in: `key` itself for the first block.
+#[inline]
+fn block_key(key: u64, k: u64) -> u64 {
+    match k >> 32 {
+        0 => key,
+        block => mix64(key ^ block.wrapping_mul(0xc2b2_ae3d_27d4_eb4f)),
+    }
 }
 
 // ANCHOR: padded_sobol
@@ -68,6 +87,7 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
 /// and point `k` depends only on `(pixel_key, dim, k)` (prefix-stable).
 #[inline]
 pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
+    let pixel_key = block_key(pixel_key, k);
     let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
     // The shuffled index `i = owen_scramble(k)`, kept bit-reversed as `r` (reversing is the costly part
     // of a scramble): `owen_scramble(sobol_bits(i, 0)) = reverse(laine_karras(i))`, and Sobol dimension 1 is
@@ -85,60 +105,74 @@ pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
 }
 // ANCHOR_END: padded_sobol
 
-/// Where the integrator's low-discrepancy dimensions come from for the current sample.
+/// The first coordinate of [`padded_sobol_2d`] alone (a 1D dimension), without the second's work.
+#[inline]
+pub fn padded_sobol_1d(pixel_key: u64, dim: u32, k: u64) -> u64 {
+    let pixel_key = block_key(pixel_key, k);
+    let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
+    let r = laine_karras((k as u32).reverse_bits(), (h >> 32) as u32);
+    let x = laine_karras(r.reverse_bits(), h as u32).reverse_bits();
+    let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    ((x as u64) << 32) | (low & 0xffff_ffff)
+}
+
+// ANCHOR: dimensions
+/// The dimensions of one sample after the pixel position, in the order a path uses them. Each is a
+/// 2D pair (a 1D dimension takes the first coordinate of its pair), so the layout is fixed: pair
+/// `Dimension::pair` whatever happened before, and a dimension a path does not need costs nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dimension {
+    /// The point on the lens (2D).
+    Lens,
+    /// The time in the shutter interval (1D).
+    Time,
+    /// At bounce `b`: the light choice and the light direction (2D; the choice uses the first
+    /// coordinate and hands its rest on).
+    Light(u32),
+    /// At bounce `b`: the material's lobe and direction (2D: a mixture's choice, a Lambertian
+    /// direction, a metal's fuzz, a dielectric's reflect-or-refract coin).
+    Material(u32),
+    /// At bounce `b`: Russian roulette (1D).
+    Roulette(u32),
+}
+
+impl Dimension {
+    /// Pairs per bounce.
+    pub const PER_BOUNCE: u32 = 3;
+
+    /// The pair index of the padded Sobol sampler: 0 lens, 1 time, then `2 + 3 b` light,
+    /// `3 + 3 b` material, `4 + 3 b` roulette.
+    #[inline]
+    pub const fn pair(self) -> u32 {
+        match self {
+            Dimension::Lens => 0,
+            Dimension::Time => 1,
+            Dimension::Light(b) => 2 + Self::PER_BOUNCE * b,
+            Dimension::Material(b) => 3 + Self::PER_BOUNCE * b,
+            Dimension::Roulette(b) => 4 + Self::PER_BOUNCE * b,
+        }
+    }
+}
+// ANCHOR_END: dimensions
+
+/// Where the dimensions of the current sample come from: the one source of numbers for the camera
+/// and the integrator.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Lds {
-    /// Off: every dimension is drawn from the sample's random number generator.
-    pub on: bool,
+pub struct Sampler {
+    /// On: padded Owen-scrambled Sobol pairs; off: the sample's generator, in call order.
+    pub low_discrepancy: bool,
     /// The pixel's scramble key.
     pub key: u64,
-    /// The sample's index `k` in its pixel.
+    /// The sample's index `k` in its pixel (64-bit: see the module's notes past 2^32).
     pub index: u64,
 }
 
-/// A random number generator that first hands out a few preset 64-bit values (low-discrepancy
-/// coordinates, say) and then falls back to the sample's generator: a way to feed chosen numbers to a
-/// `Pdf::generate` that takes any `Rng`.
-pub struct Preset<'a> {
-    values: [u64; 3],
-    next: usize,
-    len: usize,
-    rng: &'a mut SampleRng,
-}
+/// `2^-53`: a 64-bit value's top 53 bits as a uniform number in `[0, 1)` (what `rand` does).
+const F64_UNIT: f64 = 1.0 / (1u64 << 53) as f64;
 
-impl<'a> Preset<'a> {
-    /// Hands out `values` in order, then numbers from `rng`.
-    #[inline]
-    pub fn new(values: &[u64], rng: &'a mut SampleRng) -> Self {
-        let mut v = [0u64; 3];
-        let len = values.len().min(3);
-        v[..len].copy_from_slice(&values[..len]);
-        Preset {
-            values: v,
-            next: 0,
-            len,
-            rng,
-        }
-    }
-}
-
-impl RngCore for Preset<'_> {
-    #[inline]
-    fn next_u32(&mut self) -> u32 {
-        (self.next_u64() >> 32) as u32
-    }
-    #[inline]
-    fn next_u64(&mut self) -> u64 {
-        if self.next < self.len {
-            self.next += 1;
-            self.values[self.next - 1]
-        } else {
-            self.rng.next_u64()
-        }
-    }
-    fn fill_bytes(&mut self, dst: &mut [u8]) {
-        self.rng.fill_bytes(dst)
-    }
+#[inline]
+fn unit(bits: u64) -> f64 {
+    (bits >> 11) as f64 * F64_UNIT
 }
 
 /// Counters of what a render did, kept per thread (plain adds, no atomics) and summed at the end.
@@ -211,12 +245,77 @@ impl RngCore for SampleRng {
     }
 }
 
-/// What one path needs while it is traced: its random numbers and the thread's counters.
+/// What one path needs while it is traced: its numbers and the thread's counters.
 pub struct Ctx {
     pub rng: SampleRng,
     pub stats: Stats,
-    /// Low-discrepancy dimensions of the current sample (used by the `mis` strategy).
-    pub lds: Lds,
+    /// The dimensions of the current sample.
+    pub sampler: Sampler,
+    /// The bounce the path is at (for [`Dimension`]s the material draws).
+    pub bounce: u32,
+    /// How a ray meets participating media (set only while a shadow ray is traced).
+    pub media: MediumMode,
+    /// The stretches of media a shadow ray crossed, collected by [`MediumMode::Record`].
+    pub crossed: MediaCrossed,
+}
+
+/// What a constant medium does to a ray that crosses it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MediumMode {
+    /// Scatter at an exponentially distributed distance (book 2): the path's own rays.
+    #[default]
+    Scatter,
+    /// Pass through, recording the stretch inside in [`Ctx::crossed`]: a shadow ray.
+    Record,
+}
+
+/// The stretches `(t0, t1, density)` of media a shadow ray passed through, in the order they were
+/// tested; stretches beyond the ray's surface are clipped when the optical depth is taken.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MediaCrossed {
+    stretches: [(f64, f64, f64); MediaCrossed::CAPACITY],
+    len: usize,
+    /// The optical depth of the stretches that did not fit, unclipped.
+    spill: f64,
+    /// More stretches than fit: the optical depth is then found by a second traversal whose range
+    /// ends at the surface (so every stretch, spilled or not, is already clipped).
+    pub overflow: bool,
+}
+
+impl MediaCrossed {
+    /// Stretches held without allocating.
+    pub const CAPACITY: usize = 8;
+
+    /// Forget every stretch.
+    #[inline]
+    pub fn clear(&mut self) {
+        self.len = 0;
+        self.spill = 0.0;
+        self.overflow = false;
+    }
+
+    /// Record the stretch `t0..t1` (ray parameter) of a medium of `density` per unit length of the
+    /// ray's direction (`density * |direction|`).
+    #[inline]
+    pub fn push(&mut self, t0: f64, t1: f64, density: f64) {
+        if self.len < Self::CAPACITY {
+            self.stretches[self.len] = (t0, t1, density);
+            self.len += 1;
+        } else {
+            self.spill += (t1 - t0).max(0.0) * density;
+            self.overflow = true;
+        }
+    }
+
+    /// `sum_i density_i * |[t0_i, t1_i] clipped to t < t_max|` (the spilled stretches unclipped).
+    #[inline]
+    pub fn optical_depth(&self, t_max: f64) -> f64 {
+        self.spill
+            + self.stretches[..self.len]
+                .iter()
+                .map(|&(t0, t1, density)| (t1.min(t_max) - t0).max(0.0) * density)
+                .sum::<f64>()
+    }
 }
 
 impl Ctx {
@@ -224,26 +323,57 @@ impl Ctx {
         Ctx {
             rng: SampleRng::for_sample(0, 0, 0),
             stats: Stats::default(),
-            lds: Lds::default(),
+            sampler: Sampler::default(),
+            bounce: 0,
+            media: MediumMode::Scatter,
+            crossed: MediaCrossed::default(),
         }
     }
 
-    /// A uniform number in [0, 1).
+    /// A uniform number in [0, 1) from the sample's generator (what no [`Dimension`] covers: a
+    /// medium's free-flight distance).
     #[inline]
     pub fn uniform(&mut self) -> f64 {
         rand::Rng::random::<f64>(&mut self.rng)
     }
 
-    /// Two coordinates (as 64-bit values for [`Preset`]) of dimension pair `dim`: low-discrepancy if
-    /// `lds.on`, else two draws of the generator.
-    #[inline]
-    pub fn sample_2d(&mut self, dim: u32) -> [u64; 2] {
-        if self.lds.on {
-            self.stats.random_numbers += 2;
-            padded_sobol_2d(self.lds.key, dim, self.lds.index)
+    /// Two uniform numbers in `[0, 1)` for dimension `d`: the padded Sobol pair `d.pair()` if
+    /// low-discrepancy sampling is on, else two draws of the generator.
+    #[inline(always)]
+    pub fn sample_2d(&mut self, d: Dimension) -> DVec2 {
+        if self.sampler.low_discrepancy {
+            self.low_discrepancy_2d(d)
         } else {
-            [self.rng.next_u64(), self.rng.next_u64()]
+            let x = unit(self.rng.next_u64());
+            DVec2::new(x, unit(self.rng.next_u64()))
         }
+    }
+
+    /// One uniform number in `[0, 1)` for dimension `d` (the first coordinate of its pair).
+    #[inline(always)]
+    pub fn sample_1d(&mut self, d: Dimension) -> f64 {
+        if self.sampler.low_discrepancy {
+            self.low_discrepancy_1d(d)
+        } else {
+            unit(self.rng.next_u64())
+        }
+    }
+
+    #[inline(never)]
+    fn low_discrepancy_2d(&mut self, d: Dimension) -> DVec2 {
+        self.stats.random_numbers += 2;
+        let [x, y] = padded_sobol_2d(self.sampler.key, d.pair(), self.sampler.index);
+        DVec2::new(unit(x), unit(y))
+    }
+
+    #[inline(never)]
+    fn low_discrepancy_1d(&mut self, d: Dimension) -> f64 {
+        self.stats.random_numbers += 1;
+        unit(padded_sobol_1d(
+            self.sampler.key,
+            d.pair(),
+            self.sampler.index,
+        ))
     }
 }
 
@@ -331,6 +461,57 @@ mod tests {
             assert_eq!(
                 padded_sobol_2d(key, dim, k),
                 padded_sobol_2d_reference(key, dim, k)
+            );
+        }
+    }
+
+    #[test]
+    fn media_crossed_clips_at_the_surface_and_spills_past_capacity() {
+        let mut m = MediaCrossed::default();
+        m.push(1.0, 3.0, 0.5);
+        m.push(2.0, 10.0, 0.25);
+        // clipped at t = 4: 2 * 0.5 + 2 * 0.25
+        assert_eq!(m.optical_depth(4.0), 1.5);
+        assert!(!m.overflow);
+        for i in 0..MediaCrossed::CAPACITY {
+            m.push(i as f64, i as f64 + 1.0, 1.0);
+        }
+        assert!(m.overflow);
+        // the two that did not fit are counted whole
+        assert_eq!(m.optical_depth(f64::INFINITY), 1.0 + 2.0 + 6.0 + 2.0);
+        m.clear();
+        assert_eq!((m.optical_depth(1e9), m.overflow), (0.0, false));
+    }
+
+    #[test]
+    fn sample_indices_past_2_pow_32_do_not_repeat() {
+        let key = 0x1234_5678_9abc_def0;
+        for k in [0u64, 1, 77, (1 << 32) - 1] {
+            let wrapped = k + (1 << 32);
+            assert_ne!(
+                pixel_position(key, k),
+                pixel_position(key, wrapped),
+                "k = {k}"
+            );
+            assert_ne!(padded_sobol_2d(key, 3, k), padded_sobol_2d(key, 3, wrapped));
+        }
+        // the second block is again a (0,2)-sequence: 16 points, one per cell of a 4 x 4 grid
+        let mut seen = [false; 16];
+        for k in 0..16u64 {
+            let (x, y) = pixel_position(key, (1 << 32) + k);
+            let cell = (x * 4.0) as usize * 4 + (y * 4.0) as usize;
+            assert!(!seen[cell]);
+            seen[cell] = true;
+        }
+    }
+
+    #[test]
+    fn padded_sobol_1d_is_the_first_coordinate_of_the_pair() {
+        for i in 0..5000u64 {
+            let (key, dim, k) = (mix64(i), (i % 37) as u32, i * 7919 + (i << 33));
+            assert_eq!(
+                padded_sobol_1d(key, dim, k),
+                padded_sobol_2d(key, dim, k)[0]
             );
         }
     }

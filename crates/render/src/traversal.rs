@@ -296,6 +296,11 @@ impl Scene {
             return None;
         }
         let inside = (t1 - t0) * len;
+        if ctx.media == crate::sampler::MediumMode::Record {
+            // a shadow ray passes through; its transmittance is taken from the stretches inside
+            ctx.crossed.push(t0, t1, len / -m.neg_inv_density);
+            return None;
+        }
         // 1 - u lies in (0, 1], so the logarithm is finite.
         let distance = m.neg_inv_density * (1.0 - ctx.uniform()).ln();
         if distance >= inside {

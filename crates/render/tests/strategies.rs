@@ -6,7 +6,7 @@
 //! - the book's pitfalls: no lights, a target around the point, a light seen edge-on, a one-sided light
 //!   seen from behind, a NaN sample in a pixel.
 
-use rtl_pdf::{QuadTarget, SphereTarget, Target as _};
+use rtl_pdf::{QuadTarget, ShapeSampler as _, SphereTarget};
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, Strategy};

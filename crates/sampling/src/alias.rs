@@ -104,6 +104,7 @@ impl AliasTable {
     }
 
     /// The probability of bin `i` (0 outside the table).
+    #[doc(alias = "probability")]
     pub fn pmf(&self, i: usize) -> f64 {
         self.pmf.get(i).copied().unwrap_or(0.0)
     }
@@ -111,7 +112,10 @@ impl AliasTable {
     // ANCHOR: sample
     /// A bin for one uniform `u` in `[0, 1)`, and a fresh uniform in `[0, 1)` made from the bits
     /// of `u` that the choice did not use (`u n = column + coin`; the coin, rescaled, is uniform
-    /// again given the bin). O(1).
+    /// again given the bin). O(1). The workspace's one vocabulary: `sample` takes the uniform number,
+    /// `pmf` is the probability of what it returns (rtl-pdf's `Selection::sample` does the same by
+    /// inversion, which keeps each bin's share of `[0, 1)` in one piece).
+    #[doc(alias = "choose")]
     #[inline]
     pub fn sample(&self, u: f64) -> (usize, f64) {
         let n = self.columns.len();

@@ -1,0 +1,418 @@
+//! What a list of lights draws is what its density describes, for several lights of different kinds:
+//! a chi-square test of `HittablePdf` over a one-sided quad seen from the front, a one-sided quad seen
+//! from behind (right behind the first, so that directions drawn towards it would meet the first's
+//! front), a sphere and a two-sided quad (TESTING.md, "light list").
+//!
+//! `pdf` is a sub-probability density here: the light seen from behind has no directions, so a sample
+//! that chose it fails (`None`), with probability its selection probability. The test bins the
+//! directions over the whole sphere (the lights are large and near, so every cell has room) and adds
+//! one cell for failures, expected `N * P(choose the light seen from behind)`.
+
+use glam::{DVec2, DVec3};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rtl_pdf::chi2::{Chi2Report, ChiSquareTest, SphereDomain, sidak_alpha};
+use rtl_pdf::{
+    DirectionSample, HittablePdf, Onb, Pdf, QuadTarget, Selection, ShapeSampler, SphereTarget,
+};
+use rtl_render::lights::LightTarget;
+
+const N: usize = 100_000;
+/// Tests of a correct sampler in this file's run (for the Sidak correction).
+const TESTS: usize = 3;
+
+/// The origin is (0, 0, 0); the lights around it.
+fn lights(spherical_rectangles: bool) -> [LightTarget; 4] {
+    [
+        // y = 1, facing down (u x v = -y): the origin sees its front
+        LightTarget::Quad {
+            quad: QuadTarget::new(
+                DVec3::new(-1.0, 1.0, -1.0),
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(0.0, 0.0, 2.0),
+            )
+            .with_spherical_rectangles(spherical_rectangles),
+            one_sided: true,
+        },
+        // y = 2, facing up (u x v = +y): the origin is behind it, and every direction towards it
+        // passes through the quad above
+        LightTarget::Quad {
+            quad: QuadTarget::new(
+                DVec3::new(-0.8, 2.0, -0.8),
+                DVec3::new(0.0, 0.0, 1.6),
+                DVec3::new(1.6, 0.0, 0.0),
+            )
+            .with_spherical_rectangles(spherical_rectangles),
+            one_sided: true,
+        },
+        LightTarget::Sphere(SphereTarget::new(DVec3::new(2.0, -0.3, 0.2), 0.8)),
+        // upright at z = -1.5, two-sided
+        LightTarget::Quad {
+            quad: QuadTarget::new(
+                DVec3::new(-1.0, -1.0, -1.5),
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(0.0, 1.5, 0.0),
+            )
+            .with_spherical_rectangles(spherical_rectangles),
+            one_sided: false,
+        },
+    ]
+}
+
+/// The chi-square test of `draw` (one uniform point in, a direction or a failure out) against
+/// `density` over the whole sphere, plus the failure cell expecting `N * p_fail`.
+fn test(
+    density: impl Fn(DVec3) -> f64,
+    p_fail: f64,
+    seed: u64,
+    draw: impl Fn(DVec2) -> Option<DirectionSample>,
+) -> Chi2Report {
+    let t = ChiSquareTest::new(36, 36);
+    // A tilted frame, so that no cell edge lies on a quad's edge.
+    let domain = SphereDomain(Onb::new(DVec3::new(0.3, 0.2, 1.0).normalize()));
+    let probs = t.expected(&domain, &density, |_, _| true, N).unwrap();
+    let mut observed = vec![0u64; probs.len() + 1];
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    for _ in 0..N {
+        let u = DVec2::new(rng.random(), rng.random());
+        match draw(u) {
+            None => observed[probs.len()] += 1,
+            Some(s) => {
+                let d = s.direction;
+                assert!(d.is_finite() && (d.length() - 1.0).abs() < 1e-9, "{d}");
+                // the density a sample carries is the density of its direction
+                let p = density(d);
+                assert!(
+                    (s.pdf - p).abs() <= 1e-9 * p,
+                    "sample's pdf {} vs pdf {p} at {d}",
+                    s.pdf
+                );
+                let x = rtl_pdf::chi2::Domain::to_square(&domain, d).unwrap();
+                let ix = ((x.x * t.nx as f64) as usize).min(t.nx - 1);
+                let iy = ((x.y * t.ny as f64) as usize).min(t.ny - 1);
+                observed[iy * t.nx + ix] += 1;
+            }
+        }
+    }
+    let mut expected: Vec<f64> = probs.iter().map(|p| p * N as f64).collect();
+    expected.push(p_fail * N as f64);
+    let total: f64 = expected.iter().sum();
+    assert!(
+        (total / N as f64 - 1.0).abs() < 1e-3,
+        "the expected counts add up to {total}, not {N}"
+    );
+    t.statistic(&observed, &expected, N).unwrap()
+}
+
+#[test]
+fn several_lights_uniform_selection_draw_what_their_pdf_says() {
+    let alpha = sidak_alpha(0.01, TESTS);
+    for (spherical, seed) in [(false, 1), (true, 2)] {
+        let targets = lights(spherical);
+        let origin = DVec3::ZERO;
+        let pdf = HittablePdf::new(origin, &targets).unwrap();
+        // the light seen from behind: no direction, density 0
+        assert!(targets[1].sample(origin, DVec2::splat(0.5)).is_none());
+        assert_eq!(targets[1].pdf(origin, DVec3::Y), 0.0);
+        let r = test(|d| pdf.pdf(d), 0.25, seed, |u| pdf.sample(u));
+        assert!(
+            r.p_value >= alpha,
+            "spherical rectangles {spherical}: {r:?}"
+        );
+    }
+}
+
+#[test]
+fn several_lights_weighted_selection_draw_what_their_pdf_says() {
+    let targets = lights(false);
+    let table = Selection::from_weights(&[1.0, 2.0, 3.0, 4.0]).unwrap();
+    let pdf = HittablePdf::with_selection(DVec3::ZERO, &targets, &table).unwrap();
+    let r = test(|d| pdf.pdf(d), 0.2, 3, |u| pdf.sample(u));
+    assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{r:?}");
+}
+
+/// main's light: from behind a one-sided quad it still sampled towards the quad, while its pdf said 0.
+#[derive(Clone, Copy)]
+struct SampledFromBehind(LightTarget);
+
+impl ShapeSampler for SampledFromBehind {
+    fn pdf(&self, origin: DVec3, direction: DVec3) -> f64 {
+        self.0.pdf(origin, direction)
+    }
+    fn sample(&self, origin: DVec3, u: DVec2) -> Option<DirectionSample> {
+        let s = match self.0 {
+            LightTarget::Quad { quad, .. } => quad.sample(origin, u)?,
+            sphere => sphere.sample(origin, u)?,
+        };
+        // and the density it reports is its pdf, which knows the quad is one-sided
+        Some(DirectionSample {
+            direction: s.direction,
+            pdf: self.pdf(origin, s.direction),
+        })
+    }
+}
+
+#[test]
+fn the_test_catches_a_light_sampled_from_behind() {
+    let targets = lights(false).map(SampledFromBehind);
+    let pdf = HittablePdf::new(DVec3::ZERO, &targets).unwrap();
+    // the one light behind the origin never fails now: its directions land in the front quad's cells
+    let sample = |u| {
+        let s = pdf.sample(u)?;
+        let p = pdf.pdf(s.direction);
+        Some(DirectionSample {
+            direction: s.direction,
+            pdf: p,
+        })
+    };
+    let r = test(|d| pdf.pdf(d), 0.25, 4, sample);
+    assert!(r.p_value < 1e-100, "{r:?}");
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Stratification with two emitters
+
+use rtl_render::Color;
+use rtl_render::material::{Albedo, Material};
+use rtl_render::sampler::{Ctx, Dimension, SampleRng, Sampler};
+use rtl_render::scene::SceneBuilder;
+use rtl_render::vec::Point3;
+
+/// Two emitting quads (different sizes, both facing down) above a point on a floor; their emitters
+/// as the renderer samples them, by area.
+fn two_emitters() -> Vec<LightTarget> {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let light = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::ONE),
+        two_sided: false,
+    });
+    b.quad(
+        w,
+        Point3::new(-2.0, 2.0, -1.0),
+        Vec3::new(1.5, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+        light,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(0.5, 1.5, -0.5),
+        Vec3::new(0.6, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        light,
+    )
+    .unwrap();
+    let scene = b.build().unwrap();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(
+        lights.emitters.len(),
+        2,
+        "both emitters found without a list"
+    );
+    lights.emitters
+}
+
+use rtl_render::vec::Vec3;
+
+const P: DVec3 = DVec3::new(0.1, 0.0, 0.2);
+
+/// The irradiance / pi at `P` (normal +y) from the two unit-radiance quads, by 64 x 64 Gauss-Legendre
+/// points over each quad's area (a smooth integrand: exact to ~1e-12).
+fn exact(lights: &[LightTarget]) -> f64 {
+    let gl = gauss_legendre_64();
+    let mut total = 0.0;
+    for l in lights {
+        let LightTarget::Quad { quad, .. } = l else {
+            unreachable!()
+        };
+        for &(s, ws) in &gl {
+            for &(t, wt) in &gl {
+                let x = quad.q() + s * quad.u() + t * quad.v();
+                let to = x - P;
+                let d2 = to.length_squared();
+                let cos_p = to.y / d2.sqrt();
+                let cos_l = quad.normal().dot(to).abs() / d2.sqrt();
+                total += ws * wt * quad.area() * cos_p * cos_l / (std::f64::consts::PI * d2);
+            }
+        }
+    }
+    total
+}
+
+/// Nodes and weights of 64-point Gauss-Legendre on [0, 1], by Newton's method on P_64.
+fn gauss_legendre_64() -> Vec<(f64, f64)> {
+    let n = 64;
+    (0..n)
+        .map(|i| {
+            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 0.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let dx = p1 / dp;
+                x -= dx;
+                if dx.abs() < 1e-16 {
+                    break;
+                }
+            }
+            let w = 2.0 / ((1.0 - x * x) * dp * dp);
+            ((1.0 + x) / 2.0, w / 2.0)
+        })
+        .collect()
+}
+
+/// One sample of the direct-light estimate `L cos / (pi p)` at `P` for the light point `u`.
+fn estimate(lights: &[LightTarget], u: DVec2) -> f64 {
+    let pdf = HittablePdf::new(P, lights).unwrap();
+    pdf.sample(u).map_or(0.0, |s| {
+        s.direction.y.max(0.0) / (std::f64::consts::PI * s.pdf)
+    })
+}
+
+/// The slope of log RMSE against log N over 64 independent scrambles (or seeds), N = 16 .. 4096,
+/// for the uniform points `point(key, k)`.
+fn slope(lights: &[LightTarget], point: impl Fn(u64, u64) -> DVec2) -> f64 {
+    let truth = exact(lights);
+    let sizes = [16u64, 64, 256, 1024, 4096];
+    let mut xs = Vec::new();
+    let mut ys = Vec::new();
+    for &n in &sizes {
+        let mut se = 0.0;
+        let replicates = 64u64;
+        for r in 0..replicates {
+            let key = rtl_render::sampler::mix64(r + 1);
+            let mean = (0..n).map(|k| estimate(lights, point(key, k))).sum::<f64>() / n as f64;
+            se += (mean - truth) * (mean - truth);
+        }
+        xs.push((n as f64).ln());
+        ys.push((se / replicates as f64).sqrt().ln());
+    }
+    let mx = xs.iter().sum::<f64>() / xs.len() as f64;
+    let my = ys.iter().sum::<f64>() / ys.len() as f64;
+    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+/// The renderer's light pair of bounce 0 for sample `k` of a pixel with scramble `key`.
+fn light_pair(low_discrepancy: bool) -> impl Fn(u64, u64) -> DVec2 {
+    move |key, k| {
+        let mut ctx = Ctx::new();
+        ctx.rng = SampleRng::for_sample(7, key, k);
+        ctx.sampler = Sampler {
+            low_discrepancy,
+            key,
+            index: k,
+        };
+        ctx.sample_2d(Dimension::Light(0))
+    }
+}
+
+#[test]
+fn two_emitters_stay_stratified_with_low_discrepancy_samples() {
+    let lights = two_emitters();
+    // The light choice takes u.x and hands the rest on, so each light's directions are a stratified
+    // set of their own: the error falls much faster than N^-1/2.
+    let lds = slope(&lights, light_pair(true));
+    eprintln!("low-discrepancy slope {lds:.3}");
+    assert!(lds < -0.9, "low-discrepancy: slope {lds:.2}");
+    // Independent numbers: N^-1/2 (64 replicates: the slope is within about 0.05 of -0.5).
+    let random = slope(&lights, light_pair(false));
+    eprintln!("random slope {random:.3}");
+    assert!(
+        (-0.62..-0.38).contains(&random),
+        "random: slope {random:.2}"
+    );
+}
+
+#[test]
+fn the_stratification_test_sees_a_choice_that_breaks_the_point() {
+    // Deliberately wrong, as the renderer once did: the first coordinate picks the light and the
+    // direction comes from elsewhere (here: the point's coordinates hashed), so no light's directions
+    // are stratified: back to N^-1/2.
+    let lights = two_emitters();
+    let pair = light_pair(true);
+    let broken = slope(&lights, |key, k| {
+        let u = pair(key, k);
+        let h = rtl_render::sampler::mix64(u.x.to_bits() ^ u.y.to_bits().rotate_left(17));
+        let v = ((h >> 11) as f64) / (1u64 << 53) as f64;
+        // choice by u.x (< 1/2: light 0), the direction from (v, u.y) instead of u.x's rest
+        DVec2::new(
+            if u.x < 0.5 { 0.5 * v } else { 0.5 + 0.5 * v },
+            rtl_render::sampler::mix64(h) as f64 / u64::MAX as f64,
+        )
+    });
+    eprintln!("broken slope {broken:.3}");
+    assert!(
+        broken > -0.62,
+        "slope {broken:.2}: the check cannot see a broken point"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Every emitter, wherever it is placed
+
+#[test]
+fn emitters_in_instanced_groups_are_found_in_world_space() {
+    use rtl_render::ray::Ray;
+    use rtl_render::scene::Transform;
+    // One emitting quad in a group, placed twice (rotated and moved), and an emitting sphere in a
+    // nested group; nothing listed.
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let light = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::ONE),
+        two_sided: true,
+    });
+    let g = b.group();
+    b.quad(
+        g,
+        Point3::new(-0.5, 0.0, -0.5),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+        light,
+    )
+    .unwrap();
+    b.instance(
+        w,
+        g,
+        Transform::rotate_y(30.0).then(Transform::translate(Vec3::new(0.0, 3.0, 0.0))),
+    );
+    b.instance(
+        w,
+        g,
+        Transform::rotate_y(-45.0).then(Transform::translate(Vec3::new(4.0, 2.0, 1.0))),
+    );
+    let inner = b.group();
+    b.sphere(inner, Point3::new(-3.0, 1.0, 0.0), 0.5, light)
+        .unwrap();
+    b.add_to(w, rtl_render::scene::Object::Group(inner));
+    let scene = b.build().unwrap();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(lights.emitters.len(), 3);
+    assert_eq!(lights.listed_emitters, 0);
+    // From a point below them, every direction sampled towards an emitter meets an emitter there.
+    let origin = Point3::new(0.5, -1.0, 0.3);
+    let pdf = HittablePdf::new(origin, &lights.emitters).unwrap();
+    let mut ctx = Ctx::new();
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
+    for _ in 0..2000 {
+        let s = pdf
+            .sample(DVec2::new(rng.random(), rng.random()))
+            .expect("two-sided emitters are never behind");
+        let hit = scene
+            .hit(&Ray::new(origin, s.direction, 0.0), &mut ctx)
+            .expect("the sampled direction meets the scene");
+        assert!(
+            scene.materials[hit.material as usize].is_emitter(),
+            "a direction towards an emitter met something else"
+        );
+        assert!(pdf.pdf(s.direction) > 0.0);
+    }
+}
