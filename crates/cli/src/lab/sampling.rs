@@ -265,11 +265,12 @@ struct Claims<P> {
 }
 
 impl<P: Pdf> Pdf for Claims<P> {
-    fn value(&self, d: DVec3) -> f64 {
-        self.factor * self.samples.value(d)
+    fn pdf(&self, d: DVec3) -> f64 {
+        self.factor * self.samples.pdf(d)
     }
-    fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-        self.samples.generate(rng)
+    fn sample(&self, u: DVec2) -> Option<rtl_pdf::DirectionSample> {
+        let s = self.samples.sample(u)?;
+        rtl_pdf::DirectionSample::new(s.direction, self.factor * s.pdf)
     }
 }
 

@@ -606,11 +606,12 @@ mod tests {
         // wrong: uniform hemisphere samples claimed as cosine
         struct Liar;
         impl Pdf for Liar {
-            fn value(&self, d: DVec3) -> f64 {
+            fn pdf(&self, d: DVec3) -> f64 {
                 warp::cosine_hemisphere_pdf(d.z)
             }
-            fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
-                warp::sample_uniform_hemisphere(DVec2::new(rng.random(), rng.random()))
+            fn sample(&self, u: DVec2) -> Option<rtl_pdf::DirectionSample> {
+                let d = warp::sample_uniform_hemisphere(u);
+                rtl_pdf::DirectionSample::new(d, self.pdf(d))
             }
         }
         let wrong = DirectionCase::new(DVec3::Z, 0.0, &Liar, &mut rng, 20_000);
