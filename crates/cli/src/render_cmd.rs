@@ -121,7 +121,7 @@ fn load(arg: &str, opts: &SceneOptions) -> Result<Loaded> {
 
 /// A scene file (`.toml`).
 fn load_file(path: &Path) -> Result<Loaded> {
-    let file = rtl_render::scene_file::load_file(path).map_err(anyhow::Error::msg)?;
+    let file = rtl_render::scene_file::load_file(path)?;
     let name = path
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());

@@ -134,7 +134,8 @@ material = "white"
 "#;
 
 fn load(text: &str) -> Result<SceneFile, String> {
-    scene_file::from_str(Path::new("some/dir/bad.toml"), text)
+    scene_file::load_str(text, "some/dir/bad.toml", Path::new("some/dir"))
+        .map_err(|e| e.to_string())
 }
 
 /// The error for `text`, which must name the file, `line` and `field`, and contain `words`.
@@ -536,8 +537,13 @@ fn no_error_panics_on_garbage() {
         if !text.is_char_boundary(end) {
             continue;
         }
-        if let Err(e) = scene_file::from_str(&path, &text[..end]) {
-            assert!(e.starts_with(&path.display().to_string()), "{e}");
+        if let Err(e) =
+            scene_file::load_str(&text[..end], &path.display().to_string(), &scenes_dir())
+        {
+            assert!(
+                e.to_string().starts_with(&path.display().to_string()),
+                "{e}"
+            );
         }
     }
 }
