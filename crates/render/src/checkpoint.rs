@@ -17,6 +17,7 @@
 //! | width*height pixels, rows from the top: sum r, g, b f64 | count u64 | dropped u64 | FNV-1a 64 checksum
 //! ```
 
+use crate::limits::MAX_SIDE;
 use crate::render::Accumulator;
 use crate::scene::Scene;
 use crate::vec::Color;
@@ -302,6 +303,11 @@ impl Checkpoint {
                 "sample range {start}..{end} is backwards"
             )));
         }
+        if width == 0 || height == 0 || width > MAX_SIDE as u64 || height > MAX_SIDE as u64 {
+            return Err(corrupt(&format!(
+                "its image is {width}x{height} pixels: each side must be 1 to {MAX_SIDE}"
+            )));
+        }
         let n = width
             .checked_mul(height)
             .filter(|n| n.checked_mul(40) == Some((r.b.len() - r.at) as u64))
@@ -318,6 +324,13 @@ impl Checkpoint {
             acc.sum[i] = Color::from_array(c);
             acc.count[i] = r.u64().ok_or_else(bad)?;
             acc.dropped[i] = r.u64().ok_or_else(bad)?;
+            if let Some(what) = sum_problem(acc.sum[i], acc.count[i]) {
+                let (x, y) = (i % width, i / width);
+                return Err(corrupt(&format!(
+                    "pixel {i} (x {x}, y {y}) has the sum [{}, {}, {}] of {} samples: {what}",
+                    c[0], c[1], c[2], acc.count[i]
+                )));
+            }
             if acc.count[i].checked_add(acc.dropped[i]) != Some(end - start) {
                 return Err(corrupt(&format!(
                     "pixel {i} holds {} samples, not the {} of samples {start}..{end}",
@@ -361,6 +374,20 @@ impl Checkpoint {
     }
 }
 
+/// What is wrong with a pixel's sum of `count` finite, non-negative radiance samples: a sum that is not
+/// finite, that is negative, or that is not zero with no samples (`None` if nothing).
+fn sum_problem(sum: Color, count: u64) -> Option<&'static str> {
+    if !sum.is_finite() {
+        Some("a sum of finite samples must be finite")
+    } else if sum.min_element() < 0.0 {
+        Some("radiance is never negative, so neither is its sum")
+    } else if count == 0 && sum != Color::ZERO {
+        Some("a pixel with no samples must have a zero sum")
+    } else {
+        None
+    }
+}
+
 fn put_str(b: &mut Vec<u8>, s: &str) {
     b.extend_from_slice(&(s.len() as u32).to_le_bytes());
     b.extend_from_slice(s.as_bytes());
@@ -400,6 +427,34 @@ pub struct Merged {
     pub gaps: Vec<(u64, u64)>,
 }
 
+/// Why parts cannot be merged.
+#[derive(Debug, thiserror::Error)]
+pub enum MergeError {
+    #[error("no parts to merge")]
+    NoParts,
+    #[error("{part} is not a part of the same render as {first}: {differences}")]
+    OtherRender {
+        part: String,
+        first: String,
+        differences: String,
+    },
+    #[error(
+        "{a} (samples {}..{}) and {b} (samples {}..{}) overlap: each sample may be counted once",
+        a_range.0, a_range.1, b_range.0, b_range.1
+    )]
+    Overlap {
+        a: String,
+        a_range: (u64, u64),
+        b: String,
+        b_range: (u64, u64),
+    },
+    #[error(
+        "the merged sum of pixel {pixel} (x {x}, y {y}) overflows f64: the parts' radiance is too \
+         large to add"
+    )]
+    Overflow { pixel: usize, x: usize, y: usize },
+}
+
 /// Add parts of one render with disjoint sample ranges, in the order of their ranges (whatever the
 /// order given). `names` name the parts in messages.
 ///
@@ -409,17 +464,18 @@ pub struct Merged {
 /// samples each way of adding is within `(n - 1) 2^-53` (relative) of the exact sum (Higham's bound for
 /// recursive summation), so the two differ by at most twice that: `1e-12` at `n = 4500`, and in practice
 /// far less. Merging a single part reproduces it bit for bit.
-pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
+pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, MergeError> {
     let Some((first_name, first)) = parts.first() else {
-        return Err("no parts to merge".into());
+        return Err(MergeError::NoParts);
     };
     for (name, p) in &parts[1..] {
         let d = first.identity.differences(&p.identity, first_name, name);
         if !d.is_empty() {
-            return Err(format!(
-                "{name} is not a part of the same render as {first_name}: {}",
-                d.join("; ")
-            ));
+            return Err(MergeError::OtherRender {
+                part: name.clone(),
+                first: first_name.clone(),
+                differences: d.join("; "),
+            });
         }
     }
     let mut order: Vec<&(String, Checkpoint)> = parts.iter().collect();
@@ -428,10 +484,12 @@ pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
     for w in order.windows(2) {
         let ((na, a), (nb, b)) = (w[0], w[1]);
         if b.start < a.acc.samples {
-            return Err(format!(
-                "{na} (samples {}..{}) and {nb} (samples {}..{}) overlap: each sample may be counted once",
-                a.start, a.acc.samples, b.start, b.acc.samples
-            ));
+            return Err(MergeError::Overlap {
+                a: na.clone(),
+                a_range: (a.start, a.acc.samples),
+                b: nb.clone(),
+                b_range: (b.start, b.acc.samples),
+            });
         }
         if b.start > a.acc.samples {
             gaps.push((a.acc.samples, b.start));
@@ -445,6 +503,14 @@ pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
             out.acc.dropped[i] += p.acc.dropped[i];
         }
         out.acc.samples = p.acc.samples;
+    }
+    // Each part's sums are finite, but two large ones may add up past f64::MAX.
+    if let Some(i) = out.acc.sum.iter().position(|s| !s.is_finite()) {
+        return Err(MergeError::Overflow {
+            pixel: i,
+            x: i % out.acc.width,
+            y: i / out.acc.width,
+        });
     }
     Ok(Merged {
         checkpoint: out,
@@ -539,14 +605,100 @@ mod tests {
             );
             assert_eq!(m.checkpoint.acc.count[i] + m.checkpoint.acc.dropped[i], 12);
         }
-        let e = merge(&[("a".into(), a.clone()), ("x".into(), part(3, 5, 1))]).unwrap_err();
+        let e = merge(&[("a".into(), a.clone()), ("x".into(), part(3, 5, 1))])
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("overlap") && e.contains("a (samples 0..4)"),
             "{e}"
         );
-        let e = merge(&[("a".into(), a.clone()), ("s".into(), part(4, 5, 2))]).unwrap_err();
+        let e = merge(&[("a".into(), a.clone()), ("s".into(), part(4, 5, 2))])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("seed: 1 in a, 2 in s"), "{e}");
         let m = merge(&[("a".into(), a), ("c".into(), c)]).unwrap();
         assert_eq!(m.gaps, [(4, 10)]);
+    }
+
+    #[test]
+    fn a_valid_checksum_over_lying_sums_is_refused() {
+        let cases: [(Color, u64, &str); 5] = [
+            (Color::new(f64::NAN, 0.0, 0.0), 5, "must be finite"),
+            (Color::new(0.0, f64::INFINITY, 0.0), 5, "must be finite"),
+            (Color::new(0.0, 0.0, -1.0), 5, "never negative"),
+            (Color::new(0.0, 0.0, -0.0), 5, ""),
+            (Color::splat(1.0), 0, "no samples must have a zero sum"),
+        ];
+        for (sum, count, words) in cases {
+            let mut p = part(0, 5, 1);
+            p.acc.sum[2] = sum;
+            p.acc.count[2] = count;
+            p.acc.dropped[2] = 5 - count;
+            let r = Checkpoint::from_bytes(&p.to_bytes(), Path::new("ck"));
+            if words.is_empty() {
+                assert!(r.is_ok(), "{sum:?}");
+                continue;
+            }
+            let e = r.unwrap_err().to_string();
+            assert!(e.contains(words) && e.contains("pixel 2 (x 2, y 0)"), "{e}");
+        }
+    }
+
+    #[test]
+    fn counts_that_disagree_with_the_sample_range_are_refused() {
+        let mut p = part(0, 5, 1);
+        p.acc.count[0] += 1;
+        let e = Checkpoint::from_bytes(&p.to_bytes(), Path::new("ck")).unwrap_err();
+        assert!(
+            e.to_string().contains("pixel 0 holds 6 samples, not the 5"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn an_empty_image_is_refused() {
+        let mut p = part(0, 5, 1);
+        p.acc = Accumulator::new(0, 2);
+        p.acc.samples = 5;
+        p.identity.width = 0;
+        let e = Checkpoint::from_bytes(&p.to_bytes(), Path::new("ck")).unwrap_err();
+        assert!(e.to_string().contains("0x2 pixels"), "{e}");
+    }
+
+    #[test]
+    fn a_merge_whose_sums_overflow_is_refused_not_written_as_nan() {
+        let (mut a, mut b) = (part(0, 4, 1), part(4, 8, 1));
+        a.acc.sum[5] = Color::splat(1.5e308);
+        b.acc.sum[5] = Color::splat(1.5e308);
+        let e = merge(&[("a".into(), a), ("b".into(), b)]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                MergeError::Overflow {
+                    pixel: 5,
+                    x: 2,
+                    y: 1
+                }
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn sample_ranges_past_2_to_the_32_round_trip_and_merge_exactly() {
+        let k = (1u64 << 32) - 2;
+        let (a, b) = (part(k, k + 3, 1), part(k + 3, k + 7, 1));
+        for p in [&a, &b] {
+            let back = Checkpoint::from_bytes(&p.to_bytes(), Path::new("p")).unwrap();
+            assert_eq!(&back, p);
+        }
+        let m = merge(&[("b".into(), b), ("a".into(), a)]).unwrap();
+        assert_eq!((m.checkpoint.start, m.checkpoint.acc.samples), (k, k + 7));
+        let top = u64::MAX - 1;
+        let c = part(top - 5, top, 1);
+        assert_eq!(
+            Checkpoint::from_bytes(&c.to_bytes(), Path::new("p")).unwrap(),
+            c
+        );
     }
 }

@@ -26,6 +26,7 @@ pub mod hit;
 pub mod integrator;
 pub mod lanes;
 pub mod lights;
+pub mod limits;
 pub mod material;
 pub mod output;
 pub mod perlin;

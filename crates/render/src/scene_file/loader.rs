@@ -11,6 +11,7 @@ use super::doc::{
 use super::span::{Fail, Span, Val, fail};
 use super::values::{Aspect, BackgroundSpec, ColorSpec, Real, Step, V3, compose};
 use crate::camera::CameraSettings;
+use crate::limits::{self, MAX_SIDE, MIN_POSITIVE};
 use crate::material::{Albedo, Material};
 use crate::scene::{Background, GroupId, MaterialId, SceneBuilder, TextureId, Transform};
 use crate::scenes::Built;
@@ -170,9 +171,17 @@ impl Loader {
                 return fail(v.span(), format!("{what} must be at least 1"));
             }
         }
+        if let Some(w) = &r.width
+            && *w.get_ref() > MAX_SIDE as u64
+        {
+            return fail(
+                w.span(),
+                format!("width must be at most {MAX_SIDE}, got {}", w.get_ref()),
+            );
+        }
         if let Some(d) = &r.max_depth {
-            if *d.get_ref() == 0 {
-                return fail(d.span(), "max_depth must be at least 1");
+            if let Some(problem) = limits::max_depth_problem(*d.get_ref()) {
+                return fail(d.span(), format!("max_depth {problem}"));
             }
             self.b.max_depth = *d.get_ref();
         }
@@ -430,8 +439,13 @@ impl Loader {
 
 pub(super) fn positive(x: &Spanned<Real>, what: &str) -> Result<f64, Fail> {
     let v = x.get_ref().0;
-    if v > 0.0 {
+    if v >= MIN_POSITIVE {
         Ok(v)
+    } else if v > 0.0 {
+        fail(
+            x.span(),
+            format!("{what} must be at least {MIN_POSITIVE:e}, got {v:e}"),
+        )
     } else {
         fail(x.span(), format!("{what} must be positive, got {v}"))
     }
