@@ -7,7 +7,9 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use rtl_render::checkpoint::{Checkpoint, merge};
-use rtl_render::output::{Transfer, write_linear, write_png};
+use rtl_render::output::{
+    OutputFile, OutputKind, Transfer, check_outputs, write_linear, write_png,
+};
 use std::path::PathBuf;
 
 #[derive(Args)]
@@ -34,13 +36,54 @@ pub struct MergeArgs {
     pub allow_gaps: bool,
 }
 
+/// Every file the merge writes, checked before any part is read: named right, writable, each its own
+/// file, and none of them one of the parts.
+fn check_merge_outputs(args: &MergeArgs) -> Result<()> {
+    let mut outputs = vec![OutputFile {
+        flag: "-o",
+        path: args.output.clone(),
+        kind: OutputKind::Png,
+    }];
+    if let Some(lin) = &args.linear {
+        outputs.push(OutputFile {
+            flag: "--linear",
+            path: lin.clone(),
+            kind: OutputKind::Linear,
+        });
+    }
+    if let Some(p) = &args.part {
+        outputs.push(OutputFile {
+            flag: "--part",
+            path: p.clone(),
+            kind: OutputKind::Checkpoint,
+        });
+    }
+    let inputs: Vec<(String, PathBuf)> = args
+        .parts
+        .iter()
+        .map(|p| (format!("the part {}", p.display()), p.clone()))
+        .collect();
+    check_outputs(&outputs, &inputs)?;
+    Ok(())
+}
+
 pub fn run(args: MergeArgs) -> Result<()> {
+    check_merge_outputs(&args)?;
     let mut parts = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
         parts.push((p.display().to_string(), Checkpoint::read(p)?));
     }
-    let merged = merge(&parts).map_err(anyhow::Error::msg)?;
+    let merged = merge(&parts)?;
     let ck = &merged.checkpoint;
+    if ck
+        .acc
+        .count
+        .iter()
+        .zip(&ck.acc.dropped)
+        .all(|(c, d)| c + d == 0)
+    {
+        bail!("the parts hold no samples (each covers an empty range): no image to make");
+    }
     if !merged.gaps.is_empty() {
         let gaps: Vec<String> = merged
             .gaps
