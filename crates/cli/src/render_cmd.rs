@@ -5,7 +5,7 @@ use crate::progressive::{self, Ending, Plan, Saving};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rtl_render::checkpoint::{Checkpoint, Identity, scene_hash};
+use rtl_render::checkpoint::{Checkpoint, Identity};
 use rtl_render::integrator::Strategy;
 use rtl_render::limits::{self, MAX_SIDE, MAX_THREADS};
 use rtl_render::output::{OutputFile, OutputKind, check_outputs};
@@ -509,13 +509,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let renderer = Renderer::new(scene, job.settings);
     let (w, h) = (renderer.camera.width, renderer.camera.height);
     check_size(&args, w, h)?;
-    let identity = Identity {
-        scene: job.loaded.name.clone(),
-        scene_hash: scene_hash(scene),
-        settings: format!("{:?}", job.settings),
-        width: w,
-        height: h,
-    };
+    let identity = Identity::new(&job.loaded.name, scene, &job.settings, w, h);
     let mut acc = open_or_resume(&args, &job, &renderer, &identity)?;
     for n in &job.loaded.built.notices {
         eprintln!("note: {n}");

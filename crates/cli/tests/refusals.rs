@@ -310,3 +310,36 @@ fn merge_checks_its_outputs_before_reading_and_never_overwrites_a_part() {
     ok(&d, &["merge", "p0", "p1", "-o", "m.png"]);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_resume_with_other_settings_names_the_serialised_field_that_differs() {
+    let d = dir("identity");
+    ok(&d, &render(&["--checkpoint", "ck"]));
+    refused(
+        &d,
+        &[
+            "render", "cornell", "--width", "16", "--spp", "4", "--resume", "ck", "--no-rr",
+        ],
+        &["strategy.Mis.russian_roulette: true in the checkpoint, false in this render"],
+    );
+    refused(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "16",
+            "--spp",
+            "4",
+            "--resume",
+            "ck",
+            "--strategy",
+            "cosine",
+        ],
+        &[
+            "strategy: {\"Mis\":",
+            "in the checkpoint, \"Cosine\" in this render",
+        ],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

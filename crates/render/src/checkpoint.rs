@@ -18,17 +18,16 @@
 //! ```
 
 use crate::limits::MAX_SIDE;
-use crate::render::Accumulator;
+use crate::render::{Accumulator, RenderSettings};
 use crate::scene::Scene;
 use crate::vec::Color;
-use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The first eight bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"RTLPART\0";
 /// The version of the format written; files of other versions are refused.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// 64-bit FNV-1a (Fowler, Noll and Vo): `h = (h xor byte) * p` from the offset basis. Every step is a
 /// bijection of the state, so any change of a single byte changes the hash.
@@ -63,21 +62,31 @@ impl Default for Fnv1a {
     }
 }
 
-impl fmt::Write for Fnv1a {
-    fn write_str(&mut self, s: &str) -> fmt::Result {
-        self.update(s.as_bytes());
+impl std::io::Write for Fnv1a {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.update(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
         Ok(())
     }
 }
 
-/// A hash of everything a scene is (shapes, materials, textures, camera, background), taken over its
-/// `Debug` form without building the string: equal scenes hash equal, and an edited scene file, another
-/// texture or another scene hashes differently.
+/// A hash of everything a scene is (shapes, materials, textures with their pixels, camera, background,
+/// importance targets), taken over its serde serialisation (JSON, streamed into the hasher without
+/// building the text): equal scenes hash equal, and an edited scene file, another texture or another
+/// scene hashes differently. What is derived from the rest (BVHs, the fixed Perlin table) is left out.
 pub fn scene_hash(scene: &Scene) -> u64 {
     let mut h = Fnv1a::new();
-    // Writing into the hasher cannot fail.
-    let _ = fmt::write(&mut h, format_args!("{scene:?}"));
+    // Writing into the hasher cannot fail, and every number of a scene is finite.
+    serde_json::to_writer(&mut h, scene).expect("a scene serialises");
     h.0
+}
+
+/// The settings that change the image, serialised (JSON) so that every field takes part, including
+/// ones added later.
+pub fn settings_record(settings: &RenderSettings) -> String {
+    serde_json::to_string(settings).expect("settings serialise")
 }
 
 /// What a checkpoint is an image of: two checkpoints may be continued or merged only if these are equal.
@@ -87,14 +96,30 @@ pub struct Identity {
     pub scene: String,
     /// [`scene_hash`] of the scene.
     pub scene_hash: u64,
-    /// The `Debug` form of the settings that change the image (`RenderSettings`), so that every field,
-    /// including ones added later, takes part.
+    /// [`settings_record`] of the settings.
     pub settings: String,
     pub width: usize,
     pub height: usize,
 }
 
 impl Identity {
+    /// The identity of a render of `scene` (named `name`) with `settings` at `width x height`.
+    pub fn new(
+        name: &str,
+        scene: &Scene,
+        settings: &RenderSettings,
+        width: usize,
+        height: usize,
+    ) -> Self {
+        Identity {
+            scene: name.to_string(),
+            scene_hash: scene_hash(scene),
+            settings: settings_record(settings),
+            width,
+            height,
+        }
+    }
+
     /// What differs between `self` (called `a` in the phrases) and `other` (called `b`), one phrase
     /// each; empty if they are the same render.
     pub fn differences(&self, other: &Identity, a: &str, b: &str) -> Vec<String> {
@@ -113,23 +138,9 @@ impl Identity {
             ));
         }
         if self.settings != other.settings {
-            match (fields(&self.settings), fields(&other.settings)) {
-                (Some(a), Some(b)) => {
-                    for (name, va) in &a {
-                        match b.iter().find(|(n, _)| n == name) {
-                            Some((_, vb)) if vb != va => {
-                                out.push(format!("{name}: {va} in {na}, {vb} in {nb}"))
-                            }
-                            None => out.push(format!("{name}: {va} in {na}, absent in {nb}")),
-                            _ => {}
-                        }
-                    }
-                    for (name, vb) in &b {
-                        if !a.iter().any(|(n, _)| n == name) {
-                            out.push(format!("{name}: absent in {na}, {vb} in {nb}"));
-                        }
-                    }
-                }
+            let parse = |s: &str| serde_json::from_str::<serde_json::Value>(s).ok();
+            match (parse(&self.settings), parse(&other.settings)) {
+                (Some(a), Some(b)) => value_differences("", &a, &b, na, nb, &mut out),
                 _ => out.push(format!(
                     "settings: {} in {na}, {} in {nb}",
                     self.settings, other.settings
@@ -149,33 +160,41 @@ impl Identity {
     }
 }
 
-/// The `name: value` fields of a derived `Debug` form `Name { a: 1, b: X { .. } }`, split at top-level
-/// commas; `None` if it does not look like one.
-fn fields(debug: &str) -> Option<Vec<(String, String)>> {
-    let open = debug.find('{')?;
-    let body = debug[open + 1..].trim_end().strip_suffix('}')?.trim();
-    let mut out = Vec::new();
-    let (mut depth, mut from) = (0i32, 0);
-    let mut push = |piece: &str| -> Option<()> {
-        let (n, v) = piece.split_once(':')?;
-        out.push((n.trim().to_string(), v.trim().to_string()));
-        Some(())
-    };
-    for (i, c) in body.char_indices() {
-        match c {
-            '(' | '[' | '{' => depth += 1,
-            ')' | ']' | '}' => depth -= 1,
-            ',' if depth == 0 => {
-                push(&body[from..i])?;
-                from = i + 1;
-            }
-            _ => {}
+/// `name: va in A, vb in B` for every field of two serialised settings that differs, descending into
+/// fields that are tables on both sides (`strategy.Mis.russian_roulette: true in A, false in B`).
+fn value_differences(
+    path: &str,
+    a: &serde_json::Value,
+    b: &serde_json::Value,
+    na: &str,
+    nb: &str,
+    out: &mut Vec<String>,
+) {
+    use serde_json::Value;
+    let join = |k: &str| {
+        if path.is_empty() {
+            k.to_string()
+        } else {
+            format!("{path}.{k}")
         }
+    };
+    match (a, b) {
+        (Value::Object(ma), Value::Object(mb)) => {
+            for (k, va) in ma {
+                match mb.get(k) {
+                    Some(vb) => value_differences(&join(k), va, vb, na, nb, out),
+                    None => out.push(format!("{}: {va} in {na}, absent in {nb}", join(k))),
+                }
+            }
+            for (k, vb) in mb {
+                if !ma.contains_key(k) {
+                    out.push(format!("{}: absent in {na}, {vb} in {nb}", join(k)));
+                }
+            }
+        }
+        _ if a != b => out.push(format!("{path}: {a} in {na}, {b} in {nb}")),
+        _ => {}
     }
-    if !body[from..].trim().is_empty() {
-        push(&body[from..])?;
-    }
-    Some(out)
 }
 
 /// An accumulation of samples `[start, acc.samples)` of every pixel of one render.
@@ -535,7 +554,7 @@ mod tests {
                 scene: "cornell".into(),
                 scene_hash: 42,
                 settings: format!(
-                    "RenderSettings {{ width: 3, max_depth: 50, seed: {seed}, strategy: Mixture {{ a: 0.5, b: (1, 2) }} }}"
+                    r#"{{"width":3,"max_depth":50,"seed":{seed},"strategy":{{"Mis":{{"a":true,"b":[1,2]}}}}}}"#
                 ),
                 width: 3,
                 height: 2,
@@ -576,6 +595,12 @@ mod tests {
     fn differences_name_the_field() {
         let (a, b) = (part(0, 1, 1).identity, part(0, 1, 2).identity);
         assert_eq!(a.differences(&b, "A", "B"), ["seed: 1 in A, 2 in B"]);
+        let mut d = a.clone();
+        d.settings = d.settings.replace("true", "false");
+        assert_eq!(
+            a.differences(&d, "A", "B"),
+            ["strategy.Mis.a: true in A, false in B"]
+        );
         assert!(a.differences(&a, "A", "B").is_empty());
         let mut c = a.clone();
         c.scene_hash = 7;

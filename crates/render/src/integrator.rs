@@ -17,7 +17,7 @@ use rtl_pdf::{HemispherePdf, HittablePdf, MixturePdf, Pdf, power_heuristic};
 
 // ANCHOR: mis_options
 /// The extras of the `mis` strategy, each unbiased and each switchable off to measure its share.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct MisOptions {
     /// End paths that carry little at random after a few bounces and reweight the survivors (Russian
     /// roulette; see [`ROULETTE_BELOW`]).
@@ -57,7 +57,7 @@ pub const ROULETTE_BELOW: f64 = 0.125;
 
 // ANCHOR: strategy
 /// How a diffuse bounce chooses its scattered direction.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum Strategy {
     /// Uniform over the hemisphere about the normal (`p = 1 / 2 pi`): book 3's starting point.
     Uniform,

@@ -16,7 +16,7 @@ use rand::Rng;
 use rtl_pdf::{CosinePdf, Pdf, SpherePdf, warp};
 
 /// A reflectance or emission: a plain colour (no texture lookup at all) or a texture of the scene.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Albedo {
     Constant(Color),
     Texture(u32),
@@ -36,7 +36,7 @@ impl Albedo {
 }
 
 /// A material of books 1 to 3.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Material {
     /// Ideal diffuse reflection, two-sided.
     Lambertian { albedo: Albedo },

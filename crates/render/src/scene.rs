@@ -17,7 +17,7 @@ use glam::DMat3;
 use std::mem::MaybeUninit;
 
 /// A rigid transform `x -> R x + t` (rotation then translation), as book 2's `translate(rotate_y(..))`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Transform {
     pub rotation: DMat3,
     pub translation: Vec3,
@@ -89,20 +89,20 @@ impl Transform {
 }
 
 /// Index of a group (a list of objects with its own BVH) in the scene; group 0 is the world.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct GroupId(pub u32);
 
 /// Index of a material in the scene.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct MaterialId(pub u32);
 
 /// Index of a texture in the scene.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct TextureId(pub u32);
 
 /// A constant-density medium filling a closed boundary (book 2): a ray inside travels a distance drawn
 /// from the exponential distribution of rate `density` before it scatters by the phase function.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ConstantMedium {
     pub boundary: GroupId,
     pub neg_inv_density: f64,
@@ -110,7 +110,7 @@ pub struct ConstantMedium {
 }
 
 /// Something a ray can hit.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Object {
     Sphere(Sphere),
     Quad(Quad),
@@ -138,11 +138,13 @@ impl Object {
 }
 
 /// A list of objects and the BVH over them (objects stored in the BVH's leaf order).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct Group {
     pub objects: Vec<Object>,
     /// What the ray is traced through: the BVH collapsed to 4-wide nodes, with each leaf's quads in
-    /// packets of four and its other objects listed.
+    /// packets of four and its other objects listed. Built from `objects`, so not part of the
+    /// scene's content.
+    #[serde(skip)]
     pub accel: Accel,
 }
 
@@ -200,7 +202,7 @@ impl Accel {
 }
 
 /// The background: what a ray that leaves the scene sees.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Background {
     Solid(Color),
     /// Book 1's sky: white at the bottom blending to (0.5, 0.7, 1.0) at the top, by the direction's y.
@@ -223,7 +225,7 @@ impl Background {
 /// An importance target of book 3 ("lights"): a shape in world space that scattered rays may be
 /// aimed at. Its material says whether it emits (then `mis` aims shadow rays at it); a shape given only
 /// to aim at, not placed in the scene, has the material [`NO_MATERIAL`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Target {
     Quad(Quad),
     Sphere(Sphere),
@@ -235,7 +237,7 @@ pub const NO_MATERIAL: u32 = u32::MAX;
 
 /// What a scene calls for, decided once when it is built, so that nothing is simulated that the scene
 /// does not need.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct Features {
     /// The camera has a lens (defocus blur).
     pub defocus: bool,
@@ -254,7 +256,7 @@ pub struct Features {
 }
 
 /// A scene ready to render.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct Scene {
     pub groups: Vec<Group>,
     pub materials: Vec<Material>,

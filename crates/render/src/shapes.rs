@@ -8,7 +8,7 @@ use crate::ray::{Interval, Ray};
 use crate::vec::{Point3, Vec3};
 
 /// A sphere of centre `center + time * motion` (a static sphere has `motion = 0`) and radius `radius`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Sphere {
     pub center: Point3,
     /// Displacement of the centre over the shutter interval [0, 1]; exactly zero for a static sphere.
@@ -112,7 +112,7 @@ impl Sphere {
 }
 
 /// The parallelogram `{Q + a u + b v : a, b in [0, 1]}`, normal `normalize(u x v)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Quad {
     pub q: Point3,
     pub u: Vec3,

@@ -565,3 +565,18 @@ fn an_inline_target_is_never_an_emitter_whatever_material_comes_first() {
         (1, 0, 1)
     );
 }
+
+#[test]
+fn the_scene_hash_is_of_the_content_not_of_the_text() {
+    use rtl_render::checkpoint::scene_hash;
+    let text = std::fs::read_to_string(scenes_dir().join("cornell.toml")).unwrap();
+    let a = scene_hash(&load(&text).unwrap().built.scene);
+    // Comments and blank lines are not content; a moved light is.
+    let commented = format!("# a comment\n\n{text}");
+    assert_eq!(scene_hash(&load(&commented).unwrap().built.scene), a);
+    let builtin = (scenes::find("cornell").unwrap().build)(&Default::default()).unwrap();
+    assert_eq!(scene_hash(&builtin.scene), a);
+    let moved = text.replacen("213", "214", 1);
+    assert_ne!(moved, text);
+    assert_ne!(scene_hash(&load(&moved).unwrap().built.scene), a);
+}
