@@ -19,10 +19,12 @@
 //! ```
 
 pub mod aabb;
+pub mod builder;
 pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
 pub mod hit;
+pub mod ids;
 pub mod integrator;
 pub mod lanes;
 pub mod lights;
@@ -38,6 +40,7 @@ pub mod scene_file;
 pub mod scenes;
 pub mod shapes;
 pub mod texture;
+pub mod transform;
 pub mod vec;
 
 pub use vec::{Color, Point3, Vec3};
