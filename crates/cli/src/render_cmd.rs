@@ -649,3 +649,114 @@ fn report(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+    use proptest::prelude::*;
+    use proptest::strategy::Strategy as _;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: RenderArgs,
+    }
+
+    /// Flag values from every class: zero, one, ordinary, the limits and one past them, the type's
+    /// maximum, negative and not a number at all.
+    fn value() -> impl proptest::strategy::Strategy<Value = String> {
+        prop_oneof![
+            Just("0".to_string()),
+            Just("1".to_string()),
+            Just("16".to_string()),
+            Just("1024".to_string()),
+            Just("1025".to_string()),
+            Just("10000".to_string()),
+            Just("10001".to_string()),
+            Just("65536".to_string()),
+            Just("65537".to_string()),
+            Just("4294967296".to_string()),
+            Just("18446744073709551615".to_string()),
+            Just("-1".to_string()),
+            Just("nan".to_string()),
+            Just("1e300".to_string()),
+            (0u64..100).prop_map(|x| x.to_string()),
+        ]
+    }
+
+    fn duration() -> impl proptest::strategy::Strategy<Value = String> {
+        prop_oneof![
+            Just("0".to_string()),
+            Just("0s".to_string()),
+            Just("1ms".to_string()),
+            Just("5s".to_string()),
+            Just("1e30".to_string()),
+            Just("100000000000000d".to_string()),
+            Just("-3".to_string()),
+            Just("inf".to_string()),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+        /// Whatever the flags, settings are refused naming a flag, or accepted within every limit,
+        /// and the image they describe is sized without a panic.
+        #[test]
+        fn every_flag_combination_is_refused_naming_a_flag_or_accepted_within_the_limits(
+            flags in proptest::collection::vec(
+                (
+                    prop_oneof![
+                        Just("--width"), Just("--spp"), Just("--max-depth"), Just("--threads"),
+                        Just("--sample-offset"), Just("--seed"),
+                    ],
+                    value(),
+                ),
+                0..4,
+            ),
+            times in proptest::collection::vec(
+                (prop_oneof![Just("--time"), Just("--checkpoint-every")], duration()),
+                0..2,
+            ),
+        ) {
+            let dir = std::env::temp_dir().join(format!("rtl-props-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let out = dir.join("x.png").display().to_string();
+            let mut argv = vec!["rtl".to_string(), "cornell".into(), "-o".into(), out];
+            let mut seen = Vec::new();
+            for (flag, v) in flags.iter().chain(times.iter()) {
+                if seen.contains(flag) {
+                    continue;
+                }
+                seen.push(*flag);
+                argv.push(flag.to_string());
+                argv.push(v.clone());
+            }
+            // clap refuses what does not parse as the flag's type, naming it: nothing to check here.
+            let Ok(cli) = Cli::try_parse_from(&argv) else {
+                return Ok(());
+            };
+            match settings(&cli.args, "cornell") {
+                Err(e) => {
+                    let msg = format!("{e:#}");
+                    prop_assert!(
+                        seen.iter().any(|f| msg.contains(f)),
+                        "{argv:?}: {msg}"
+                    );
+                }
+                Ok(job) => {
+                    prop_assert!((1..=MAX_SIDE).contains(&job.settings.width));
+                    prop_assert!(limits::max_depth_problem(job.settings.max_depth).is_none());
+                    prop_assert!(job.start < job.end);
+                    prop_assert!(job.threads <= MAX_THREADS);
+                    let r = Renderer::new(&job.loaded.built.scene, job.settings);
+                    // A refusal names --width (the only flag that sizes the image).
+                    if let Err(e) = check_size(&cli.args, r.camera.width, r.camera.height) {
+                        prop_assert!(format!("{e:#}").contains("--width"), "{e:#}");
+                    }
+                }
+            }
+        }
+    }
+}
