@@ -110,7 +110,7 @@ impl SceneBuilder {
         if !(radius.is_finite() && radius > 0.0 && center.is_finite()) {
             return Err(SceneError::BadSphere(radius));
         }
-        self.add_to(g, Object::Sphere(Sphere::new(center, radius, m.0)));
+        self.add_to(g, Object::Sphere(Sphere::new(center, radius, m)));
         Ok(())
     }
 
@@ -126,7 +126,7 @@ impl SceneBuilder {
         if !(radius.is_finite() && radius > 0.0 && c0.is_finite() && c1.is_finite()) {
             return Err(SceneError::BadSphere(radius));
         }
-        self.add_to(g, Object::Sphere(Sphere::moving(c0, c1, radius, m.0)));
+        self.add_to(g, Object::Sphere(Sphere::moving(c0, c1, radius, m)));
         Ok(())
     }
 
@@ -139,7 +139,7 @@ impl SceneBuilder {
         v: Vec3,
         m: MaterialId,
     ) -> Result<Quad, SceneError> {
-        let quad = Quad::new(q, u, v, m.0).ok_or(SceneError::DegenerateQuad { q, u, v })?;
+        let quad = Quad::new(q, u, v, m).ok_or(SceneError::DegenerateQuad { q, u, v })?;
         self.add_to(g, Object::Quad(quad));
         Ok(quad)
     }
@@ -151,7 +151,7 @@ impl SceneBuilder {
         b: Point3,
         m: MaterialId,
     ) -> Result<GroupId, SceneError> {
-        let quads = box_quads(a, b, m.0).ok_or(SceneError::DegenerateQuad {
+        let quads = box_quads(a, b, m).ok_or(SceneError::DegenerateQuad {
             q: a,
             u: b - a,
             v: Vec3::ZERO,
@@ -190,7 +190,7 @@ impl SceneBuilder {
             Object::Medium(ConstantMedium {
                 boundary,
                 neg_inv_density: -1.0 / density,
-                phase: phase.0,
+                phase,
             }),
         );
         Ok(())
@@ -293,7 +293,7 @@ impl SceneBuilder {
                 Material::Lambertian { albedo }
                 | Material::Isotropic { albedo }
                 | Material::DiffuseLight { emit: albedo, .. } => {
-                    matches!(albedo, Albedo::Texture(t) if *t as usize >= self.textures.len())
+                    matches!(albedo, Albedo::Texture(t) if t.index() >= self.textures.len())
                         .then_some("it refers to a texture that does not exist")
                 }
                 Material::Metal { albedo, fuzz } => (!albedo.is_finite() || !fuzz.is_finite())
@@ -332,8 +332,8 @@ impl SceneBuilder {
                 if let Some(m) = mat {
                     let m = self
                         .materials
-                        .get(m as usize)
-                        .ok_or(SceneError::UnknownMaterial(m))?;
+                        .get(m.index())
+                        .ok_or(SceneError::UnknownMaterial(m.0))?;
                     if let Material::DiffuseLight { two_sided, .. } = m {
                         features.emitters += 1;
                         features.one_sided_emitters |= !two_sided;

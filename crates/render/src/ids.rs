@@ -6,9 +6,29 @@
 pub struct GroupId(pub u32);
 
 /// Index of a material in the scene.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct MaterialId(pub u32);
+
+impl MaterialId {
+    /// The material of a shape that is only an importance target (a shape to aim at, not placed in the
+    /// scene): no material, so the target never counts as an emitter.
+    pub const NONE: MaterialId = MaterialId(u32::MAX);
+
+    /// The position in the scene's materials.
+    #[inline]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
 
 /// Index of a texture in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct TextureId(pub u32);
+
+impl TextureId {
+    /// The position in the scene's textures.
+    #[inline]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}

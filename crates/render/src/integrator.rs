@@ -240,7 +240,7 @@ fn radiance_one_sample(
             l += throughput * scene.background.value(&ray);
             break;
         };
-        let material = &scene.materials[hit.material as usize];
+        let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
             l += throughput * material.emitted(&hit, &scene.textures, ctx);
         }
@@ -308,7 +308,7 @@ fn radiance_mis(
             l += throughput * scene.background.value(&ray);
             break;
         };
-        let material = &scene.materials[hit.material as usize];
+        let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
             let emitted = material.emitted(&hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
@@ -353,7 +353,7 @@ fn radiance_mis(
             if let Some(s_over_p) = ratio(s, p_light) {
                 ctx.stats.rays += 1;
                 if let Some(lh) = scene.hit(&hit.spawn(d, ray.time), ctx) {
-                    let m: &Material = &scene.materials[lh.material as usize];
+                    let m: &Material = &scene.materials[lh.material.index()];
                     if m.is_emitter() {
                         let emitted = m.emitted(&lh, &scene.textures, ctx);
                         let w = power_heuristic(1.0, p_light, 1.0, material_pdf(d));

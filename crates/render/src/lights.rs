@@ -89,7 +89,7 @@ impl Lights {
                 ),
             };
             lights.all.push(book);
-            match scene.materials.get(material as usize) {
+            match scene.materials.get(material.index()) {
                 Some(Material::DiffuseLight { two_sided, .. }) => {
                     lights.emitters.push(match book {
                         LightTarget::Quad { quad, .. } => LightTarget::Quad {

@@ -7,6 +7,7 @@
 //! `scattering_pdf`, the `s(omega)` of the estimator `color * s(omega) / p(omega)`.
 
 use crate::hit::Hit;
+use crate::ids::TextureId;
 use crate::ray::Ray;
 use crate::sampler::Ctx;
 use crate::texture::Texture;
@@ -19,7 +20,7 @@ use rtl_pdf::{CosinePdf, Pdf, SpherePdf, warp};
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Albedo {
     Constant(Color),
-    Texture(u32),
+    Texture(TextureId),
 }
 
 impl Albedo {
@@ -29,7 +30,7 @@ impl Albedo {
             Albedo::Constant(c) => *c,
             Albedo::Texture(i) => {
                 ctx.stats.texture_evaluations += 1;
-                textures[*i as usize].value(|| hit.uv(), hit.p)
+                textures[i.index()].value(|| hit.uv(), hit.p)
             }
         }
     }

@@ -23,7 +23,7 @@ use std::mem::MaybeUninit;
 pub struct ConstantMedium {
     pub boundary: GroupId,
     pub neg_inv_density: f64,
-    pub phase: u32,
+    pub phase: MaterialId,
 }
 
 /// Something a ray can hit.
@@ -150,7 +150,7 @@ pub enum Target {
 
 /// The material of a target that is only a shape to aim at: it names no material, so the target
 /// never counts as an emitter.
-pub const NO_MATERIAL: u32 = u32::MAX;
+pub const NO_MATERIAL: MaterialId = MaterialId::NONE;
 
 /// What a scene calls for, decided once when it is built, so that nothing is simulated that the scene
 /// does not need.

@@ -302,7 +302,7 @@ impl Loader {
         match c.get_ref() {
             ColorSpec::Rgb(c) => Ok(Albedo::Constant(*c)),
             ColorSpec::Texture(name) => match self.textures.iter().find(|(n, _)| n == name) {
-                Some((_, id)) => Ok(Albedo::Texture(id.0)),
+                Some((_, id)) => Ok(Albedo::Texture(*id)),
                 None => fail(
                     c.span(),
                     format!(

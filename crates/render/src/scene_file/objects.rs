@@ -50,7 +50,7 @@ impl Loader {
             .sphere(p.group, d.center.0, r, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
         self.place(into, &p);
-        let world = Sphere::new(p.to_world.point(d.center.0), r, m.0);
+        let world = Sphere::new(p.to_world.point(d.center.0), r, m);
         self.name(d.name, Named::Sphere(world))
     }
 
@@ -96,7 +96,7 @@ impl Loader {
             .or_else(|e| fail(span.clone(), e.to_string()))?;
         self.place(into, &p);
         let t = p.to_world;
-        let world = Quad::new(t.point(q), t.vector(u), t.vector(v), m.0)
+        let world = Quad::new(t.point(q), t.vector(u), t.vector(v), m)
             .map_or(Named::Other("a quad"), Named::Quad);
         self.name(d.name, world)
     }
