@@ -343,3 +343,30 @@ fn a_resume_with_other_settings_names_the_serialised_field_that_differs() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn study_render_refuses_a_sweep_past_u64_and_an_image_past_the_memory() {
+    let d = dir("study");
+    // 4^31: the sweep 1, 4, 16, ... would overflow u64 and never end.
+    refused(
+        &d,
+        &[
+            "study",
+            "render",
+            "--out",
+            "o",
+            "--quick",
+            "--max-spp",
+            "4611686018427387904",
+        ],
+        &["--max-spp 4611686018427387904", "at most"],
+    );
+    refused(
+        &d,
+        &[
+            "study", "render", "--out", "o", "--quick", "--width", "100000",
+        ],
+        &["--width 100000", "65536"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
