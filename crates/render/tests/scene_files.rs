@@ -580,3 +580,50 @@ fn the_scene_hash_is_of_the_content_not_of_the_text() {
     assert_ne!(moved, text);
     assert_ne!(scene_hash(&load(&moved).unwrap().built.scene), a);
 }
+
+#[test]
+fn nesting_past_the_toml_readers_limit_is_an_error_not_a_stack_overflow() {
+    let mut text = BASE.to_string();
+    let mut path = String::from("objects");
+    for _ in 0..400 {
+        text.push_str(&format!("[[{path}]]\ntype = \"group\"\n"));
+        path.push_str(".objects");
+    }
+    let e = load(&text).err().expect("refused");
+    assert!(
+        e.starts_with("some/dir/bad.toml:") && e.contains("deeper"),
+        "{e}"
+    );
+    // Inline nesting too.
+    let inline = format!("{BASE}\nx = {}1{}\n", "[".repeat(5000), "]".repeat(5000));
+    assert!(load(&inline).is_err());
+}
+
+#[test]
+fn albedos_above_one_are_refused_where_they_stand() {
+    // Above 1 a path's throughput grows with every bounce until it overflows to non-finite samples.
+    error_at(
+        &BASE.replace("albedo = 0.73", "albedo = 1e30"),
+        6,
+        "materials.white.albedo",
+        "[0, 1]",
+    );
+    let metal = BASE.replace(
+        "white = { type = \"lambertian\", albedo = 0.73 }",
+        "white = { type = \"metal\", albedo = [0.5, 2, 0.5] }",
+    );
+    error_at(&metal, 6, "materials.white.albedo", "[0, 1]");
+    let checker = BASE
+        .replace(
+            "[materials]",
+            "[textures]\nt = { type = \"checker\", scale = 1, even = 0.5, odd = 3 }\n\n[materials]",
+        )
+        .replace("albedo = 0.73", "albedo = \"t\"");
+    assert!(load(&checker).err().unwrap().contains("[0, 1]; got 3"));
+    // Emission is not a reflectance.
+    let bright = BASE.replace(
+        "[materials]\n",
+        "[materials]\nlamp = { type = \"light\", emit = [1e6, 1e6, 1e6] }\n",
+    );
+    assert!(load(&bright).is_ok());
+}

@@ -145,7 +145,7 @@ pub(super) struct AlbedoDoc {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct MetalDoc {
-    pub(super) albedo: Rgb,
+    pub(super) albedo: Spanned<Rgb>,
     pub(super) fuzz: Option<Spanned<Real>>,
 }
 

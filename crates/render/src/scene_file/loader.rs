@@ -314,14 +314,40 @@ impl Loader {
         }
     }
 
+    /// A reflectance (the albedo of a surface or a medium): a colour or a named texture whose
+    /// components lie in [0, 1], since a surface reflects at most the light it receives (above 1 the
+    /// throughput of a path grows with every bounce until it overflows).
+    pub(super) fn reflectance(&self, c: &Spanned<ColorSpec>) -> Result<Albedo, Fail> {
+        let albedo = self.albedo(c)?;
+        let most = match albedo {
+            Albedo::Constant(c) => c.max_element(),
+            Albedo::Texture(t) => match &self.b.textures[t.index()] {
+                Texture::Solid(c) => c.max_element(),
+                Texture::Checker { even, odd, .. } => even.max_element().max(odd.max_element()),
+                // Images are 8-bit values decoded to [0, 1]; marble is a grey in [0, 1].
+                Texture::Image(_) | Texture::Marble { .. } => 0.0,
+            },
+        };
+        if most > 1.0 {
+            return fail(
+                c.span(),
+                format!(
+                    "an albedo reflects a fraction of the light, so its components must lie in [0, 1]; \
+                     got {most}"
+                ),
+            );
+        }
+        Ok(albedo)
+    }
+
     pub(super) fn material(&self, v: Val<'_>) -> Result<Material, Fail> {
         let Typed { kind, table, span } = typed(v, "material", MATERIAL_TYPES)?;
         Ok(match kind {
             "lambertian" => Material::Lambertian {
-                albedo: self.albedo(&de_table::<AlbedoDoc>(table, &span)?.albedo)?,
+                albedo: self.reflectance(&de_table::<AlbedoDoc>(table, &span)?.albedo)?,
             },
             "isotropic" => Material::Isotropic {
-                albedo: self.albedo(&de_table::<AlbedoDoc>(table, &span)?.albedo)?,
+                albedo: self.reflectance(&de_table::<AlbedoDoc>(table, &span)?.albedo)?,
             },
             "metal" => {
                 let d: MetalDoc = de_table(table, &span)?;
@@ -335,10 +361,18 @@ impl Loader {
                     Some(f) => f.get_ref().0,
                     None => 0.0,
                 };
-                Material::Metal {
-                    albedo: d.albedo.0,
-                    fuzz,
+                let albedo = d.albedo.get_ref().0;
+                if albedo.max_element() > 1.0 {
+                    return fail(
+                        d.albedo.span(),
+                        format!(
+                            "a metal reflects a fraction of the light, so its albedo must lie in \
+                             [0, 1]; got {}",
+                            albedo.max_element()
+                        ),
+                    );
                 }
+                Material::Metal { albedo, fuzz }
             }
             "dielectric" => {
                 let d: DielectricDoc = de_table(table, &span)?;

@@ -193,7 +193,7 @@ impl Loader {
         };
         let d: MediumDoc = de_table(table, &span)?;
         let density = positive(&d.density, "density")?;
-        let albedo = self.albedo(&d.albedo)?;
+        let albedo = self.reflectance(&d.albedo)?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
         let bounds = self.b.group();
         self.object(bounds, boundary, p.to_world)?;

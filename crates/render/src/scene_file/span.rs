@@ -84,7 +84,12 @@ impl SceneFileError {
                 line,
                 col,
             },
-            message: e.message().trim_end().to_owned(),
+            message: match e.message().trim_end() {
+                "recursion limit" => "the file nests tables or arrays deeper than the TOML reader \
+                                      allows (recursion limit)"
+                    .to_owned(),
+                m => m.to_owned(),
+            },
         }
     }
 }
