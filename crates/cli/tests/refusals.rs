@@ -370,3 +370,46 @@ fn study_render_refuses_a_sweep_past_u64_and_an_image_past_the_memory() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_time_budget_from_the_last_sample_index_is_refused_not_an_empty_render() {
+    let d = dir("lastindex");
+    let last = u64::MAX.to_string();
+    refused(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "8",
+            "--time",
+            "1s",
+            "--sample-offset",
+            &last,
+        ],
+        &[
+            "--sample-offset 18446744073709551615",
+            "no sample index is left",
+        ],
+    );
+    // Just below it, a time budget renders the one sample there is.
+    let below = (u64::MAX - 1).to_string();
+    ok(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "8",
+            "--time",
+            "5s",
+            "--sample-offset",
+            &below,
+            "--part",
+            "p",
+        ],
+    );
+    let p = Checkpoint::read(&d.join("p")).unwrap();
+    assert_eq!((p.start, p.acc.samples), (u64::MAX - 1, u64::MAX));
+    let _ = std::fs::remove_dir_all(&d);
+}
