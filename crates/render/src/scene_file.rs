@@ -57,6 +57,13 @@
 //! `dielectric`, `light`, `isotropic`.
 //!
 //! Every error names the place: `FILE:LINE:COL: field objects[2].radius: message`.
+//!
+//! Values obey the rules of [`crate::limits`], the same as the command line's: finite numbers of
+//! magnitude at most 1e30, positive quantities at least 1e-30, albedos in [0, 1], `max_depth` 1 to
+//! 10 000, aspect ratios within [1/65536, 65536]. [`load_str`] is the entry point without the file
+//! system (the fuzz target's); [`load_file`] reads a file. The parts: `doc.rs` (the document's serde
+//! types), `span.rs` (places and the typed [`SceneFileError`]), `values.rs` (numbers, vectors,
+//! colours), `loader.rs` (the top-level tables) and `objects.rs` (one function per object kind).
 
 mod doc;
 mod loader;
