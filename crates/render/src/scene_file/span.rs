@@ -31,7 +31,7 @@ impl fmt::Display for Place {
 pub struct Field(pub String);
 
 impl fmt::Display for Field {
-    /// `field `objects[2].radius`: `, or nothing for the file as a whole.
+    /// "field `objects[2].radius`: ", or nothing for the file as a whole.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.0.is_empty() {
             Ok(())
