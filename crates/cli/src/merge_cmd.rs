@@ -7,6 +7,7 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use rtl_render::checkpoint::{Checkpoint, merge};
+use rtl_render::limits;
 use rtl_render::output::{
     OutputFile, OutputKind, Transfer, check_outputs, write_linear, write_png,
 };
@@ -67,8 +68,37 @@ fn check_merge_outputs(args: &MergeArgs) -> Result<()> {
     Ok(())
 }
 
+/// The parts are held in memory together (each as its bytes while it is read and then as its
+/// accumulation, about the same size): refuse before reading if they cannot fit in the memory the
+/// machine has available, rather than abort on allocation.
+fn check_merge_memory(args: &MergeArgs) -> Result<()> {
+    let mut total: u64 = 0;
+    for p in &args.parts {
+        let len = std::fs::metadata(p)
+            .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", p.display()))?
+            .len();
+        total = total.saturating_add(len);
+    }
+    // The largest part is held twice while it is parsed, the merged result once more.
+    let needed = total.saturating_mul(2);
+    if let Some(available) = limits::available_memory()
+        && needed > available
+    {
+        bail!(
+            "the {} part(s) hold {} and merging them needs about {}, but this machine has {} available \
+             (MemAvailable in /proc/meminfo)",
+            args.parts.len(),
+            limits::Bytes(total),
+            limits::Bytes(needed),
+            limits::Bytes(available)
+        );
+    }
+    Ok(())
+}
+
 pub fn run(args: MergeArgs) -> Result<()> {
     check_merge_outputs(&args)?;
+    check_merge_memory(&args)?;
     let mut parts = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
         parts.push((p.display().to_string(), Checkpoint::read(p)?));

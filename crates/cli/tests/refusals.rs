@@ -413,3 +413,17 @@ fn a_time_budget_from_the_last_sample_index_is_refused_not_an_empty_render() {
     assert_eq!((p.start, p.acc.samples), (u64::MAX - 1, u64::MAX));
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn parts_larger_than_the_memory_are_refused_before_they_are_read() {
+    let d = dir("mergemem");
+    // A sparse file: 1.1 TB by its length, nothing on disk.
+    let f = std::fs::File::create(d.join("huge")).unwrap();
+    f.set_len(1 << 40).unwrap();
+    refused(
+        &d,
+        &["merge", "huge", "-o", "m.png"],
+        &["the 1 part(s) hold 1.1 TB", "MemAvailable"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
