@@ -7,7 +7,10 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use rtl_render::checkpoint::{Checkpoint, merge};
-use rtl_render::output::{Transfer, write_linear, write_png};
+use rtl_render::limits;
+use rtl_render::output::{
+    OutputFile, OutputKind, Transfer, check_outputs, write_linear, write_png,
+};
 use std::path::PathBuf;
 
 #[derive(Args)]
@@ -34,13 +37,83 @@ pub struct MergeArgs {
     pub allow_gaps: bool,
 }
 
+/// Every file the merge writes, checked before any part is read: named right, writable, each its own
+/// file, and none of them one of the parts.
+fn check_merge_outputs(args: &MergeArgs) -> Result<()> {
+    let mut outputs = vec![OutputFile {
+        flag: "-o",
+        path: args.output.clone(),
+        kind: OutputKind::Png,
+    }];
+    if let Some(lin) = &args.linear {
+        outputs.push(OutputFile {
+            flag: "--linear",
+            path: lin.clone(),
+            kind: OutputKind::Linear,
+        });
+    }
+    if let Some(p) = &args.part {
+        outputs.push(OutputFile {
+            flag: "--part",
+            path: p.clone(),
+            kind: OutputKind::Checkpoint,
+        });
+    }
+    let inputs: Vec<(String, PathBuf)> = args
+        .parts
+        .iter()
+        .map(|p| (format!("the part {}", p.display()), p.clone()))
+        .collect();
+    check_outputs(&outputs, &inputs)?;
+    Ok(())
+}
+
+/// The parts are held in memory together (each as its bytes while it is read and then as its
+/// accumulation, about the same size): refuse before reading if they cannot fit in the memory the
+/// machine has available, rather than abort on allocation.
+fn check_merge_memory(args: &MergeArgs) -> Result<()> {
+    let mut total: u64 = 0;
+    for p in &args.parts {
+        let len = std::fs::metadata(p)
+            .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", p.display()))?
+            .len();
+        total = total.saturating_add(len);
+    }
+    // The largest part is held twice while it is parsed, the merged result once more.
+    let needed = total.saturating_mul(2);
+    if let Some(available) = limits::available_memory()
+        && needed > available
+    {
+        bail!(
+            "the {} part(s) hold {} and merging them needs about {}, but this machine has {} available \
+             (MemAvailable in /proc/meminfo)",
+            args.parts.len(),
+            limits::Bytes(total),
+            limits::Bytes(needed),
+            limits::Bytes(available)
+        );
+    }
+    Ok(())
+}
+
 pub fn run(args: MergeArgs) -> Result<()> {
+    check_merge_outputs(&args)?;
+    check_merge_memory(&args)?;
     let mut parts = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
         parts.push((p.display().to_string(), Checkpoint::read(p)?));
     }
-    let merged = merge(&parts).map_err(anyhow::Error::msg)?;
+    let merged = merge(&parts)?;
     let ck = &merged.checkpoint;
+    if ck
+        .acc
+        .count
+        .iter()
+        .zip(&ck.acc.dropped)
+        .all(|(c, d)| c + d == 0)
+    {
+        bail!("the parts hold no samples (each covers an empty range): no image to make");
+    }
     if !merged.gaps.is_empty() {
         let gaps: Vec<String> = merged
             .gaps

@@ -127,7 +127,8 @@ pub fn run(
         bail!("internal: accumulation before its first sample");
     }
     let began = Instant::now();
-    let deadline = plan.budget.map(|b| began + b);
+    // A budget past the end of time (`--time 100000000000d`) is no deadline at all.
+    let deadline = plan.budget.and_then(|b| began.checked_add(b));
     let h = acc.height as u64;
     let mut stats = Stats::default();
     // Save once before the first pass, so an unwritable path shows at once, not after the work.
@@ -155,7 +156,7 @@ pub fn run(
             }
             n = n.min(fit);
         }
-        let (k0, k1) = (acc.samples, (acc.samples + n).min(plan.end));
+        let (k0, k1) = (acc.samples, acc.samples.saturating_add(n).min(plan.end));
         next.clone_from(acc);
         let t0 = Instant::now();
         let on_row = || {

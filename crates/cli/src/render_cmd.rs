@@ -5,10 +5,13 @@ use crate::progressive::{self, Ending, Plan, Saving};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rtl_render::checkpoint::{Checkpoint, Identity, scene_hash};
+use rtl_render::checkpoint::{Checkpoint, Identity};
 use rtl_render::integrator::Strategy;
+use rtl_render::limits::{self, MAX_SIDE, MAX_THREADS};
+use rtl_render::output::{OutputFile, OutputKind, check_outputs};
 use rtl_render::output::{Transfer, write_linear, write_png};
-use rtl_render::render::{RenderSettings, Renderer};
+use rtl_render::render::{Accumulator, RenderSettings, Renderer};
+use rtl_render::sampler::Stats;
 use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
 use std::path::{Path, PathBuf};
@@ -33,7 +36,7 @@ pub struct RenderArgs {
     /// Seed of every random number: the same seed gives the same image for any thread count.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Worker threads (default: all cores).
+    /// Worker threads, 1 to 1024 (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
     /// How diffuse bounces choose directions: uniform, cosine, light (biased), mixture (the book's),
@@ -43,12 +46,9 @@ pub struct RenderArgs {
     /// `mis` without Russian roulette.
     #[arg(long)]
     pub no_rr: bool,
-    /// `mis` with area sampling of rectangular lights instead of spherical rectangles.
-    #[arg(long)]
-    pub no_sph_rect: bool,
     /// `mis` with spherical-rectangle sampling of rectangular lights (off by default: it does not pay
     /// on the Cornell box).
-    #[arg(long, conflicts_with = "no_sph_rect")]
+    #[arg(long)]
     pub sph_rect: bool,
     /// `mis` with independent random numbers instead of low-discrepancy samples.
     #[arg(long)]
@@ -121,7 +121,7 @@ fn load(arg: &str, opts: &SceneOptions) -> Result<Loaded> {
 
 /// A scene file (`.toml`).
 fn load_file(path: &Path) -> Result<Loaded> {
-    let file = rtl_render::scene_file::load_file(path).map_err(anyhow::Error::msg)?;
+    let file = rtl_render::scene_file::load_file(path)?;
     let name = path
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
@@ -265,117 +265,149 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
     );
 }
 
-pub fn run(args: RenderArgs) -> Result<()> {
-    if args.list {
-        list();
-        return Ok(());
-    }
-    let Some(scene_arg) = args.scene.as_deref() else {
-        bail!("name a scene to render (rtl render --list shows the built-in ones) or a scene file");
-    };
+/// Everything `rtl render` was asked for, resolved from the flags and the scene and checked, before any
+/// work starts.
+struct Job {
+    loaded: Loaded,
+    settings: RenderSettings,
+    /// Samples `[start, end)` of every pixel.
+    start: u64,
+    end: u64,
+    threads: usize,
+    output: PathBuf,
+    /// Where the accumulation is saved (`--checkpoint`, else `--resume`).
+    saving: Option<PathBuf>,
+}
+
+/// Resolve and check every flag against the scene: what is accepted renders, the rest is refused here,
+/// naming the flag, the value and the limit.
+fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
     let opts = SceneOptions {
         texture: args.texture.clone(),
     };
     let loaded = load(scene_arg, &opts)?;
     let scene = &loaded.built.scene;
     let width = args.width.unwrap_or(loaded.width);
-    if width == 0 {
-        bail!("--width must be at least 1");
+    if !(1..=MAX_SIDE).contains(&width) {
+        bail!("--width {width}: the width must be 1 to {MAX_SIDE} pixels");
     }
+    if args.spp == Some(0) {
+        bail!("--spp 0: the samples per pixel must be at least 1");
+    }
+    if args.time.is_some_and(|t| t.is_zero()) {
+        bail!("--time 0: the time budget must be positive");
+    }
+    if args.checkpoint_every.is_zero() {
+        bail!("--checkpoint-every 0: the interval must be positive");
+    }
+    let max_depth = args.max_depth.unwrap_or(scene.max_depth);
+    if let Some(problem) = limits::max_depth_problem(max_depth) {
+        bail!("--max-depth {max_depth}: the maximum depth {problem}");
+    }
+    let threads = match args.threads {
+        None => 0,
+        Some(t) if (1..=MAX_THREADS).contains(&t) => t,
+        Some(t) => bail!(
+            "--threads {t}: the number of threads must be 1 to {MAX_THREADS} (leave it out for all \
+             cores)"
+        ),
+    };
     // With only a time budget, render until the time is up.
     let spp = match (args.spp, args.time) {
         (Some(n), _) => n,
-        (None, Some(_)) => u64::MAX / 2 - args.sample_offset.min(u64::MAX / 2),
+        (None, Some(_)) => u64::MAX - args.sample_offset,
         (None, None) => loaded.spp,
     };
+    let start = args.sample_offset;
     if spp == 0 {
-        bail!("--spp must be at least 1");
+        bail!(
+            "--sample-offset {start}: no sample index is left after it (they end at {})",
+            u64::MAX
+        );
     }
-    let end = args
-        .sample_offset
-        .checked_add(spp)
-        .context("--sample-offset plus --spp is too large")?;
+    let Some(end) = start.checked_add(spp) else {
+        bail!(
+            "--sample-offset {start} plus --spp {spp} is past the last sample index {}",
+            u64::MAX
+        );
+    };
     let settings = RenderSettings {
         width,
-        max_depth: args.max_depth.unwrap_or(scene.max_depth),
+        max_depth,
         seed: args.seed,
         strategy: match args.strategy {
             Strategy::Mis(mut o) => {
                 o.russian_roulette &= !args.no_rr;
-                o.spherical_rectangles =
-                    (o.spherical_rectangles || args.sph_rect) && !args.no_sph_rect;
+                o.spherical_rectangles |= args.sph_rect;
                 o.low_discrepancy &= !args.no_lds;
                 Strategy::Mis(o)
             }
             other => other,
         },
     };
-    if args.explain {
-        explain(&loaded, scene, &settings, args.spp.unwrap_or(loaded.spp));
-        return Ok(());
-    }
-    for n in &loaded.built.notices {
-        eprintln!("note: {n}");
-    }
-    let threads = args.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .context("cannot start the thread pool")?;
     let output = args
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{}.png", loaded.name)));
-
-    let renderer = Renderer::new(scene, settings);
-    let mut acc = renderer.accumulator();
-    let (w, h) = (acc.width, acc.height);
-    let identity = Identity {
-        scene: loaded.name.clone(),
-        scene_hash: scene_hash(scene),
-        settings: format!("{settings:?}"),
-        width: w,
-        height: h,
+    let saving = args.checkpoint.clone().or_else(|| args.resume.clone());
+    let job = Job {
+        loaded,
+        settings,
+        start,
+        end,
+        threads,
+        output,
+        saving,
     };
-    let start = args.sample_offset;
-    acc.samples = start;
-    if let Some(path) = &args.resume {
-        let ck = Checkpoint::read(path)?;
-        let diffs = ck
-            .identity
-            .differences(&identity, "the checkpoint", "this render");
-        if !diffs.is_empty() {
-            bail!(
-                "{} is a checkpoint of another render: {}",
-                path.display(),
-                diffs.join("; ")
-            );
-        }
-        if ck.start != start {
-            bail!(
-                "{} holds samples from {} on, but --sample-offset is {start}",
-                path.display(),
-                ck.start
-            );
-        }
-        if ck.acc.samples > end {
-            bail!(
-                "{} already holds {} spp, more than the {spp} asked for (--spp is the total)",
-                path.display(),
-                ck.spp()
-            );
-        }
-        if ck.rtl_version != env!("CARGO_PKG_VERSION") {
-            eprintln!(
-                "note: {} was written by rtl {}, this is {}",
-                path.display(),
-                ck.rtl_version,
-                env!("CARGO_PKG_VERSION")
-            );
-        }
-        eprintln!("resuming {} at {} spp", path.display(), ck.spp());
-        acc = ck.acc;
+    if !args.explain {
+        check_job_outputs(args, &job, scene_arg)?;
     }
+    Ok(job)
+}
+
+/// Every file the render will write: named right, in a directory that exists and can be written, each
+/// its own file, and none of them an input.
+fn check_job_outputs(args: &RenderArgs, job: &Job, scene_arg: &str) -> Result<()> {
+    let mut outputs = vec![OutputFile {
+        flag: if args.output.is_some() {
+            "-o"
+        } else {
+            "the default output"
+        },
+        path: job.output.clone(),
+        kind: OutputKind::Png,
+    }];
+    if let Some(lin) = &args.linear {
+        outputs.push(OutputFile {
+            flag: "--linear",
+            path: lin.clone(),
+            kind: OutputKind::Linear,
+        });
+    }
+    if let Some(path) = &job.saving {
+        outputs.push(OutputFile {
+            flag: if args.checkpoint.is_some() {
+                "--checkpoint"
+            } else {
+                "--resume"
+            },
+            path: path.clone(),
+            kind: OutputKind::Checkpoint,
+        });
+    }
+    let mut inputs = Vec::new();
+    if Path::new(scene_arg).is_file() {
+        inputs.push(("the scene file".to_string(), PathBuf::from(scene_arg)));
+    }
+    if let Some(t) = &args.texture {
+        inputs.push(("--texture".to_string(), t.clone()));
+    }
+    if let (Some(c), Some(r)) = (&args.checkpoint, &args.resume)
+        && c != r
+    {
+        inputs.push(("--resume".to_string(), r.clone()));
+    }
+    check_outputs(&outputs, &inputs)?;
     if let Some(c) = &args.checkpoint
         && c.exists()
         && args.resume.as_ref() != Some(c)
@@ -385,30 +417,85 @@ pub fn run(args: RenderArgs) -> Result<()> {
             c.display()
         );
     }
-    let saving = args
-        .checkpoint
-        .clone()
-        .or_else(|| args.resume.clone())
-        .map(|path| Saving {
-            path,
-            every: args.checkpoint_every,
-            identity: identity.clone(),
-        });
-    let plan = Plan {
-        start,
-        end,
-        budget: args.time,
-        pass_time: args
-            .checkpoint_every
-            .clamp(Duration::from_millis(20), Duration::from_secs(1)),
-        saving,
-        progress_by_time: args.time.is_some() && args.spp.is_none(),
+    Ok(())
+}
+
+/// The image's buffers, sized before they are allocated: refused if a side is too long or they do not
+/// fit in the machine's available memory.
+fn check_size(args: &RenderArgs, w: usize, h: usize) -> Result<()> {
+    limits::check_image(w, h, limits::available_memory()).map_err(|e| {
+        let from = match args.width {
+            Some(width) => format!("--width {width}"),
+            None => "the scene's width".to_string(),
+        };
+        anyhow::anyhow!("{from} and the scene's aspect ratio: {e}")
+    })?;
+    Ok(())
+}
+
+/// The accumulation to continue: empty at sample `start`, or the `--resume` checkpoint's after checking
+/// that it is of this render.
+fn open_or_resume(
+    args: &RenderArgs,
+    job: &Job,
+    renderer: &Renderer,
+    identity: &Identity,
+) -> Result<Accumulator> {
+    let (w, h) = (renderer.camera.width, renderer.camera.height);
+    let Some(path) = &args.resume else {
+        let mut acc = Accumulator::new(w, h);
+        acc.samples = job.start;
+        return Ok(acc);
     };
+    let ck = Checkpoint::read(path)?;
+    let diffs = ck
+        .identity
+        .differences(identity, "the checkpoint", "this render");
+    if !diffs.is_empty() {
+        bail!(
+            "{} is a checkpoint of another render: {}",
+            path.display(),
+            diffs.join("; ")
+        );
+    }
+    if ck.start != job.start {
+        bail!(
+            "{} holds samples from {} on, but --sample-offset is {}",
+            path.display(),
+            ck.start,
+            job.start
+        );
+    }
+    if ck.acc.samples > job.end {
+        bail!(
+            "{} already holds {} spp, more than the {} asked for (--spp is the total)",
+            path.display(),
+            ck.spp(),
+            job.end - job.start
+        );
+    }
+    if ck.rtl_version != env!("CARGO_PKG_VERSION") {
+        eprintln!(
+            "note: {} was written by rtl {}, this is {}",
+            path.display(),
+            ck.rtl_version,
+            env!("CARGO_PKG_VERSION")
+        );
+    }
+    eprintln!("resuming {} at {} spp", path.display(), ck.spp());
+    Ok(ck.acc)
+}
+
+/// The progress bar: samples done of those asked for, or milliseconds of the budget.
+fn progress_bar(args: &RenderArgs, job: &Job, plan: &Plan, acc: &Accumulator) -> ProgressBar {
+    let h = acc.height as u64;
     let bar = match args.time {
-        Some(t) if plan.progress_by_time => ProgressBar::new(t.as_millis() as u64),
+        Some(t) if plan.progress_by_time => {
+            ProgressBar::new(u64::try_from(t.as_millis()).unwrap_or(u64::MAX))
+        }
         _ => {
-            let b = ProgressBar::new(h as u64 * spp);
-            b.set_position(h as u64 * (acc.samples - start));
+            let b = ProgressBar::new(h.saturating_mul(job.end - job.start));
+            b.set_position(h.saturating_mul(acc.samples - job.start));
             b
         }
     };
@@ -418,32 +505,117 @@ pub fn run(args: RenderArgs) -> Result<()> {
         )
         .expect("valid progress template"),
     );
-    bar.set_prefix(format!("{} {w}x{h}", loaded.name));
+    bar.set_prefix(format!("{} {}x{}", job.loaded.name, acc.width, acc.height));
+    bar
+}
+
+pub fn run(args: RenderArgs) -> Result<()> {
+    if args.list {
+        list();
+        return Ok(());
+    }
+    let Some(scene_arg) = args.scene.as_deref() else {
+        bail!("name a scene to render (rtl render --list shows the built-in ones) or a scene file");
+    };
+    let job = settings(&args, scene_arg)?;
+    let scene = &job.loaded.built.scene;
+    if args.explain {
+        explain(
+            &job.loaded,
+            scene,
+            &job.settings,
+            args.spp.unwrap_or(job.loaded.spp),
+        );
+        return Ok(());
+    }
+    let renderer = Renderer::new(scene, job.settings);
+    let (w, h) = (renderer.camera.width, renderer.camera.height);
+    check_size(&args, w, h)?;
+    let identity = Identity::new(&job.loaded.name, scene, &job.settings, w, h);
+    let mut acc = open_or_resume(&args, &job, &renderer, &identity)?;
+    for n in &job.loaded.built.notices {
+        eprintln!("note: {n}");
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(job.threads)
+        .build()
+        .context("cannot start the thread pool")?;
+    let plan = Plan {
+        start: job.start,
+        end: job.end,
+        budget: args.time,
+        pass_time: args
+            .checkpoint_every
+            .clamp(Duration::from_millis(20), Duration::from_secs(1)),
+        saving: job.saving.clone().map(|path| Saving {
+            path,
+            every: args.checkpoint_every,
+            identity: identity.clone(),
+        }),
+        progress_by_time: args.time.is_some() && args.spp.is_none(),
+    };
+    let bar = progress_bar(&args, &job, &plan, &acc);
     progressive::catch_interrupts()?;
     let start_time = Instant::now();
     let (stats, ending) = progressive::run(&renderer, &pool, &mut acc, &plan, &bar)?;
     bar.finish_and_clear();
     let secs = start_time.elapsed().as_secs_f64();
+    report(
+        &args,
+        &job,
+        &plan,
+        &acc,
+        &stats,
+        ending,
+        secs,
+        pool.current_num_threads(),
+    )
+}
+
+/// Save the checkpoint and the images, then say what was done.
+#[allow(clippy::too_many_arguments)]
+fn report(
+    args: &RenderArgs,
+    job: &Job,
+    plan: &Plan,
+    acc: &Accumulator,
+    stats: &Stats,
+    ending: Ending,
+    secs: f64,
+    threads: usize,
+) -> Result<()> {
+    let start = job.start;
     let spp = acc.samples - start;
     match ending {
         Ending::Done => {}
         Ending::OutOfTime => eprintln!("time budget spent: stopping at {spp} spp"),
         Ending::Interrupted => eprintln!("stopped at {spp} spp (whole passes only)"),
     }
-    if spp == 0 {
-        eprintln!("warning: no pass finished: the image is black");
-    }
-
     // The checkpoint first (it holds the work; `rtl merge FILE` makes the image again), then the image
     // even if the checkpoint could not be written.
-    let saved = plan.saving.as_ref().map(|s| s.save(&acc, start));
+    let saved = plan.saving.as_ref().map(|s| s.save(acc, start));
+    if spp == 0 {
+        if let Some(saved) = saved {
+            saved?;
+        }
+        if ending == Ending::Interrupted {
+            eprintln!("no pass finished: no image written");
+            std::process::exit(130);
+        }
+        bail!(
+            "no pass finished within --time {:?}: no image written (a pass of one sample per pixel \
+             takes longer; give more time)",
+            args.time.unwrap_or_default()
+        );
+    }
+    let (w, h) = (acc.width, acc.height);
     let image = acc.image();
     let transfer = if args.srgb {
         Transfer::Srgb
     } else {
         Transfer::Gamma2
     };
-    write_png(&output, w, h, &image, transfer).map_err(anyhow::Error::msg)?;
+    write_png(&job.output, w, h, &image, transfer).map_err(anyhow::Error::msg)?;
     if let Some(lin) = &args.linear {
         write_linear(lin, w, h, &image).map_err(anyhow::Error::msg)?;
     }
@@ -457,19 +629,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
     }
     let samples = stats.samples as f64;
     eprintln!(
-        "{}: {w}x{h}, {spp} spp{}, {} threads, {:.2} s, {:.0}k samples/s, {:.2}M rays/s, {} non-finite samples dropped -> {}{}",
-        loaded.name,
+        "{}: {w}x{h}, {spp} spp{}, {threads} threads, {secs:.2} s, {:.0}k samples/s, {:.2}M rays/s, {} non-finite samples dropped -> {}{}",
+        job.loaded.name,
         if start > 0 {
             format!(" (samples {start}..{})", acc.samples)
         } else {
             String::new()
         },
-        pool.current_num_threads(),
-        secs,
         samples / secs / 1e3,
         stats.rays as f64 / secs / 1e6,
         stats.non_finite,
-        output.display(),
+        job.output.display(),
         args.linear
             .as_ref()
             .map(|p| format!(", {}", p.display()))
@@ -500,4 +670,121 @@ pub fn run(args: RenderArgs) -> Result<()> {
         std::process::exit(130);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+    use proptest::prelude::*;
+    use proptest::strategy::Strategy as _;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: RenderArgs,
+    }
+
+    /// Flag values from every class: zero, one, ordinary, the limits and one past them, the type's
+    /// maximum, negative and not a number at all.
+    fn value() -> impl proptest::strategy::Strategy<Value = String> {
+        prop_oneof![
+            Just("0".to_string()),
+            Just("1".to_string()),
+            Just("16".to_string()),
+            Just("1024".to_string()),
+            Just("1025".to_string()),
+            Just("10000".to_string()),
+            Just("10001".to_string()),
+            Just("65536".to_string()),
+            Just("65537".to_string()),
+            Just("4294967296".to_string()),
+            Just("18446744073709551615".to_string()),
+            Just("-1".to_string()),
+            Just("nan".to_string()),
+            Just("1e300".to_string()),
+            (0u64..100).prop_map(|x| x.to_string()),
+        ]
+    }
+
+    fn duration() -> impl proptest::strategy::Strategy<Value = String> {
+        prop_oneof![
+            Just("0".to_string()),
+            Just("0s".to_string()),
+            Just("1ms".to_string()),
+            Just("5s".to_string()),
+            Just("1e30".to_string()),
+            Just("100000000000000d".to_string()),
+            Just("-3".to_string()),
+            Just("inf".to_string()),
+        ]
+    }
+
+    proptest! {
+        // A fixed seed: the same cases every run (a failure found once is also kept in
+        // proptest-regressions/).
+        #![proptest_config(ProptestConfig {
+            cases: 256,
+            rng_seed: proptest::test_runner::RngSeed::Fixed(12),
+            ..ProptestConfig::default()
+        })]
+
+        /// Whatever the flags, settings are refused naming a flag, or accepted within every limit,
+        /// and the image they describe is sized without a panic.
+        #[test]
+        fn every_flag_combination_is_refused_naming_a_flag_or_accepted_within_the_limits(
+            flags in proptest::collection::vec(
+                (
+                    prop_oneof![
+                        Just("--width"), Just("--spp"), Just("--max-depth"), Just("--threads"),
+                        Just("--sample-offset"), Just("--seed"),
+                    ],
+                    value(),
+                ),
+                0..4,
+            ),
+            times in proptest::collection::vec(
+                (prop_oneof![Just("--time"), Just("--checkpoint-every")], duration()),
+                0..2,
+            ),
+        ) {
+            let dir = std::env::temp_dir().join(format!("rtl-props-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let out = dir.join("x.png").display().to_string();
+            let mut argv = vec!["rtl".to_string(), "cornell".into(), "-o".into(), out];
+            let mut seen = Vec::new();
+            for (flag, v) in flags.iter().chain(times.iter()) {
+                if seen.contains(flag) {
+                    continue;
+                }
+                seen.push(*flag);
+                argv.push(flag.to_string());
+                argv.push(v.clone());
+            }
+            // clap refuses what does not parse as the flag's type, naming it: nothing to check here.
+            let Ok(cli) = Cli::try_parse_from(&argv) else {
+                return Ok(());
+            };
+            match settings(&cli.args, "cornell") {
+                Err(e) => {
+                    let msg = format!("{e:#}");
+                    prop_assert!(
+                        seen.iter().any(|f| msg.contains(f)),
+                        "{argv:?}: {msg}"
+                    );
+                }
+                Ok(job) => {
+                    prop_assert!((1..=MAX_SIDE).contains(&job.settings.width));
+                    prop_assert!(limits::max_depth_problem(job.settings.max_depth).is_none());
+                    prop_assert!(job.start < job.end);
+                    prop_assert!(job.threads <= MAX_THREADS);
+                    let r = Renderer::new(&job.loaded.built.scene, job.settings);
+                    // A refusal names --width (the only flag that sizes the image).
+                    if let Err(e) = check_size(&cli.args, r.camera.width, r.camera.height) {
+                        prop_assert!(format!("{e:#}").contains("--width"), "{e:#}");
+                    }
+                }
+            }
+        }
+    }
 }

@@ -7,7 +7,7 @@ use crate::vec::{Point3, Vec3};
 use rtl_pdf::warp;
 
 /// How a scene places its camera (the book's public `camera` members).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct CameraSettings {
     /// Width over height.
     pub aspect_ratio: f64,

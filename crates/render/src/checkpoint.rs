@@ -17,17 +17,17 @@
 //! | width*height pixels, rows from the top: sum r, g, b f64 | count u64 | dropped u64 | FNV-1a 64 checksum
 //! ```
 
-use crate::render::Accumulator;
+use crate::limits::MAX_SIDE;
+use crate::render::{Accumulator, RenderSettings};
 use crate::scene::Scene;
 use crate::vec::Color;
-use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The first eight bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"RTLPART\0";
 /// The version of the format written; files of other versions are refused.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// 64-bit FNV-1a (Fowler, Noll and Vo): `h = (h xor byte) * p` from the offset basis. Every step is a
 /// bijection of the state, so any change of a single byte changes the hash.
@@ -62,21 +62,31 @@ impl Default for Fnv1a {
     }
 }
 
-impl fmt::Write for Fnv1a {
-    fn write_str(&mut self, s: &str) -> fmt::Result {
-        self.update(s.as_bytes());
+impl std::io::Write for Fnv1a {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.update(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
         Ok(())
     }
 }
 
-/// A hash of everything a scene is (shapes, materials, textures, camera, background), taken over its
-/// `Debug` form without building the string: equal scenes hash equal, and an edited scene file, another
-/// texture or another scene hashes differently.
+/// A hash of everything a scene is (shapes, materials, textures with their pixels, camera, background,
+/// importance targets), taken over its serde serialisation (JSON, streamed into the hasher without
+/// building the text): equal scenes hash equal, and an edited scene file, another texture or another
+/// scene hashes differently. What is derived from the rest (BVHs, the fixed Perlin table) is left out.
 pub fn scene_hash(scene: &Scene) -> u64 {
     let mut h = Fnv1a::new();
-    // Writing into the hasher cannot fail.
-    let _ = fmt::write(&mut h, format_args!("{scene:?}"));
+    // Writing into the hasher cannot fail, and every number of a scene is finite.
+    serde_json::to_writer(&mut h, scene).expect("a scene serialises");
     h.0
+}
+
+/// The settings that change the image, serialised (JSON) so that every field takes part, including
+/// ones added later.
+pub fn settings_record(settings: &RenderSettings) -> String {
+    serde_json::to_string(settings).expect("settings serialise")
 }
 
 /// What a checkpoint is an image of: two checkpoints may be continued or merged only if these are equal.
@@ -86,14 +96,30 @@ pub struct Identity {
     pub scene: String,
     /// [`scene_hash`] of the scene.
     pub scene_hash: u64,
-    /// The `Debug` form of the settings that change the image (`RenderSettings`), so that every field,
-    /// including ones added later, takes part.
+    /// [`settings_record`] of the settings.
     pub settings: String,
     pub width: usize,
     pub height: usize,
 }
 
 impl Identity {
+    /// The identity of a render of `scene` (named `name`) with `settings` at `width x height`.
+    pub fn new(
+        name: &str,
+        scene: &Scene,
+        settings: &RenderSettings,
+        width: usize,
+        height: usize,
+    ) -> Self {
+        Identity {
+            scene: name.to_string(),
+            scene_hash: scene_hash(scene),
+            settings: settings_record(settings),
+            width,
+            height,
+        }
+    }
+
     /// What differs between `self` (called `a` in the phrases) and `other` (called `b`), one phrase
     /// each; empty if they are the same render.
     pub fn differences(&self, other: &Identity, a: &str, b: &str) -> Vec<String> {
@@ -112,23 +138,9 @@ impl Identity {
             ));
         }
         if self.settings != other.settings {
-            match (fields(&self.settings), fields(&other.settings)) {
-                (Some(a), Some(b)) => {
-                    for (name, va) in &a {
-                        match b.iter().find(|(n, _)| n == name) {
-                            Some((_, vb)) if vb != va => {
-                                out.push(format!("{name}: {va} in {na}, {vb} in {nb}"))
-                            }
-                            None => out.push(format!("{name}: {va} in {na}, absent in {nb}")),
-                            _ => {}
-                        }
-                    }
-                    for (name, vb) in &b {
-                        if !a.iter().any(|(n, _)| n == name) {
-                            out.push(format!("{name}: absent in {na}, {vb} in {nb}"));
-                        }
-                    }
-                }
+            let parse = |s: &str| serde_json::from_str::<serde_json::Value>(s).ok();
+            match (parse(&self.settings), parse(&other.settings)) {
+                (Some(a), Some(b)) => value_differences("", &a, &b, na, nb, &mut out),
                 _ => out.push(format!(
                     "settings: {} in {na}, {} in {nb}",
                     self.settings, other.settings
@@ -148,33 +160,41 @@ impl Identity {
     }
 }
 
-/// The `name: value` fields of a derived `Debug` form `Name { a: 1, b: X { .. } }`, split at top-level
-/// commas; `None` if it does not look like one.
-fn fields(debug: &str) -> Option<Vec<(String, String)>> {
-    let open = debug.find('{')?;
-    let body = debug[open + 1..].trim_end().strip_suffix('}')?.trim();
-    let mut out = Vec::new();
-    let (mut depth, mut from) = (0i32, 0);
-    let mut push = |piece: &str| -> Option<()> {
-        let (n, v) = piece.split_once(':')?;
-        out.push((n.trim().to_string(), v.trim().to_string()));
-        Some(())
-    };
-    for (i, c) in body.char_indices() {
-        match c {
-            '(' | '[' | '{' => depth += 1,
-            ')' | ']' | '}' => depth -= 1,
-            ',' if depth == 0 => {
-                push(&body[from..i])?;
-                from = i + 1;
-            }
-            _ => {}
+/// `name: va in A, vb in B` for every field of two serialised settings that differs, descending into
+/// fields that are tables on both sides (`strategy.Mis.russian_roulette: true in A, false in B`).
+fn value_differences(
+    path: &str,
+    a: &serde_json::Value,
+    b: &serde_json::Value,
+    na: &str,
+    nb: &str,
+    out: &mut Vec<String>,
+) {
+    use serde_json::Value;
+    let join = |k: &str| {
+        if path.is_empty() {
+            k.to_string()
+        } else {
+            format!("{path}.{k}")
         }
+    };
+    match (a, b) {
+        (Value::Object(ma), Value::Object(mb)) => {
+            for (k, va) in ma {
+                match mb.get(k) {
+                    Some(vb) => value_differences(&join(k), va, vb, na, nb, out),
+                    None => out.push(format!("{}: {va} in {na}, absent in {nb}", join(k))),
+                }
+            }
+            for (k, vb) in mb {
+                if !ma.contains_key(k) {
+                    out.push(format!("{}: absent in {na}, {vb} in {nb}", join(k)));
+                }
+            }
+        }
+        _ if a != b => out.push(format!("{path}: {a} in {na}, {b} in {nb}")),
+        _ => {}
     }
-    if !body[from..].trim().is_empty() {
-        push(&body[from..])?;
-    }
-    Some(out)
 }
 
 /// An accumulation of samples `[start, acc.samples)` of every pixel of one render.
@@ -302,6 +322,11 @@ impl Checkpoint {
                 "sample range {start}..{end} is backwards"
             )));
         }
+        if width == 0 || height == 0 || width > MAX_SIDE as u64 || height > MAX_SIDE as u64 {
+            return Err(corrupt(&format!(
+                "its image is {width}x{height} pixels: each side must be 1 to {MAX_SIDE}"
+            )));
+        }
         let n = width
             .checked_mul(height)
             .filter(|n| n.checked_mul(40) == Some((r.b.len() - r.at) as u64))
@@ -318,6 +343,13 @@ impl Checkpoint {
             acc.sum[i] = Color::from_array(c);
             acc.count[i] = r.u64().ok_or_else(bad)?;
             acc.dropped[i] = r.u64().ok_or_else(bad)?;
+            if let Some(what) = sum_problem(acc.sum[i], acc.count[i]) {
+                let (x, y) = (i % width, i / width);
+                return Err(corrupt(&format!(
+                    "pixel {i} (x {x}, y {y}) has the sum [{}, {}, {}] of {} samples: {what}",
+                    c[0], c[1], c[2], acc.count[i]
+                )));
+            }
             if acc.count[i].checked_add(acc.dropped[i]) != Some(end - start) {
                 return Err(corrupt(&format!(
                     "pixel {i} holds {} samples, not the {} of samples {start}..{end}",
@@ -361,6 +393,20 @@ impl Checkpoint {
     }
 }
 
+/// What is wrong with a pixel's sum of `count` finite, non-negative radiance samples: a sum that is not
+/// finite, that is negative, or that is not zero with no samples (`None` if nothing).
+fn sum_problem(sum: Color, count: u64) -> Option<&'static str> {
+    if !sum.is_finite() {
+        Some("a sum of finite samples must be finite")
+    } else if sum.min_element() < 0.0 {
+        Some("radiance is never negative, so neither is its sum")
+    } else if count == 0 && sum != Color::ZERO {
+        Some("a pixel with no samples must have a zero sum")
+    } else {
+        None
+    }
+}
+
 fn put_str(b: &mut Vec<u8>, s: &str) {
     b.extend_from_slice(&(s.len() as u32).to_le_bytes());
     b.extend_from_slice(s.as_bytes());
@@ -400,6 +446,34 @@ pub struct Merged {
     pub gaps: Vec<(u64, u64)>,
 }
 
+/// Why parts cannot be merged.
+#[derive(Debug, thiserror::Error)]
+pub enum MergeError {
+    #[error("no parts to merge")]
+    NoParts,
+    #[error("{part} is not a part of the same render as {first}: {differences}")]
+    OtherRender {
+        part: String,
+        first: String,
+        differences: String,
+    },
+    #[error(
+        "{a} (samples {}..{}) and {b} (samples {}..{}) overlap: each sample may be counted once",
+        a_range.0, a_range.1, b_range.0, b_range.1
+    )]
+    Overlap {
+        a: String,
+        a_range: (u64, u64),
+        b: String,
+        b_range: (u64, u64),
+    },
+    #[error(
+        "the merged sum of pixel {pixel} (x {x}, y {y}) overflows f64: the parts' radiance is too \
+         large to add"
+    )]
+    Overflow { pixel: usize, x: usize, y: usize },
+}
+
 /// Add parts of one render with disjoint sample ranges, in the order of their ranges (whatever the
 /// order given). `names` name the parts in messages.
 ///
@@ -409,17 +483,18 @@ pub struct Merged {
 /// samples each way of adding is within `(n - 1) 2^-53` (relative) of the exact sum (Higham's bound for
 /// recursive summation), so the two differ by at most twice that: `1e-12` at `n = 4500`, and in practice
 /// far less. Merging a single part reproduces it bit for bit.
-pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
+pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, MergeError> {
     let Some((first_name, first)) = parts.first() else {
-        return Err("no parts to merge".into());
+        return Err(MergeError::NoParts);
     };
     for (name, p) in &parts[1..] {
         let d = first.identity.differences(&p.identity, first_name, name);
         if !d.is_empty() {
-            return Err(format!(
-                "{name} is not a part of the same render as {first_name}: {}",
-                d.join("; ")
-            ));
+            return Err(MergeError::OtherRender {
+                part: name.clone(),
+                first: first_name.clone(),
+                differences: d.join("; "),
+            });
         }
     }
     let mut order: Vec<&(String, Checkpoint)> = parts.iter().collect();
@@ -428,10 +503,12 @@ pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
     for w in order.windows(2) {
         let ((na, a), (nb, b)) = (w[0], w[1]);
         if b.start < a.acc.samples {
-            return Err(format!(
-                "{na} (samples {}..{}) and {nb} (samples {}..{}) overlap: each sample may be counted once",
-                a.start, a.acc.samples, b.start, b.acc.samples
-            ));
+            return Err(MergeError::Overlap {
+                a: na.clone(),
+                a_range: (a.start, a.acc.samples),
+                b: nb.clone(),
+                b_range: (b.start, b.acc.samples),
+            });
         }
         if b.start > a.acc.samples {
             gaps.push((a.acc.samples, b.start));
@@ -445,6 +522,14 @@ pub fn merge(parts: &[(String, Checkpoint)]) -> Result<Merged, String> {
             out.acc.dropped[i] += p.acc.dropped[i];
         }
         out.acc.samples = p.acc.samples;
+    }
+    // Each part's sums are finite, but two large ones may add up past f64::MAX.
+    if let Some(i) = out.acc.sum.iter().position(|s| !s.is_finite()) {
+        return Err(MergeError::Overflow {
+            pixel: i,
+            x: i % out.acc.width,
+            y: i / out.acc.width,
+        });
     }
     Ok(Merged {
         checkpoint: out,
@@ -469,7 +554,7 @@ mod tests {
                 scene: "cornell".into(),
                 scene_hash: 42,
                 settings: format!(
-                    "RenderSettings {{ width: 3, max_depth: 50, seed: {seed}, strategy: Mixture {{ a: 0.5, b: (1, 2) }} }}"
+                    r#"{{"width":3,"max_depth":50,"seed":{seed},"strategy":{{"Mis":{{"a":true,"b":[1,2]}}}}}}"#
                 ),
                 width: 3,
                 height: 2,
@@ -510,6 +595,12 @@ mod tests {
     fn differences_name_the_field() {
         let (a, b) = (part(0, 1, 1).identity, part(0, 1, 2).identity);
         assert_eq!(a.differences(&b, "A", "B"), ["seed: 1 in A, 2 in B"]);
+        let mut d = a.clone();
+        d.settings = d.settings.replace("true", "false");
+        assert_eq!(
+            a.differences(&d, "A", "B"),
+            ["strategy.Mis.a: true in A, false in B"]
+        );
         assert!(a.differences(&a, "A", "B").is_empty());
         let mut c = a.clone();
         c.scene_hash = 7;
@@ -539,14 +630,100 @@ mod tests {
             );
             assert_eq!(m.checkpoint.acc.count[i] + m.checkpoint.acc.dropped[i], 12);
         }
-        let e = merge(&[("a".into(), a.clone()), ("x".into(), part(3, 5, 1))]).unwrap_err();
+        let e = merge(&[("a".into(), a.clone()), ("x".into(), part(3, 5, 1))])
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("overlap") && e.contains("a (samples 0..4)"),
             "{e}"
         );
-        let e = merge(&[("a".into(), a.clone()), ("s".into(), part(4, 5, 2))]).unwrap_err();
+        let e = merge(&[("a".into(), a.clone()), ("s".into(), part(4, 5, 2))])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("seed: 1 in a, 2 in s"), "{e}");
         let m = merge(&[("a".into(), a), ("c".into(), c)]).unwrap();
         assert_eq!(m.gaps, [(4, 10)]);
+    }
+
+    #[test]
+    fn a_valid_checksum_over_lying_sums_is_refused() {
+        let cases: [(Color, u64, &str); 5] = [
+            (Color::new(f64::NAN, 0.0, 0.0), 5, "must be finite"),
+            (Color::new(0.0, f64::INFINITY, 0.0), 5, "must be finite"),
+            (Color::new(0.0, 0.0, -1.0), 5, "never negative"),
+            (Color::new(0.0, 0.0, -0.0), 5, ""),
+            (Color::splat(1.0), 0, "no samples must have a zero sum"),
+        ];
+        for (sum, count, words) in cases {
+            let mut p = part(0, 5, 1);
+            p.acc.sum[2] = sum;
+            p.acc.count[2] = count;
+            p.acc.dropped[2] = 5 - count;
+            let r = Checkpoint::from_bytes(&p.to_bytes(), Path::new("ck"));
+            if words.is_empty() {
+                assert!(r.is_ok(), "{sum:?}");
+                continue;
+            }
+            let e = r.unwrap_err().to_string();
+            assert!(e.contains(words) && e.contains("pixel 2 (x 2, y 0)"), "{e}");
+        }
+    }
+
+    #[test]
+    fn counts_that_disagree_with_the_sample_range_are_refused() {
+        let mut p = part(0, 5, 1);
+        p.acc.count[0] += 1;
+        let e = Checkpoint::from_bytes(&p.to_bytes(), Path::new("ck")).unwrap_err();
+        assert!(
+            e.to_string().contains("pixel 0 holds 6 samples, not the 5"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn an_empty_image_is_refused() {
+        let mut p = part(0, 5, 1);
+        p.acc = Accumulator::new(0, 2);
+        p.acc.samples = 5;
+        p.identity.width = 0;
+        let e = Checkpoint::from_bytes(&p.to_bytes(), Path::new("ck")).unwrap_err();
+        assert!(e.to_string().contains("0x2 pixels"), "{e}");
+    }
+
+    #[test]
+    fn a_merge_whose_sums_overflow_is_refused_not_written_as_nan() {
+        let (mut a, mut b) = (part(0, 4, 1), part(4, 8, 1));
+        a.acc.sum[5] = Color::splat(1.5e308);
+        b.acc.sum[5] = Color::splat(1.5e308);
+        let e = merge(&[("a".into(), a), ("b".into(), b)]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                MergeError::Overflow {
+                    pixel: 5,
+                    x: 2,
+                    y: 1
+                }
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn sample_ranges_past_2_to_the_32_round_trip_and_merge_exactly() {
+        let k = (1u64 << 32) - 2;
+        let (a, b) = (part(k, k + 3, 1), part(k + 3, k + 7, 1));
+        for p in [&a, &b] {
+            let back = Checkpoint::from_bytes(&p.to_bytes(), Path::new("p")).unwrap();
+            assert_eq!(&back, p);
+        }
+        let m = merge(&[("b".into(), b), ("a".into(), a)]).unwrap();
+        assert_eq!((m.checkpoint.start, m.checkpoint.acc.samples), (k, k + 7));
+        let top = u64::MAX - 1;
+        let c = part(top - 5, top, 1);
+        assert_eq!(
+            Checkpoint::from_bytes(&c.to_bytes(), Path::new("p")).unwrap(),
+            c
+        );
     }
 }

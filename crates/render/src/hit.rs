@@ -10,6 +10,7 @@
 //! Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6): offset along the normal, never
 //! along the ray, by an amount relative to the magnitude of the numbers involved.
 
+use crate::ids::MaterialId;
 use crate::ray::Ray;
 use crate::vec::{Point3, Vec3};
 
@@ -41,7 +42,7 @@ pub struct Hit {
     /// Bound on the absolute error of `p` (0 for a point inside a medium, which lies on no surface).
     pub err: f64,
     /// Material index in the scene.
-    pub material: u32,
+    pub material: MaterialId,
     pub uv_source: UvSource,
 }
 

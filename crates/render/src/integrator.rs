@@ -17,7 +17,7 @@ use rtl_pdf::{DirectionSample, HemispherePdf, HittablePdf, MixturePdf, Pdf, powe
 
 // ANCHOR: mis_options
 /// The extras of the `mis` strategy, each unbiased and each switchable off to measure its share.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct MisOptions {
     /// End paths that carry little at random after a few bounces and reweight the survivors (Russian
     /// roulette; see [`ROULETTE_BELOW`]).
@@ -57,7 +57,7 @@ pub const ROULETTE_BELOW: f64 = 0.125;
 
 // ANCHOR: strategy
 /// How a diffuse bounce chooses its scattered direction.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum Strategy {
     /// Uniform over the hemisphere about the normal (`p = 1 / 2 pi`): book 3's starting point.
     Uniform,
@@ -236,7 +236,7 @@ fn radiance_one_sample(
             l += throughput * scene.background.value(&ray);
             break;
         };
-        let material = &scene.materials[hit.material as usize];
+        let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
             l += throughput * material.emitted(&hit, &scene.textures, ctx);
         }
@@ -346,7 +346,7 @@ fn radiance_mis(
             l += throughput * scene.background.value(&ray);
             break;
         };
-        let material = &scene.materials[hit.material as usize];
+        let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
             let emitted = material.emitted(&hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
@@ -383,7 +383,7 @@ fn radiance_mis(
             && let Some((lh, transmittance)) =
                 trace_shadow(scene, &hit.spawn(ls.direction, ray.time), ctx)
         {
-            let m: &Material = &scene.materials[lh.material as usize];
+            let m: &Material = &scene.materials[lh.material.index()];
             if m.is_emitter() && transmittance > 0.0 {
                 let emitted = m.emitted(&lh, &scene.textures, ctx);
                 let p_material = match &towards_others {

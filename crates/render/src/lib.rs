@@ -19,13 +19,16 @@
 //! ```
 
 pub mod aabb;
+pub mod builder;
 pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
 pub mod hit;
+pub mod ids;
 pub mod integrator;
 pub mod lanes;
 pub mod lights;
+pub mod limits;
 pub mod material;
 pub mod output;
 pub mod perlin;
@@ -37,6 +40,7 @@ pub mod scene_file;
 pub mod scenes;
 pub mod shapes;
 pub mod texture;
+pub mod transform;
 pub mod traversal;
 pub mod vec;
 

@@ -13,7 +13,7 @@
 //! `pdf` is 0, so what a list of targets draws is what its density describes.
 
 use crate::material::Material;
-use crate::scene::{GroupId, Object, Scene, Target as SceneShape, Transform};
+use crate::scene::{GroupId, MaterialId, Object, Scene, Target as SceneShape, Transform};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
 use rtl_pdf::{DirectionSample, QuadTarget, ShapeSampler, SphereTarget};
@@ -92,7 +92,7 @@ impl Lights {
     /// (unbiased under `mis`, whose material sampling covers whatever the light sampling misses).
     pub fn new(scene: &Scene, spherical_rectangles: bool) -> Lights {
         let mut lights = Lights::default();
-        let emitter = |material: u32| match scene.materials.get(material as usize) {
+        let emitter = |material: MaterialId| match scene.materials.get(material.index()) {
             Some(Material::DiffuseLight { two_sided, .. }) => Some(*two_sided),
             _ => None,
         };
@@ -177,7 +177,7 @@ fn collect_emitters(
     if depth > MAX_NESTING {
         return;
     }
-    let two_sided = |material: u32| match scene.materials.get(material as usize) {
+    let two_sided = |material: MaterialId| match scene.materials.get(material.index()) {
         Some(Material::DiffuseLight { two_sided, .. }) => Some(*two_sided),
         _ => None,
     };

@@ -7,6 +7,7 @@
 //! `scattering_pdf`, the `s(omega)` of the estimator `color * s(omega) / p(omega)`.
 
 use crate::hit::Hit;
+use crate::ids::TextureId;
 use crate::ray::Ray;
 use crate::sampler::Ctx;
 use crate::sampler::Dimension;
@@ -16,10 +17,10 @@ use glam::DVec2;
 use rtl_pdf::{CosinePdf, DirectionSample, Pdf, SpherePdf, warp};
 
 /// A reflectance or emission: a plain colour (no texture lookup at all) or a texture of the scene.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Albedo {
     Constant(Color),
-    Texture(u32),
+    Texture(TextureId),
 }
 
 impl Albedo {
@@ -29,14 +30,14 @@ impl Albedo {
             Albedo::Constant(c) => *c,
             Albedo::Texture(i) => {
                 ctx.stats.texture_evaluations += 1;
-                textures[*i as usize].value(|| hit.uv(), hit.p)
+                textures[i.index()].value(|| hit.uv(), hit.p)
             }
         }
     }
 }
 
 /// A material of books 1 to 3.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub enum Material {
     /// Ideal diffuse reflection, two-sided.
     Lambertian { albedo: Albedo },

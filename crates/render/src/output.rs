@@ -149,6 +149,135 @@ pub fn write_linear(
     }
 }
 
+/// What a file named on the command line is written as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputKind {
+    /// An 8-bit PNG (`-o`): the name must end in `.png`.
+    Png,
+    /// Linear radiance (`--linear`): `.pfm` or `.exr`.
+    Linear,
+    /// A checkpoint or part (any name).
+    Checkpoint,
+}
+
+/// A file the command will write, with the flag that named it (for messages).
+#[derive(Clone, Debug)]
+pub struct OutputFile {
+    pub flag: &'static str,
+    pub path: PathBuf,
+    pub kind: OutputKind,
+}
+
+/// Why an output cannot be written: found before any rendering.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    #[error("{flag} {}: a PNG file name must end in .png", path.display())]
+    NotPng { flag: &'static str, path: PathBuf },
+    #[error("{flag} {}: linear output must end in .pfm or .exr", path.display())]
+    UnknownLinear { flag: &'static str, path: PathBuf },
+    #[error("{flag} {}: the directory {} does not exist", path.display(), dir.display())]
+    NoDirectory {
+        flag: &'static str,
+        path: PathBuf,
+        dir: PathBuf,
+    },
+    #[error("{flag} {}: it is a directory, not a file", path.display())]
+    IsDirectory { flag: &'static str, path: PathBuf },
+    #[error("{flag} {}: cannot write in {}: {source}", path.display(), dir.display())]
+    NotWritable {
+        flag: &'static str,
+        path: PathBuf,
+        dir: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{flag_a} and {flag_b} both name {}: each output needs a file of its own", path.display())]
+    Same {
+        flag_a: &'static str,
+        flag_b: &'static str,
+        path: PathBuf,
+    },
+    #[error("{flag} {} is also an input ({input}): writing it would destroy what is read", path.display())]
+    OverwritesInput {
+        flag: &'static str,
+        path: PathBuf,
+        input: String,
+    },
+}
+
+/// `path` made absolute through its directory, so that `a.png` and `./a.png` compare equal (the file
+/// itself need not exist).
+fn resolved(path: &Path) -> PathBuf {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = path.file_name().map(PathBuf::from).unwrap_or_default();
+    std::fs::canonicalize(dir).map_or_else(|_| path.to_path_buf(), |d| d.join(name))
+}
+
+/// Check every output before any work: its name fits its kind, its directory exists and can be written
+/// (a probe file is created there and removed), it is not a directory, no two outputs name the same
+/// file, and none is one of `inputs` (`(what, path)`).
+pub fn check_outputs(
+    outputs: &[OutputFile],
+    inputs: &[(String, PathBuf)],
+) -> Result<(), OutputError> {
+    for (i, o) in outputs.iter().enumerate() {
+        let (flag, path) = (o.flag, o.path.clone());
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
+        match o.kind {
+            OutputKind::Png if ext != "png" => return Err(OutputError::NotPng { flag, path }),
+            OutputKind::Linear if ext != "pfm" && ext != "exr" => {
+                return Err(OutputError::UnknownLinear { flag, path });
+            }
+            _ => {}
+        }
+        if path.is_dir() || path.file_name().is_none() {
+            return Err(OutputError::IsDirectory { flag, path });
+        }
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if !dir.is_dir() {
+            return Err(OutputError::NoDirectory { flag, path, dir });
+        }
+        let probe = temp_path(&path).with_extension("probe");
+        match std::fs::File::create(&probe) {
+            Ok(_) => {
+                let _ = std::fs::remove_file(&probe);
+            }
+            Err(source) => {
+                return Err(OutputError::NotWritable {
+                    flag,
+                    path,
+                    dir,
+                    source,
+                });
+            }
+        }
+        let here = resolved(&path);
+        if let Some(other) = outputs[..i].iter().find(|p| resolved(&p.path) == here) {
+            return Err(OutputError::Same {
+                flag_a: other.flag,
+                flag_b: flag,
+                path,
+            });
+        }
+        if let Some((what, _)) = inputs.iter().find(|(_, p)| resolved(p) == here) {
+            return Err(OutputError::OverwritesInput {
+                flag,
+                path,
+                input: what.clone(),
+            });
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

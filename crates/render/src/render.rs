@@ -13,7 +13,7 @@ use crate::vec::Color;
 use rayon::prelude::*;
 
 /// Settings that change the image.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct RenderSettings {
     pub width: usize,
     pub max_depth: u32,

@@ -216,7 +216,7 @@ fn checker(b: &mut SceneBuilder) -> Material {
         Color::splat(0.9),
     ));
     Material::Lambertian {
-        albedo: Albedo::Texture(t.0),
+        albedo: Albedo::Texture(t),
     }
 }
 
@@ -260,7 +260,7 @@ fn earth_texture(
     notices: &mut Vec<String>,
 ) -> Result<Material, SceneError> {
     let img = match &opts.texture {
-        Some(p) => ImageData::load(p).map_err(SceneError::Other)?,
+        Some(p) => ImageData::load(p).map_err(SceneError::TextureImage)?,
         None => {
             notices.push("no --texture FILE given: the earth is a generated stand-in (the book's earthmap.jpg is not shipped)".into());
             ImageData::stand_in_earth()
@@ -268,7 +268,7 @@ fn earth_texture(
     };
     let t = b.texture(Texture::Image(Box::new(img)));
     Ok(Material::Lambertian {
-        albedo: Albedo::Texture(t.0),
+        albedo: Albedo::Texture(t),
     })
 }
 
@@ -289,7 +289,7 @@ fn earth(opts: &SceneOptions) -> Result<Built, SceneError> {
 fn marble(b: &mut SceneBuilder, scale: f64) -> Material {
     let t = b.texture(Texture::marble(scale));
     Material::Lambertian {
-        albedo: Albedo::Texture(t.0),
+        albedo: Albedo::Texture(t),
     }
 }
 
@@ -568,8 +568,7 @@ fn book2_final(opts: &SceneOptions) -> Result<Built, SceneError> {
             let z0 = -1000.0 + j as f64 * wd;
             let y1 = rng.random_range(1.0..101.0);
             let (a, c) = (Point3::new(x0, 0.0, z0), Point3::new(x0 + wd, y1, z0 + wd));
-            let quads =
-                box_quads(a, c, ground.0).ok_or(SceneError::Other("flat ground box".into()))?;
+            let quads = box_quads(a, c, ground).ok_or(SceneError::FlatBox { a, b: c })?;
             // All 2400 quads of the ground share one list (one BVH).
             for q in quads {
                 b.add_to(boxes1, Object::Quad(q));
@@ -712,7 +711,7 @@ pub fn cornell(_: &SceneOptions) -> Result<Built, SceneError> {
     b.targets.push(Target::Sphere(crate::shapes::Sphere::new(
         Point3::new(190.0, 90.0, 190.0),
         90.0,
-        glass.0,
+        glass,
     )));
     built(b)
 }

@@ -3,22 +3,23 @@
 
 use crate::aabb::Aabb;
 use crate::hit::{Hit, REL_ERROR, UvSource};
+use crate::ids::MaterialId;
 use crate::lanes::F64x4;
 use crate::ray::{Interval, Ray};
 use crate::vec::{Point3, Vec3};
 
 /// A sphere of centre `center + time * motion` (a static sphere has `motion = 0`) and radius `radius`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Sphere {
     pub center: Point3,
     /// Displacement of the centre over the shutter interval [0, 1]; exactly zero for a static sphere.
     pub motion: Vec3,
     pub radius: f64,
-    pub material: u32,
+    pub material: MaterialId,
 }
 
 impl Sphere {
-    pub fn new(center: Point3, radius: f64, material: u32) -> Self {
+    pub fn new(center: Point3, radius: f64, material: MaterialId) -> Self {
         Sphere {
             center,
             motion: Vec3::ZERO,
@@ -28,7 +29,7 @@ impl Sphere {
     }
 
     /// A sphere moving from `c0` at time 0 to `c1` at time 1. A sphere that moves by zero is static.
-    pub fn moving(c0: Point3, c1: Point3, radius: f64, material: u32) -> Self {
+    pub fn moving(c0: Point3, c1: Point3, radius: f64, material: MaterialId) -> Self {
         Sphere {
             center: c0,
             motion: c1 - c0,
@@ -112,7 +113,7 @@ impl Sphere {
 }
 
 /// The parallelogram `{Q + a u + b v : a, b in [0, 1]}`, normal `normalize(u x v)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Quad {
     pub q: Point3,
     pub u: Vec3,
@@ -128,12 +129,12 @@ pub struct Quad {
     d: f64,
     /// Error bound of a hit point, from the quad's own magnitude.
     err: f64,
-    pub material: u32,
+    pub material: MaterialId,
 }
 
 impl Quad {
     /// The quad `(Q, u, v)`. `None` if `u` and `v` are parallel (zero area) or not finite.
-    pub fn new(q: Point3, u: Vec3, v: Vec3, material: u32) -> Option<Self> {
+    pub fn new(q: Point3, u: Vec3, v: Vec3, material: MaterialId) -> Option<Self> {
         let n = u.cross(v);
         let nn = n.length_squared();
         if !(nn.is_finite() && nn > 0.0 && q.is_finite() && u.is_finite() && v.is_finite()) {
@@ -359,7 +360,7 @@ impl Quad4 {
 
 /// The six quads of the box with opposite corners `a` and `b`, faces pointing outwards (book 2's `box`).
 /// `None` if the box is flat.
-pub fn box_quads(a: Point3, b: Point3, material: u32) -> Option<[Quad; 6]> {
+pub fn box_quads(a: Point3, b: Point3, material: MaterialId) -> Option<[Quad; 6]> {
     let min = a.min(b);
     let max = a.max(b);
     let dx = Vec3::new(max.x - min.x, 0.0, 0.0);
@@ -444,7 +445,7 @@ mod tests {
                     let q = unit(&mut rng) * rng.random_range(0.0..3.0);
                     let u = unit(&mut rng) * rng.random_range(0.1..3.0);
                     let v = unit(&mut rng) * rng.random_range(0.1..3.0);
-                    Quad::new(q, u, v, 0).unwrap()
+                    Quad::new(q, u, v, MaterialId(0)).unwrap()
                 })
                 .collect();
             for _ in 0..20 {
@@ -475,7 +476,7 @@ mod tests {
 
     #[test]
     fn equal_distances_go_to_the_first_lane_and_unused_lanes_never_hit() {
-        let q = Quad::new(Vec3::ZERO, Vec3::X, Vec3::Z, 0).unwrap();
+        let q = Quad::new(Vec3::ZERO, Vec3::X, Vec3::Z, MaterialId(0)).unwrap();
         let packet = Quad4::new(&[(q, 3), (q, 4)]);
         let ray = Ray::new(Point3::new(0.5, 1.0, 0.5), Vec3::new(0.0, -1.0, 0.0), 0.0);
         let h = packet.hit(&ray, Interval::FORWARD).unwrap();

@@ -7,7 +7,7 @@ use crate::vec::{Color, Point3, floor_i64};
 use std::path::Path;
 
 /// An image in linear RGB, row 0 at the top.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct ImageData {
     pub width: usize,
     pub height: usize,
@@ -83,7 +83,7 @@ impl ImageData {
 }
 
 /// A texture of books 1 and 2.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub enum Texture {
     /// One colour everywhere.
     Solid(Color),
@@ -97,7 +97,12 @@ pub enum Texture {
     Image(Box<ImageData>),
     /// Perlin marble: `0.5 (1 + sin(scale z + 10 turbulence(p)))` in grey, turbulence of the unscaled
     /// point with 7 octaves (book 2's current version).
-    Marble { scale: f64, noise: Box<Perlin> },
+    Marble {
+        scale: f64,
+        /// Drawn from a fixed seed: the same in every scene, so not part of a scene's content.
+        #[serde(skip)]
+        noise: Box<Perlin>,
+    },
 }
 
 impl Texture {

@@ -5,7 +5,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_render::material::Material;
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
-use rtl_render::scene::{SceneBuilder, Transform};
+use rtl_render::scene::{MaterialId, SceneBuilder, Transform};
 use rtl_render::shapes::{Quad, Sphere};
 use rtl_render::vec::{Color, Point3, Vec3};
 
@@ -16,7 +16,7 @@ fn unit<R: Rng>(rng: &mut R) -> Vec3 {
 #[test]
 fn sphere_hits_lie_on_the_sphere_with_outward_normals() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
-    let s = Sphere::new(Point3::new(1.0, 2.0, 3.0), 2.0, 0);
+    let s = Sphere::new(Point3::new(1.0, 2.0, 3.0), 2.0, MaterialId(0));
     let mut hits = 0;
     for _ in 0..10_000 {
         let o = s.center + unit(&mut rng) * rng.random_range(2.5..20.0);
@@ -50,7 +50,7 @@ fn quad_hits_are_inside_the_parallelogram_and_uv_recovers_the_point() {
         Point3::new(1.0, 0.0, -2.0),
         Vec3::new(3.0, 1.0, 0.0),
         Vec3::new(0.0, 0.5, 2.0),
-        0,
+        MaterialId(0),
     )
     .unwrap();
     for _ in 0..10_000 {
@@ -76,7 +76,7 @@ fn quad_hits_are_inside_the_parallelogram_and_uv_recovers_the_point() {
         }
     }
     assert!(
-        Quad::new(Point3::ZERO, Vec3::X, Vec3::X * 2.0, 0).is_none(),
+        Quad::new(Point3::ZERO, Vec3::X, Vec3::X * 2.0, MaterialId(0)).is_none(),
         "zero-area quad refused"
     );
     // A ray in the quad's plane misses, it does not divide by zero into a hit.
@@ -97,7 +97,7 @@ fn moving_sphere_is_where_its_time_says() {
         Point3::new(0.0, 0.0, -5.0),
         Point3::new(2.0, 0.0, -5.0),
         0.5,
-        0,
+        MaterialId(0),
     );
     let ray_at = |t| Ray::new(Point3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -1.0), t);
     assert!(s.hit(&ray_at(1.0), Interval::FORWARD).is_some());

@@ -410,7 +410,7 @@ fn emitters_in_instanced_groups_are_found_in_world_space() {
             .hit(&Ray::new(origin, s.direction, 0.0), &mut ctx)
             .expect("the sampled direction meets the scene");
         assert!(
-            scene.materials[hit.material as usize].is_emitter(),
+            scene.materials[hit.material.index()].is_emitter(),
             "a direction towards an emitter met something else"
         );
         assert!(pdf.pdf(s.direction) > 0.0);

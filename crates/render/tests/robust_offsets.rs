@@ -6,7 +6,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_render::hit::Hit;
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
-use rtl_render::scene::{SceneBuilder, Transform};
+use rtl_render::scene::{MaterialId, SceneBuilder, Transform};
 use rtl_render::shapes::{Quad, Sphere};
 use rtl_render::vec::{Point3, Vec3, reflect};
 
@@ -32,7 +32,7 @@ fn rays_leaving_a_sphere_never_rehit_it_and_refracted_rays_find_the_far_side() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
     for s in SCALES {
         // Off-centre sphere so coordinates are not symmetric around 0.
-        let sphere = Sphere::new(Point3::new(3.0, -2.0, 7.0) * s, 1.5 * s, 0);
+        let sphere = Sphere::new(Point3::new(3.0, -2.0, 7.0) * s, 1.5 * s, MaterialId(0));
         let mut checked = 0;
         for _ in 0..20_000 {
             let origin =
@@ -95,7 +95,7 @@ fn rays_leaving_a_quad_never_rehit_it() {
             Point3::new(-1.0, 2.0, 3.0) * s,
             Vec3::new(2.0, 0.5, 0.0) * s,
             Vec3::new(0.3, 0.1, 1.7) * s,
-            0,
+            MaterialId(0),
         )
         .unwrap();
         let mut checked = 0;
@@ -175,7 +175,7 @@ fn without_the_offset_the_same_check_sees_self_intersections() {
         Point3::new(-1.0, 2.0, 3.0) * s,
         Vec3::new(2.0, 0.5, 0.0) * s,
         Vec3::new(0.3, 0.1, 1.7) * s,
-        0,
+        MaterialId(0),
     )
     .unwrap();
     let mut rehits = 0;

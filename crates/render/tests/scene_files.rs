@@ -134,7 +134,8 @@ material = "white"
 "#;
 
 fn load(text: &str) -> Result<SceneFile, String> {
-    scene_file::from_str(Path::new("some/dir/bad.toml"), text)
+    scene_file::load_str(text, "some/dir/bad.toml", Path::new("some/dir"))
+        .map_err(|e| e.to_string())
 }
 
 /// The error for `text`, which must name the file, `line` and `field`, and contain `words`.
@@ -536,8 +537,13 @@ fn no_error_panics_on_garbage() {
         if !text.is_char_boundary(end) {
             continue;
         }
-        if let Err(e) = scene_file::from_str(&path, &text[..end]) {
-            assert!(e.starts_with(&path.display().to_string()), "{e}");
+        if let Err(e) =
+            scene_file::load_str(&text[..end], &path.display().to_string(), &scenes_dir())
+        {
+            assert!(
+                e.to_string().starts_with(&path.display().to_string()),
+                "{e}"
+            );
         }
     }
 }
@@ -558,4 +564,66 @@ fn an_inline_target_is_never_an_emitter_whatever_material_comes_first() {
         (lights.all.len(), lights.emitters.len(), lights.others.len()),
         (1, 0, 1)
     );
+}
+
+#[test]
+fn the_scene_hash_is_of_the_content_not_of_the_text() {
+    use rtl_render::checkpoint::scene_hash;
+    let text = std::fs::read_to_string(scenes_dir().join("cornell.toml")).unwrap();
+    let a = scene_hash(&load(&text).unwrap().built.scene);
+    // Comments and blank lines are not content; a moved light is.
+    let commented = format!("# a comment\n\n{text}");
+    assert_eq!(scene_hash(&load(&commented).unwrap().built.scene), a);
+    let builtin = (scenes::find("cornell").unwrap().build)(&Default::default()).unwrap();
+    assert_eq!(scene_hash(&builtin.scene), a);
+    let moved = text.replacen("213", "214", 1);
+    assert_ne!(moved, text);
+    assert_ne!(scene_hash(&load(&moved).unwrap().built.scene), a);
+}
+
+#[test]
+fn nesting_past_the_toml_readers_limit_is_an_error_not_a_stack_overflow() {
+    let mut text = BASE.to_string();
+    let mut path = String::from("objects");
+    for _ in 0..400 {
+        text.push_str(&format!("[[{path}]]\ntype = \"group\"\n"));
+        path.push_str(".objects");
+    }
+    let e = load(&text).err().expect("refused");
+    assert!(
+        e.starts_with("some/dir/bad.toml:") && e.contains("deeper"),
+        "{e}"
+    );
+    // Inline nesting too.
+    let inline = format!("{BASE}\nx = {}1{}\n", "[".repeat(5000), "]".repeat(5000));
+    assert!(load(&inline).is_err());
+}
+
+#[test]
+fn albedos_above_one_are_refused_where_they_stand() {
+    // Above 1 a path's throughput grows with every bounce until it overflows to non-finite samples.
+    error_at(
+        &BASE.replace("albedo = 0.73", "albedo = 1e30"),
+        6,
+        "materials.white.albedo",
+        "[0, 1]",
+    );
+    let metal = BASE.replace(
+        "white = { type = \"lambertian\", albedo = 0.73 }",
+        "white = { type = \"metal\", albedo = [0.5, 2, 0.5] }",
+    );
+    error_at(&metal, 6, "materials.white.albedo", "[0, 1]");
+    let checker = BASE
+        .replace(
+            "[materials]",
+            "[textures]\nt = { type = \"checker\", scale = 1, even = 0.5, odd = 3 }\n\n[materials]",
+        )
+        .replace("albedo = 0.73", "albedo = \"t\"");
+    assert!(load(&checker).err().unwrap().contains("[0, 1]; got 3"));
+    // Emission is not a reflectance.
+    let bright = BASE.replace(
+        "[materials]\n",
+        "[materials]\nlamp = { type = \"light\", emit = [1e6, 1e6, 1e6] }\n",
+    );
+    assert!(load(&bright).is_ok());
 }

@@ -100,7 +100,7 @@ pub fn three_kinds_of_emitters() -> Scene {
     b.targets.push(Target::Sphere(Sphere::new(
         Point3::new(1.5, 1.0, -1.0),
         0.5,
-        two_sided.0,
+        two_sided,
     )));
     b.targets.push(Target::Quad(upright));
     b.camera = CameraSettings {

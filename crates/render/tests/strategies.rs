@@ -233,7 +233,7 @@ fn furnace() -> Scene {
     b.sphere(w, Point3::ZERO, 1.0, white).unwrap();
     b.sphere(w, Point3::ZERO, 100.0, glow).unwrap();
     b.targets
-        .push(Target::Sphere(Sphere::new(Point3::ZERO, 100.0, glow.0)));
+        .push(Target::Sphere(Sphere::new(Point3::ZERO, 100.0, glow)));
     b.camera = CameraSettings {
         lookfrom: Point3::new(0.0, 0.0, 4.0),
         lookat: Point3::ZERO,

@@ -355,6 +355,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if max_spp < 16 || !max_spp.is_power_of_two() || !max_spp.trailing_zeros().is_multiple_of(2) {
         bail!("--max-spp {max_spp}: must be a power of 4, at least 16 (16, 64, 256, ...)");
     }
+    // The sweep multiplies by 4 up to --max-spp: past 4^30 that would overflow u64.
+    if max_spp > 1 << 60 {
+        bail!("--max-spp {max_spp}: at most 4^30 = {}", 1u64 << 60);
+    }
+    let r = Renderer::new(&scene, settings(width, &scene, 1, Strategy::Cosine));
+    rtl_render::limits::check_image(
+        r.camera.width,
+        r.camera.height,
+        rtl_render::limits::available_memory(),
+    )
+    .map_err(|e| anyhow::anyhow!("--width {width}: {e}"))?;
     let mut threads = rayon::current_num_threads();
     if args.replot {
         let (rows, csv_width, csv_threads, csv_ref_spp) = read_rows(&out_dir.join("render.csv"))?;

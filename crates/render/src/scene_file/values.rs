@@ -2,13 +2,15 @@
 //! at its own position: finite numbers, 3-vectors, colours that may name a texture, aspect ratios,
 //! backgrounds and transform steps.
 
+use crate::limits::{ASPECT_RANGE, MAX_MAGNITUDE};
 use crate::scene::Transform;
 use crate::vec::{Color, Vec3};
 use glam::DMat3;
 use serde::de::{self, Deserialize, Deserializer, SeqAccess, Visitor};
 use std::fmt;
 
-/// A finite real number (integers are accepted: `radius = 90`). `nan` and `inf` are refused.
+/// A finite real number of magnitude at most [`MAX_MAGNITUDE`] (integers are accepted: `radius = 90`).
+/// `nan`, `inf` and numbers such as `1e308`, whose squares and products would overflow, are refused.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Real(pub f64);
 
@@ -20,10 +22,15 @@ impl Visitor<'_> for RealVisitor {
         f.write_str("a finite number")
     }
     fn visit_f64<E: de::Error>(self, v: f64) -> Result<Real, E> {
-        if v.is_finite() {
-            Ok(Real(v))
-        } else {
+        if !v.is_finite() {
             Err(E::custom(format!("{v} is not a finite number")))
+        } else if v.abs() > MAX_MAGNITUDE {
+            Err(E::custom(format!(
+                "{v:e} is too large: numbers in a scene file may be at most {MAX_MAGNITUDE:e} in \
+                 magnitude"
+            )))
+        } else {
+            Ok(Real(v))
         }
     }
     fn visit_i64<E: de::Error>(self, v: i64) -> Result<Real, E> {
@@ -164,11 +171,12 @@ impl<'de> Deserialize<'de> for Aspect {
         struct V;
         impl V {
             fn positive<E: de::Error>(v: f64) -> Result<Aspect, E> {
-                if v.is_finite() && v > 0.0 {
+                let (lo, hi) = ASPECT_RANGE;
+                if v.is_finite() && (lo..=hi).contains(&v) {
                     Ok(Aspect(v))
                 } else {
                     Err(E::custom(format!(
-                        "the aspect ratio must be positive and finite, got {v}"
+                        "the aspect ratio (width over height) must lie in [1/{hi}, {hi}], got {v:e}"
                     )))
                 }
             }

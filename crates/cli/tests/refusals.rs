@@ -1,0 +1,429 @@
+//! Hostile and extreme input to `rtl render` and `rtl merge`: every value is either rendered or refused
+//! before any work with a message that names the flag (or the scene file's place), the value and the
+//! limit; never a panic, an abort, a hang or a silently wrong image.
+
+use rtl_render::checkpoint::Checkpoint;
+use rtl_render::vec::Color;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const RTL: &str = env!("CARGO_BIN_EXE_rtl");
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rtl-refuse-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn rtl(d: &Path, args: &[&str]) -> Output {
+    Command::new("timeout")
+        .arg("60")
+        .arg(RTL)
+        .current_dir(d)
+        .args(args)
+        .output()
+        .expect("rtl runs")
+}
+
+#[track_caller]
+fn ok(d: &Path, args: &[&str]) -> String {
+    let out = rtl(d, args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "rtl {args:?} failed: {err}");
+    err
+}
+
+/// Run `rtl` expecting a refusal (exit code 1, no panic) whose message contains every one of `words`.
+#[track_caller]
+fn refused(d: &Path, args: &[&str], words: &[&str]) {
+    let out = rtl(d, args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "rtl {args:?} was not refused: {err}"
+    );
+    assert!(!err.contains("panicked"), "rtl {args:?} panicked: {err}");
+    for w in words {
+        assert!(err.contains(w), "rtl {args:?}: wanted {w:?} in: {err}");
+    }
+}
+
+fn render<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    let mut v = vec!["render", "cornell", "--width", "16", "--spp", "2"];
+    v.extend_from_slice(extra);
+    v
+}
+
+/// Nothing but the files the test made itself.
+fn files(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// A small scene file with `render` in its `[render]` table.
+fn scene(render: &str) -> String {
+    format!(
+        "[render]\n{render}\n[camera]\nlookfrom = [0, 0, -5]\nlookat = [0, 0, 0]\n[materials]\n\
+         w = {{ type = \"lambertian\", albedo = 0.5 }}\n[[objects]]\ntype = \"sphere\"\n\
+         center = [0, 0, 0]\nradius = 1\nmaterial = \"w\"\n"
+    )
+}
+
+#[test]
+fn max_depth_zero_is_refused_on_the_command_line_as_in_a_scene_file() {
+    let d = dir("depth");
+    refused(
+        &d,
+        &render(&["--max-depth", "0"]),
+        &["--max-depth 0", "at least 1"],
+    );
+    refused(
+        &d,
+        &render(&["--max-depth", "4000000000"]),
+        &["--max-depth 4000000000", "at most 10000"],
+    );
+    std::fs::write(d.join("s.toml"), scene("max_depth = 0")).unwrap();
+    refused(
+        &d,
+        &["render", "s.toml"],
+        &["s.toml:", "field `render.max_depth`", "at least 1"],
+    );
+    assert_eq!(files(&d), ["s.toml"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn thread_counts_past_the_limit_are_refused_instead_of_hanging() {
+    let d = dir("threads");
+    refused(
+        &d,
+        &render(&["--threads", "100000"]),
+        &["--threads 100000", "1 to 1024"],
+    );
+    refused(&d, &render(&["--threads", "0"]), &["--threads 0"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn an_image_past_the_side_limit_or_the_memory_is_refused_before_allocation() {
+    let d = dir("width");
+    refused(
+        &d,
+        &["render", "cornell", "--width", "100000"],
+        &["--width 100000", "65536"],
+    );
+    // 60000 x 60000 pixels need 572 GB.
+    refused(
+        &d,
+        &["render", "cornell", "--width", "60000"],
+        &["--width 60000", "60000x60000", "MemAvailable"],
+    );
+    assert!(files(&d).is_empty());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn extreme_aspect_ratios_in_a_scene_file_are_refused_with_their_place() {
+    let d = dir("aspect");
+    for aspect in ["1e-300", "\"1:1e300\"", "1e300", "0"] {
+        std::fs::write(d.join("a.toml"), scene(&format!("aspect = {aspect}"))).unwrap();
+        refused(
+            &d,
+            &["render", "a.toml", "--width", "4", "--spp", "1"],
+            &["a.toml:", "field `render.aspect`"],
+        );
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn outputs_are_checked_before_any_rendering() {
+    let d = dir("outputs");
+    // The render below would take minutes: a refusal in seconds shows it came first.
+    let slow = |extra: &[&'static str]| {
+        let mut v = vec!["render", "cornell", "--width", "600", "--spp", "100000"];
+        v.extend_from_slice(extra);
+        v
+    };
+    refused(
+        &d,
+        &slow(&["-o", "missing/dir/x.png"]),
+        &["-o missing/dir/x.png", "does not exist"],
+    );
+    refused(
+        &d,
+        &slow(&["--linear", "x.tiff"]),
+        &["--linear x.tiff", ".pfm or .exr"],
+    );
+    refused(&d, &slow(&["-o", "x.jpg"]), &["-o x.jpg", ".png"]);
+    refused(
+        &d,
+        &slow(&["--linear", "missing/x.pfm"]),
+        &["--linear missing/x.pfm", "does not exist"],
+    );
+    refused(
+        &d,
+        &slow(&["--linear", "a.pfm", "--checkpoint", "./a.pfm"]),
+        &["--linear and --checkpoint both name"],
+    );
+    refused(
+        &d,
+        &slow(&["-o", "x.png", "--part", "x.png"]),
+        &["-o and --checkpoint both name"],
+    );
+    std::fs::create_dir(d.join("sub.png")).unwrap();
+    refused(&d, &slow(&["-o", "sub.png"]), &["-o sub.png", "directory"]);
+    assert_eq!(files(&d), ["sub.png"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn durations_of_zero_are_refused_and_a_budget_past_the_end_of_time_is_no_deadline() {
+    let d = dir("time");
+    refused(&d, &render(&["--time", "0"]), &["--time 0", "positive"]);
+    refused(
+        &d,
+        &render(&["--checkpoint-every", "0s", "--part", "p"]),
+        &["--checkpoint-every 0"],
+    );
+    ok(&d, &render(&["--time", "100000000000000d"]));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_time_budget_that_ends_before_the_first_pass_writes_no_black_image() {
+    let d = dir("nopass");
+    // One pass of 1000x1000 pixels takes far longer than a millisecond.
+    refused(
+        &d,
+        &[
+            "render", "cornell", "--width", "1000", "--time", "1ms", "-o", "x.png",
+        ],
+        &["no pass finished", "no image written"],
+    );
+    assert!(!d.join("x.png").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn sample_offsets_past_2_to_the_32_are_carried_exactly_and_overflow_is_refused() {
+    let d = dir("offset");
+    let k = 1u64 << 32;
+    let (k0, k1) = (k.to_string(), (k + 2).to_string());
+    ok(&d, &render(&["--sample-offset", &k0, "--part", "a"]));
+    ok(&d, &render(&["--sample-offset", &k1, "--part", "b"]));
+    let a = Checkpoint::read(&d.join("a")).unwrap();
+    assert_eq!((a.start, a.acc.samples), (k, k + 2));
+    let out = ok(&d, &["merge", "a", "b", "-o", "m.png", "--part", "m"]);
+    assert!(out.contains(&format!("samples {k}..{}", k + 4)), "{out}");
+    let m = Checkpoint::read(&d.join("m")).unwrap();
+    assert_eq!((m.start, m.acc.samples, m.spp()), (k, k + 4, 4));
+    let top = (u64::MAX - 1).to_string();
+    refused(
+        &d,
+        &render(&["--sample-offset", &top]),
+        &["--sample-offset 18446744073709551614 plus --spp 2"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Write `ck` with pixel 3's sum replaced by `sum`: the checksum is valid, the content is not.
+fn lying_copy(ck: &Checkpoint, sum: Color, path: &Path) {
+    let mut c = ck.clone();
+    c.acc.sum[3] = sum;
+    c.write(path).unwrap();
+}
+
+#[test]
+fn checkpoints_with_a_valid_checksum_but_lying_sums_are_refused_by_merge_and_resume() {
+    let d = dir("lying");
+    ok(&d, &render(&["--part", "good"]));
+    let good = Checkpoint::read(&d.join("good")).unwrap();
+    for (name, sum, why) in [
+        ("nan", Color::new(f64::NAN, 0.0, 0.0), "must be finite"),
+        ("inf", Color::splat(f64::INFINITY), "must be finite"),
+        ("neg", Color::new(0.0, -1.0, 0.0), "never negative"),
+    ] {
+        lying_copy(&good, sum, &d.join(name));
+        refused(
+            &d,
+            &["merge", name, "-o", "m.png"],
+            &[name, "is corrupt", "pixel 3", why],
+        );
+        refused(
+            &d,
+            &[
+                "render", "cornell", "--width", "16", "--spp", "4", "--resume", name,
+            ],
+            &["is corrupt", why],
+        );
+    }
+    assert!(!d.join("m.png").exists());
+    // Finite sums whose total overflows: refused, not written as a NaN image with "0 non-finite".
+    ok(&d, &render(&["--sample-offset", "2", "--part", "next"]));
+    let next = Checkpoint::read(&d.join("next")).unwrap();
+    lying_copy(&good, Color::splat(1e308), &d.join("big0"));
+    lying_copy(&next, Color::splat(1e308), &d.join("big1"));
+    refused(
+        &d,
+        &["merge", "big0", "big1", "-o", "m.png"],
+        &["overflows"],
+    );
+    assert!(!d.join("m.png").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn merge_checks_its_outputs_before_reading_and_never_overwrites_a_part() {
+    let d = dir("mergeout");
+    ok(&d, &render(&["--part", "p0"]));
+    ok(&d, &render(&["--sample-offset", "2", "--part", "p1"]));
+    refused(
+        &d,
+        &["merge", "p0", "p1", "-o", "nowhere/m.png"],
+        &["-o nowhere/m.png", "does not exist"],
+    );
+    refused(
+        &d,
+        &["merge", "p0", "p1", "--linear", "m.bmp"],
+        &["--linear m.bmp"],
+    );
+    refused(
+        &d,
+        &["merge", "p0", "p1", "--part", "p1"],
+        &["--part p1 is also an input (the part p1)"],
+    );
+    refused(
+        &d,
+        &[
+            "merge", "p0", "p1", "-o", "m.png", "--linear", "m.pfm", "--part", "m.pfm",
+        ],
+        &["--linear and --part both name m.pfm"],
+    );
+    assert_eq!(files(&d), ["cornell.png", "p0", "p1"]);
+    ok(&d, &["merge", "p0", "p1", "-o", "m.png"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_resume_with_other_settings_names_the_serialised_field_that_differs() {
+    let d = dir("identity");
+    ok(&d, &render(&["--checkpoint", "ck"]));
+    refused(
+        &d,
+        &[
+            "render", "cornell", "--width", "16", "--spp", "4", "--resume", "ck", "--no-rr",
+        ],
+        &["strategy.Mis.russian_roulette: true in the checkpoint, false in this render"],
+    );
+    refused(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "16",
+            "--spp",
+            "4",
+            "--resume",
+            "ck",
+            "--strategy",
+            "cosine",
+        ],
+        &[
+            "strategy: {\"Mis\":",
+            "in the checkpoint, \"Cosine\" in this render",
+        ],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn study_render_refuses_a_sweep_past_u64_and_an_image_past_the_memory() {
+    let d = dir("study");
+    // 4^31: the sweep 1, 4, 16, ... would overflow u64 and never end.
+    refused(
+        &d,
+        &[
+            "study",
+            "render",
+            "--out",
+            "o",
+            "--quick",
+            "--max-spp",
+            "4611686018427387904",
+        ],
+        &["--max-spp 4611686018427387904", "at most"],
+    );
+    refused(
+        &d,
+        &[
+            "study", "render", "--out", "o", "--quick", "--width", "100000",
+        ],
+        &["--width 100000", "65536"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_time_budget_from_the_last_sample_index_is_refused_not_an_empty_render() {
+    let d = dir("lastindex");
+    let last = u64::MAX.to_string();
+    refused(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "8",
+            "--time",
+            "1s",
+            "--sample-offset",
+            &last,
+        ],
+        &[
+            "--sample-offset 18446744073709551615",
+            "no sample index is left",
+        ],
+    );
+    // Just below it, a time budget renders the one sample there is.
+    let below = (u64::MAX - 1).to_string();
+    ok(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "8",
+            "--time",
+            "5s",
+            "--sample-offset",
+            &below,
+            "--part",
+            "p",
+        ],
+    );
+    let p = Checkpoint::read(&d.join("p")).unwrap();
+    assert_eq!((p.start, p.acc.samples), (u64::MAX - 1, u64::MAX));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn parts_larger_than_the_memory_are_refused_before_they_are_read() {
+    let d = dir("mergemem");
+    // A sparse file: 1.1 TB by its length, nothing on disk.
+    let f = std::fs::File::create(d.join("huge")).unwrap();
+    f.set_len(1 << 40).unwrap();
+    refused(
+        &d,
+        &["merge", "huge", "-o", "m.png"],
+        &["the 1 part(s) hold 1.1 TB", "MemAvailable"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}

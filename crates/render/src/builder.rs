@@ -1,0 +1,355 @@
+//! Building a scene the way the books' `main` functions do, object by object, then every group's BVH
+//! (inner groups first) and the scene's [`Features`]; what cannot be built is a typed [`SceneError`].
+
+use crate::aabb::Aabb;
+use crate::bvh::{Bvh, ItemCost};
+use crate::camera::CameraSettings;
+use crate::ids::{GroupId, MaterialId, TextureId};
+use crate::material::{Albedo, Material};
+use crate::scene::{Accel, Background, ConstantMedium, Features, Group, Object, Scene, Target};
+use crate::shapes::{Quad, Sphere, box_quads};
+use crate::texture::Texture;
+use crate::transform::Transform;
+use crate::vec::{Color, Point3, Vec3};
+
+/// Errors in building a scene.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum SceneError {
+    #[error("zero-area or non-finite quad (Q {q}, u {u}, v {v})")]
+    DegenerateQuad { q: Vec3, u: Vec3, v: Vec3 },
+    #[error("sphere with non-positive or non-finite radius {0} or non-finite centre")]
+    BadSphere(f64),
+    #[error("medium density must be positive and finite, got {0}")]
+    BadDensity(f64),
+    #[error("the box with corners {a} and {b} is flat")]
+    FlatBox { a: Point3, b: Point3 },
+    #[error("{0}")]
+    TextureImage(String),
+    #[error("group {group} refers to group {missing}, which does not exist")]
+    MissingGroup { group: u32, missing: u32 },
+    #[error("group {0} contains itself")]
+    Cycle(u32),
+    #[error("group {0} is placed before it is complete")]
+    Incomplete(u32),
+    #[error("the boundary {0} of a medium is not complete")]
+    IncompleteBoundary(u32),
+    #[error("material {index} is invalid: {what}")]
+    InvalidMaterial { index: usize, what: &'static str },
+    #[error("an object refers to material {0}, which does not exist")]
+    UnknownMaterial(u32),
+}
+
+/// Builds a scene object by object, the way the books' `main` functions do.
+#[derive(Debug)]
+pub struct SceneBuilder {
+    groups: Vec<Vec<Object>>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub camera: CameraSettings,
+    pub background: Background,
+    pub max_depth: u32,
+    pub targets: Vec<Target>,
+}
+
+impl Default for SceneBuilder {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl SceneBuilder {
+    pub fn new() -> Self {
+        SceneBuilder {
+            groups: vec![Vec::new()],
+            materials: Vec::new(),
+            textures: Vec::new(),
+            camera: CameraSettings::default(),
+            background: Background::Solid(Color::ZERO),
+            max_depth: 50,
+            targets: Vec::new(),
+        }
+    }
+
+    pub fn material(&mut self, m: Material) -> MaterialId {
+        self.materials.push(m);
+        MaterialId(self.materials.len() as u32 - 1)
+    }
+
+    pub fn texture(&mut self, t: Texture) -> TextureId {
+        self.textures.push(t);
+        TextureId(self.textures.len() as u32 - 1)
+    }
+
+    /// A new empty group (a list with its own BVH), to be filled with `add_to` and placed by instances.
+    pub fn group(&mut self) -> GroupId {
+        self.groups.push(Vec::new());
+        GroupId(self.groups.len() as u32 - 1)
+    }
+
+    /// The world: the top-level list.
+    pub fn world(&self) -> GroupId {
+        GroupId(0)
+    }
+
+    pub fn add_to(&mut self, g: GroupId, o: Object) {
+        self.groups[g.0 as usize].push(o);
+    }
+
+    pub fn add(&mut self, o: Object) {
+        self.add_to(GroupId(0), o)
+    }
+
+    /// A sphere into group `g`.
+    pub fn sphere(
+        &mut self,
+        g: GroupId,
+        center: Point3,
+        radius: f64,
+        m: MaterialId,
+    ) -> Result<(), SceneError> {
+        if !(radius.is_finite() && radius > 0.0 && center.is_finite()) {
+            return Err(SceneError::BadSphere(radius));
+        }
+        self.add_to(g, Object::Sphere(Sphere::new(center, radius, m)));
+        Ok(())
+    }
+
+    /// A sphere moving from `c0` at time 0 to `c1` at time 1 into group `g`.
+    pub fn moving_sphere(
+        &mut self,
+        g: GroupId,
+        c0: Point3,
+        c1: Point3,
+        radius: f64,
+        m: MaterialId,
+    ) -> Result<(), SceneError> {
+        if !(radius.is_finite() && radius > 0.0 && c0.is_finite() && c1.is_finite()) {
+            return Err(SceneError::BadSphere(radius));
+        }
+        self.add_to(g, Object::Sphere(Sphere::moving(c0, c1, radius, m)));
+        Ok(())
+    }
+
+    /// The quad `(Q, u, v)` into group `g`.
+    pub fn quad(
+        &mut self,
+        g: GroupId,
+        q: Point3,
+        u: Vec3,
+        v: Vec3,
+        m: MaterialId,
+    ) -> Result<Quad, SceneError> {
+        let quad = Quad::new(q, u, v, m).ok_or(SceneError::DegenerateQuad { q, u, v })?;
+        self.add_to(g, Object::Quad(quad));
+        Ok(quad)
+    }
+
+    /// A new group holding the box with corners `a`, `b` as six quads.
+    pub fn box_group(
+        &mut self,
+        a: Point3,
+        b: Point3,
+        m: MaterialId,
+    ) -> Result<GroupId, SceneError> {
+        let quads = box_quads(a, b, m).ok_or(SceneError::DegenerateQuad {
+            q: a,
+            u: b - a,
+            v: Vec3::ZERO,
+        })?;
+        let g = self.group();
+        for q in quads {
+            self.add_to(g, Object::Quad(q));
+        }
+        Ok(g)
+    }
+
+    /// Place group `inner` by `transform` into group `g`.
+    pub fn instance(&mut self, g: GroupId, inner: GroupId, transform: Transform) {
+        self.add_to(
+            g,
+            Object::Instance {
+                transform,
+                group: inner,
+            },
+        );
+    }
+
+    /// Fill the closed shape `boundary` with a medium of `density` and phase material `phase` in group `g`.
+    pub fn medium(
+        &mut self,
+        g: GroupId,
+        boundary: GroupId,
+        density: f64,
+        phase: MaterialId,
+    ) -> Result<(), SceneError> {
+        if !(density.is_finite() && density > 0.0) {
+            return Err(SceneError::BadDensity(density));
+        }
+        self.add_to(
+            g,
+            Object::Medium(ConstantMedium {
+                boundary,
+                neg_inv_density: -1.0 / density,
+                phase,
+            }),
+        );
+        Ok(())
+    }
+
+    /// The groups a group refers to (by instance, nesting or medium boundary).
+    fn references(objects: &[Object]) -> impl Iterator<Item = usize> + '_ {
+        objects.iter().filter_map(|o| match o {
+            Object::Instance { group, .. } | Object::Group(group) => Some(group.0 as usize),
+            Object::Medium(m) => Some(m.boundary.0 as usize),
+            _ => None,
+        })
+    }
+
+    /// Groups in an order where every group comes after the groups it refers to (depth-first); a
+    /// group that contains itself, directly or not, is an error.
+    fn build_order(&self) -> Result<Vec<usize>, SceneError> {
+        // 0 = not visited, 1 = on the current path, 2 = done.
+        let n = self.groups.len();
+        let mut state = vec![0u8; n];
+        let mut order = Vec::with_capacity(n);
+        for root in 0..n {
+            if state[root] != 0 {
+                continue;
+            }
+            // Explicit stack of (group, next reference index) to avoid deep recursion.
+            let mut stack = vec![(root, 0usize)];
+            state[root] = 1;
+            while let Some(&mut (g, ref mut next)) = stack.last_mut() {
+                let refs: Vec<usize> = Self::references(&self.groups[g]).collect();
+                if let Some(&r) = refs.get(*next) {
+                    *next += 1;
+                    if r >= n {
+                        return Err(SceneError::MissingGroup {
+                            group: g as u32,
+                            missing: r as u32,
+                        });
+                    }
+                    match state[r] {
+                        0 => {
+                            state[r] = 1;
+                            stack.push((r, 0));
+                        }
+                        1 => return Err(SceneError::Cycle(r as u32)),
+                        _ => {}
+                    }
+                } else {
+                    state[g] = 2;
+                    order.push(g);
+                    stack.pop();
+                }
+            }
+        }
+        Ok(order)
+    }
+
+    /// Build every group's BVH (inner groups first, since instances need their bounds) and decide the
+    /// scene's features.
+    pub fn build(self) -> Result<Scene, SceneError> {
+        let n = self.groups.len();
+        let mut built: Vec<Option<Group>> = (0..n).map(|_| None).collect();
+        let mut bounds_of: Vec<Option<Aabb>> = vec![None; n];
+        let order = self.build_order()?;
+        for &gi in &order {
+            let objects = &self.groups[gi];
+            let mut bounds = Vec::with_capacity(objects.len());
+            for o in objects {
+                let b = match o {
+                    Object::Sphere(s) => s.bounds(),
+                    Object::Quad(q) => q.bounds(),
+                    Object::Instance { transform, group } => {
+                        let inner =
+                            bounds_of[group.0 as usize].ok_or(SceneError::Incomplete(group.0))?;
+                        transform.bounds(&inner)
+                    }
+                    Object::Group(group) => {
+                        bounds_of[group.0 as usize].ok_or(SceneError::Incomplete(group.0))?
+                    }
+                    Object::Medium(m) => bounds_of[m.boundary.0 as usize]
+                        .ok_or(SceneError::IncompleteBoundary(m.boundary.0))?,
+                };
+                bounds.push(b);
+            }
+            let costs: Vec<ItemCost> = objects.iter().map(Object::cost).collect();
+            let bvh = Bvh::build_with_costs(&bounds, &costs);
+            let objects_in_order: Vec<Object> =
+                bvh.order.iter().map(|&i| objects[i as usize]).collect();
+            bounds_of[gi] = Some(bvh.bounds());
+            built[gi] = Some(Group {
+                accel: Accel::new(&objects_in_order, &bvh),
+                objects: objects_in_order,
+            });
+        }
+        let groups: Vec<Group> = built
+            .into_iter()
+            .map(|g| g.expect("every group built"))
+            .collect();
+        for (index, m) in self.materials.iter().enumerate() {
+            let what = match m {
+                Material::Lambertian { albedo }
+                | Material::Isotropic { albedo }
+                | Material::DiffuseLight { emit: albedo, .. } => {
+                    matches!(albedo, Albedo::Texture(t) if t.index() >= self.textures.len())
+                        .then_some("it refers to a texture that does not exist")
+                }
+                Material::Metal { albedo, fuzz } => (!albedo.is_finite() || !fuzz.is_finite())
+                    .then_some("a metal's albedo and fuzz must be finite"),
+                Material::Dielectric { ior } => (!(ior.is_finite() && *ior > 0.0))
+                    .then_some("the index of refraction must be positive and finite"),
+            };
+            if let Some(what) = what {
+                return Err(SceneError::InvalidMaterial { index, what });
+            }
+        }
+        let mut features = Features {
+            defocus: self.camera.defocus_angle > 0.0,
+            targets: self.targets.len(),
+            textures: self
+                .textures
+                .iter()
+                .filter(|t| !matches!(t, Texture::Solid(_)))
+                .count(),
+            ..Features::default()
+        };
+        for g in &groups {
+            for o in &g.objects {
+                let mat = match o {
+                    Object::Sphere(s) => {
+                        features.motion |= s.is_moving();
+                        Some(s.material)
+                    }
+                    Object::Quad(q) => Some(q.material),
+                    Object::Instance { .. } | Object::Group(_) => None,
+                    Object::Medium(_) => {
+                        features.media += 1;
+                        None
+                    }
+                };
+                if let Some(m) = mat {
+                    let m = self
+                        .materials
+                        .get(m.index())
+                        .ok_or(SceneError::UnknownMaterial(m.0))?;
+                    if let Material::DiffuseLight { two_sided, .. } = m {
+                        features.emitters += 1;
+                        features.one_sided_emitters |= !two_sided;
+                    }
+                }
+            }
+        }
+        Ok(Scene {
+            groups,
+            materials: self.materials,
+            textures: self.textures,
+            camera: self.camera,
+            background: self.background,
+            max_depth: self.max_depth,
+            targets: self.targets,
+            features,
+        })
+    }
+}

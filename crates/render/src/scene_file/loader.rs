@@ -1,0 +1,516 @@
+//! The loader: the file's top-level tables in order (render settings, camera, textures, materials,
+//! objects, importance targets) into a [`SceneBuilder`], refusing every value the renderer cannot use
+//! with its span. The objects, one function per kind, are in `objects.rs`.
+
+use super::SceneFile;
+use super::doc::{
+    AlbedoDoc, CameraDoc, CheckerDoc, DielectricDoc, ImageDoc, LightDoc, MATERIAL_TYPES, MarbleDoc,
+    MetalDoc, RenderDoc, SolidDoc, TEXTURE_TYPES, TOP_KEYS, Typed, de, de_table, in_file_order,
+    take, typed,
+};
+use super::span::{Fail, Span, Val, fail};
+use super::values::{Aspect, BackgroundSpec, ColorSpec, Real, Step, V3, compose};
+use crate::camera::CameraSettings;
+use crate::limits::{self, MAX_SIDE, MIN_POSITIVE};
+use crate::material::{Albedo, Material};
+use crate::scene::{Background, GroupId, MaterialId, SceneBuilder, TextureId, Transform};
+use crate::scenes::Built;
+use crate::shapes::{Quad, Sphere};
+use crate::texture::{ImageData, Texture};
+use crate::vec::Vec3;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use toml::Spanned;
+use toml::de::{DeTable, DeValue};
+
+/// What a name in the file stands for.
+#[derive(Clone, Copy)]
+pub(super) enum Named {
+    /// A sphere or quad, in world space (an importance target may name it).
+    Sphere(Sphere),
+    Quad(Quad),
+    /// A group or box (an instance may place it again).
+    Group(GroupId),
+    /// Anything else (moving spheres, media, instances).
+    Other(&'static str),
+}
+
+/// Where an object's parts go: straight into the enclosing group, or into a group of their own that an
+/// instance then places by the object's transform.
+pub(super) struct Placement {
+    pub(super) group: GroupId,
+    pub(super) instance: Option<Transform>,
+    /// Object space to world space, for importance targets.
+    pub(super) to_world: Transform,
+}
+
+pub(super) struct Loader {
+    pub(super) b: SceneBuilder,
+    pub(super) dir: PathBuf,
+    pub(super) textures: Vec<(String, TextureId)>,
+    pub(super) materials: Vec<(String, MaterialId)>,
+    pub(super) names: HashMap<String, (Span, Named)>,
+    pub(super) shutter: (f64, f64),
+}
+
+impl Loader {
+    pub(super) fn new(dir: PathBuf) -> Self {
+        Loader {
+            b: SceneBuilder::new(),
+            dir,
+            textures: Vec::new(),
+            materials: Vec::new(),
+            names: HashMap::new(),
+            shutter: (0.0, 1.0),
+        }
+    }
+
+    pub(super) fn load(mut self, root: Spanned<DeTable<'_>>) -> Result<SceneFile, Fail> {
+        let mut t = root.into_inner();
+        for (k, _) in t.iter() {
+            if !TOP_KEYS.contains(&k.get_ref().as_ref()) {
+                return fail(
+                    k.span(),
+                    format!(
+                        "unknown field `{}`, expected one of {}",
+                        k.get_ref(),
+                        TOP_KEYS.join(", ")
+                    ),
+                );
+            }
+        }
+        let description = take(&mut t, "description").map(de::<String>).transpose()?;
+        let render: RenderDoc = take(&mut t, "render")
+            .map(de)
+            .transpose()?
+            .unwrap_or_default();
+        let (width, spp) = self.render(&render)?;
+        let Some(camera) = take(&mut t, "camera") else {
+            return fail(
+                0..0,
+                "missing table [camera] (at least lookfrom and lookat)",
+            );
+        };
+        self.camera(de(camera)?, render.aspect)?;
+        if let Some(textures) = take(&mut t, "textures") {
+            for (name, v) in in_file_order(self.table(textures)?) {
+                let tex = self.texture(v)?;
+                self.textures.push((name.into_inner(), self.b.texture(tex)));
+            }
+        }
+        if let Some(materials) = take(&mut t, "materials") {
+            for (name, v) in in_file_order(self.table(materials)?) {
+                let m = self.material(v)?;
+                self.materials.push((name.into_inner(), self.b.material(m)));
+            }
+        }
+        let (objects, objects_span) = match take(&mut t, "objects") {
+            Some(o) => {
+                let span = o.span();
+                (
+                    self.array(o, "an array of object tables ([[objects]])")?,
+                    span,
+                )
+            }
+            None => (Vec::new(), 0..0),
+        };
+        if objects.is_empty() {
+            return fail(
+                objects_span,
+                "the scene has no objects (add [[objects]] tables)",
+            );
+        }
+        let world = self.b.world();
+        for o in objects {
+            self.object(world, o, Transform::IDENTITY)?;
+        }
+        if let Some(lights) = take(&mut t, "lights") {
+            for l in self.array(lights, "a list of object names or shapes")? {
+                self.light(l)?;
+            }
+        }
+        let scene = self.b.build().map_err(|e| Fail {
+            span: 0..0,
+            msg: format!("invalid scene: {e}"),
+        })?;
+        Ok(SceneFile {
+            built: Built {
+                scene,
+                notices: Vec::new(),
+            },
+            width,
+            spp,
+            description,
+        })
+    }
+
+    pub(super) fn table<'i>(&self, v: Val<'i>) -> Result<DeTable<'i>, Fail> {
+        let span = v.span();
+        match v.into_inner() {
+            DeValue::Table(t) => Ok(t),
+            other => fail(
+                span,
+                format!("expected a table, found {}", other.type_str()),
+            ),
+        }
+    }
+
+    pub(super) fn array<'i>(&self, v: Val<'i>, what: &str) -> Result<Vec<Val<'i>>, Fail> {
+        let span = v.span();
+        match v.into_inner() {
+            DeValue::Array(a) => Ok(a.into_iter().collect()),
+            other => fail(span, format!("expected {what}, found {}", other.type_str())),
+        }
+    }
+
+    pub(super) fn render(&mut self, r: &RenderDoc) -> Result<(Option<usize>, Option<u64>), Fail> {
+        for (value, what) in [(&r.width, "width"), (&r.spp, "spp")] {
+            if let Some(v) = value
+                && *v.get_ref() == 0
+            {
+                return fail(v.span(), format!("{what} must be at least 1"));
+            }
+        }
+        if let Some(w) = &r.width
+            && *w.get_ref() > MAX_SIDE as u64
+        {
+            return fail(
+                w.span(),
+                format!("width must be at most {MAX_SIDE}, got {}", w.get_ref()),
+            );
+        }
+        if let Some(d) = &r.max_depth {
+            if let Some(problem) = limits::max_depth_problem(*d.get_ref()) {
+                return fail(d.span(), format!("max_depth {problem}"));
+            }
+            self.b.max_depth = *d.get_ref();
+        }
+        if let Some(bg) = r.background {
+            self.b.background = match bg {
+                BackgroundSpec::Sky => Background::Sky,
+                BackgroundSpec::Rgb(c) => Background::Solid(c),
+            };
+        }
+        Ok((
+            r.width.as_ref().map(|w| *w.get_ref() as usize),
+            r.spp.as_ref().map(|s| *s.get_ref()),
+        ))
+    }
+
+    pub(super) fn camera(&mut self, c: CameraDoc, aspect: Option<Aspect>) -> Result<(), Fail> {
+        let d = CameraSettings::default();
+        let real = |x: &Option<Spanned<Real>>, default: f64| {
+            x.as_ref()
+                .map_or((default, 0..0), |s| (s.get_ref().0, s.span()))
+        };
+        let (vfov, vfov_span) = real(&c.vfov, d.vfov);
+        if !(vfov > 0.0 && vfov < 180.0) {
+            return fail(
+                vfov_span,
+                format!("vfov must lie in (0, 180) degrees, got {vfov}"),
+            );
+        }
+        let (defocus_angle, da_span) = real(&c.defocus_angle, d.defocus_angle);
+        if !(0.0..180.0).contains(&defocus_angle) {
+            return fail(
+                da_span,
+                format!("defocus_angle must lie in [0, 180) degrees, got {defocus_angle}"),
+            );
+        }
+        let (focus_dist, fd_span) = real(&c.focus_dist, d.focus_dist);
+        if focus_dist <= 0.0 {
+            return fail(
+                fd_span,
+                format!("focus_dist must be positive, got {focus_dist}"),
+            );
+        }
+        let (lookfrom, lookat) = (c.lookfrom.get_ref().0, c.lookat.get_ref().0);
+        let view = lookfrom - lookat;
+        if view.length_squared() == 0.0 {
+            return fail(
+                c.lookat.span(),
+                "lookfrom and lookat are the same point: the camera has no view direction",
+            );
+        }
+        let vup = c.vup.as_ref().map_or(d.vup, |v| v.get_ref().0);
+        if vup.cross(view).length_squared() <= 1e-12 * vup.length_squared() * view.length_squared()
+        {
+            return fail(
+                c.vup.as_ref().map_or(c.lookat.span(), |v| v.span()),
+                format!(
+                    "vup ({}, {}, {}) is parallel to the view direction (or zero): the image has no up",
+                    vup.x, vup.y, vup.z
+                ),
+            );
+        }
+        if let Some(s) = &c.shutter {
+            let [Real(open), Real(close)] = *s.get_ref();
+            if open > close {
+                return fail(
+                    s.span(),
+                    format!("the shutter closes ({close}) before it opens ({open})"),
+                );
+            }
+            self.shutter = (open, close);
+        }
+        self.b.camera = CameraSettings {
+            aspect_ratio: aspect.map_or(d.aspect_ratio, |a| a.0),
+            vfov,
+            lookfrom,
+            lookat,
+            vup,
+            defocus_angle,
+            focus_dist,
+        };
+        Ok(())
+    }
+
+    pub(super) fn texture(&self, v: Val<'_>) -> Result<Texture, Fail> {
+        let Typed { kind, table, span } = typed(v, "texture", TEXTURE_TYPES)?;
+        Ok(match kind {
+            "solid" => Texture::Solid(de_table::<SolidDoc>(table, &span)?.color.0),
+            "checker" => {
+                let d: CheckerDoc = de_table(table, &span)?;
+                let scale = positive(&d.scale, "scale")?;
+                Texture::checker(scale, d.even.0, d.odd.0)
+            }
+            "marble" => {
+                let d: MarbleDoc = de_table(table, &span)?;
+                Texture::marble(positive(&d.scale, "scale")?)
+            }
+            "image" => {
+                let d: ImageDoc = de_table(table, &span)?;
+                let file = self.dir.join(d.file.get_ref());
+                if !file.is_file() {
+                    return fail(
+                        d.file.span(),
+                        format!(
+                            "texture file {} not found (paths are relative to the scene file's directory)",
+                            file.display()
+                        ),
+                    );
+                }
+                let img = ImageData::load(&file).or_else(|e| fail(d.file.span(), e))?;
+                Texture::Image(Box::new(img))
+            }
+            _ => unreachable!("typed() returns one of TEXTURE_TYPES"),
+        })
+    }
+
+    /// A colour or a named texture.
+    pub(super) fn albedo(&self, c: &Spanned<ColorSpec>) -> Result<Albedo, Fail> {
+        match c.get_ref() {
+            ColorSpec::Rgb(c) => Ok(Albedo::Constant(*c)),
+            ColorSpec::Texture(name) => match self.textures.iter().find(|(n, _)| n == name) {
+                Some((_, id)) => Ok(Albedo::Texture(*id)),
+                None => fail(
+                    c.span(),
+                    format!(
+                        "unknown texture `{name}`; {}",
+                        known("textures", self.textures.iter().map(|(n, _)| n.as_str()))
+                    ),
+                ),
+            },
+        }
+    }
+
+    /// A reflectance (the albedo of a surface or a medium): a colour or a named texture whose
+    /// components lie in [0, 1], since a surface reflects at most the light it receives (above 1 the
+    /// throughput of a path grows with every bounce until it overflows).
+    pub(super) fn reflectance(&self, c: &Spanned<ColorSpec>) -> Result<Albedo, Fail> {
+        let albedo = self.albedo(c)?;
+        let most = match albedo {
+            Albedo::Constant(c) => c.max_element(),
+            Albedo::Texture(t) => match &self.b.textures[t.index()] {
+                Texture::Solid(c) => c.max_element(),
+                Texture::Checker { even, odd, .. } => even.max_element().max(odd.max_element()),
+                // Images are 8-bit values decoded to [0, 1]; marble is a grey in [0, 1].
+                Texture::Image(_) | Texture::Marble { .. } => 0.0,
+            },
+        };
+        if most > 1.0 {
+            return fail(
+                c.span(),
+                format!(
+                    "an albedo reflects a fraction of the light, so its components must lie in [0, 1]; \
+                     got {most}"
+                ),
+            );
+        }
+        Ok(albedo)
+    }
+
+    pub(super) fn material(&self, v: Val<'_>) -> Result<Material, Fail> {
+        let Typed { kind, table, span } = typed(v, "material", MATERIAL_TYPES)?;
+        Ok(match kind {
+            "lambertian" => Material::Lambertian {
+                albedo: self.reflectance(&de_table::<AlbedoDoc>(table, &span)?.albedo)?,
+            },
+            "isotropic" => Material::Isotropic {
+                albedo: self.reflectance(&de_table::<AlbedoDoc>(table, &span)?.albedo)?,
+            },
+            "metal" => {
+                let d: MetalDoc = de_table(table, &span)?;
+                let fuzz = match &d.fuzz {
+                    Some(f) if !(0.0..=1.0).contains(&f.get_ref().0) => {
+                        return fail(
+                            f.span(),
+                            format!("fuzz must lie in [0, 1], got {}", f.get_ref().0),
+                        );
+                    }
+                    Some(f) => f.get_ref().0,
+                    None => 0.0,
+                };
+                let albedo = d.albedo.get_ref().0;
+                if albedo.max_element() > 1.0 {
+                    return fail(
+                        d.albedo.span(),
+                        format!(
+                            "a metal reflects a fraction of the light, so its albedo must lie in \
+                             [0, 1]; got {}",
+                            albedo.max_element()
+                        ),
+                    );
+                }
+                Material::Metal { albedo, fuzz }
+            }
+            "dielectric" => {
+                let d: DielectricDoc = de_table(table, &span)?;
+                Material::Dielectric {
+                    ior: positive(&d.ior, "ior")?,
+                }
+            }
+            "light" => {
+                let d: LightDoc = de_table(table, &span)?;
+                Material::DiffuseLight {
+                    emit: self.albedo(&d.emit)?,
+                    two_sided: d.two_sided,
+                }
+            }
+            _ => unreachable!("typed() returns one of MATERIAL_TYPES"),
+        })
+    }
+
+    pub(super) fn material_id(&self, name: &Spanned<String>) -> Result<MaterialId, Fail> {
+        match self.materials.iter().find(|(n, _)| n == name.get_ref()) {
+            Some((_, id)) => Ok(*id),
+            None => fail(
+                name.span(),
+                format!(
+                    "unknown material `{}`; {}",
+                    name.get_ref(),
+                    known("materials", self.materials.iter().map(|(n, _)| n.as_str()))
+                ),
+            ),
+        }
+    }
+
+    pub(super) fn name(&mut self, name: Option<Spanned<String>>, what: Named) -> Result<(), Fail> {
+        let Some(name) = name else { return Ok(()) };
+        if let Some((first, _)) = self.names.get(name.get_ref()) {
+            return fail(
+                name.span(),
+                format!(
+                    "the name `{}` is already used (first at byte {})",
+                    name.get_ref(),
+                    first.start
+                ),
+            );
+        }
+        self.names
+            .insert(name.get_ref().clone(), (name.span(), what));
+        Ok(())
+    }
+
+    /// Where an object with transform `steps` inside group `into` puts its parts.
+    pub(super) fn placement(
+        &mut self,
+        into: GroupId,
+        steps: &[Step],
+        to_world: Transform,
+        span: &Span,
+    ) -> Result<Placement, Fail> {
+        Ok(if steps.is_empty() {
+            Placement {
+                group: into,
+                instance: None,
+                to_world,
+            }
+        } else {
+            let t = self.compose(steps, span)?;
+            Placement {
+                group: self.b.group(),
+                instance: Some(t),
+                to_world: t.then(to_world),
+            }
+        })
+    }
+
+    /// The transform of `steps` (the object at `span`), refused unless every number of it is finite:
+    /// translations that add up past `f64::MAX` would put the object at infinity.
+    pub(super) fn compose(&self, steps: &[Step], span: &Span) -> Result<Transform, Fail> {
+        let t = compose(steps);
+        if t.rotation.is_finite() && t.translation.is_finite() {
+            Ok(t)
+        } else {
+            fail(
+                span.clone(),
+                format!(
+                    "field `transform`: the steps add up to a translation of [{}, {}, {}], which is \
+                     not finite",
+                    t.translation.x, t.translation.y, t.translation.z
+                ),
+            )
+        }
+    }
+
+    pub(super) fn place(&mut self, into: GroupId, p: &Placement) {
+        if let Some(t) = p.instance {
+            self.b.instance(into, p.group, t);
+        }
+    }
+}
+
+pub(super) fn positive(x: &Spanned<Real>, what: &str) -> Result<f64, Fail> {
+    let v = x.get_ref().0;
+    if v >= MIN_POSITIVE {
+        Ok(v)
+    } else if v > 0.0 {
+        fail(
+            x.span(),
+            format!("{what} must be at least {MIN_POSITIVE:e}, got {v:e}"),
+        )
+    } else {
+        fail(x.span(), format!("{what} must be positive, got {v}"))
+    }
+}
+
+/// A quad spans an area only if `u x v` is not zero.
+pub(super) fn check_quad(u: Vec3, v: Vec3, us: &Spanned<V3>, vs: &Spanned<V3>) -> Result<(), Fail> {
+    let n = u.cross(v);
+    if n.length_squared() > 0.0 && n.is_finite() {
+        return Ok(());
+    }
+    let span = if v.length_squared() == 0.0 {
+        vs.span()
+    } else {
+        us.span()
+    };
+    fail(
+        span,
+        format!(
+            "zero-area quad: u x v = 0 (u = [{}, {}, {}], v = [{}, {}, {}] are parallel or zero)",
+            u.x, u.y, u.z, v.x, v.y, v.z
+        ),
+    )
+}
+
+/// "known materials: a, b" or "no materials are defined".
+pub(super) fn known<'a>(what: &str, names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<String> = names.map(|n| format!("`{n}`")).collect();
+    if names.is_empty() {
+        format!("no {what} are defined")
+    } else {
+        format!("known {what}: {}", names.join(", "))
+    }
+}

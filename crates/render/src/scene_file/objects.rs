@@ -1,0 +1,282 @@
+//! The objects of a scene file, one loader function per kind (`sphere`, `moving_sphere`, `quad`, `box`,
+//! `group`, `instance`, `medium`), and the importance targets of `lights`.
+
+use super::doc::{
+    BoxDoc, GroupDoc, InstanceDoc, MediumDoc, MovingSphereDoc, OBJECT_TYPES, QuadDoc, SphereDoc,
+    TargetQuadDoc, TargetSphereDoc, Typed, de_table, take, typed,
+};
+use super::loader::{Loader, Named, check_quad, known, positive};
+use super::span::{Fail, Span, Val, fail};
+use super::values::Step;
+use crate::material::Material;
+use crate::scene::{GroupId, NO_MATERIAL, Object, Target, Transform};
+use crate::shapes::{Quad, Sphere};
+use toml::de::DeTable;
+
+impl Loader {
+    /// Build the object `v` into group `into`; `to_world` maps the group's space to world space.
+    pub(super) fn object(
+        &mut self,
+        into: GroupId,
+        v: Val<'_>,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
+        let Typed { kind, table, span } = typed(v, "object", OBJECT_TYPES)?;
+        match kind {
+            "sphere" => self.sphere(into, table, span, to_world),
+            "moving_sphere" => self.moving_sphere(into, table, span, to_world),
+            "quad" => self.quad(into, table, span, to_world),
+            "box" => self.box_(into, table, span),
+            "group" => self.group(into, table, span, to_world),
+            "instance" => self.instance(into, table, span),
+            "medium" => self.medium(into, table, span, to_world),
+            _ => unreachable!("typed() returns one of OBJECT_TYPES"),
+        }
+    }
+
+    /// `sphere`: `center`, `radius`.
+    fn sphere(
+        &mut self,
+        into: GroupId,
+        table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
+        let d: SphereDoc = de_table(table, &span)?;
+        let m = self.material_id(&d.material)?;
+        let r = positive(&d.radius, "radius")?;
+        let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.b
+            .sphere(p.group, d.center.0, r, m)
+            .or_else(|e| fail(span.clone(), e.to_string()))?;
+        self.place(into, &p);
+        let world = Sphere::new(p.to_world.point(d.center.0), r, m);
+        self.name(d.name, Named::Sphere(world))
+    }
+
+    /// `moving_sphere`: `center0` at time 0, `center1` at time 1, `radius`.
+    fn moving_sphere(
+        &mut self,
+        into: GroupId,
+        table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
+        let d: MovingSphereDoc = de_table(table, &span)?;
+        let m = self.material_id(&d.material)?;
+        let r = positive(&d.radius, "radius")?;
+        // The camera's rays carry times in [0, 1); the file's shutter [open, close] maps onto that, so
+        // the centre at ray time s is the file's centre at open + s (close - open).
+        let (open, close) = self.shutter;
+        let motion = d.center1.0 - d.center0.0;
+        let (c0, c1) = (d.center0.0 + open * motion, d.center0.0 + close * motion);
+        let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.b
+            .moving_sphere(p.group, c0, c1, r, m)
+            .or_else(|e| fail(span.clone(), e.to_string()))?;
+        self.place(into, &p);
+        self.name(d.name, Named::Other("a moving sphere"))
+    }
+
+    /// `quad`: corner `q` and edges `u`, `v`.
+    fn quad(
+        &mut self,
+        into: GroupId,
+        table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
+        let d: QuadDoc = de_table(table, &span)?;
+        let m = self.material_id(&d.material)?;
+        let (q, u, v) = (d.q.0, d.u.get_ref().0, d.v.get_ref().0);
+        check_quad(u, v, &d.u, &d.v)?;
+        let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.b
+            .quad(p.group, q, u, v, m)
+            .or_else(|e| fail(span.clone(), e.to_string()))?;
+        self.place(into, &p);
+        let t = p.to_world;
+        let world = Quad::new(t.point(q), t.vector(u), t.vector(v), m)
+            .map_or(Named::Other("a quad"), Named::Quad);
+        self.name(d.name, world)
+    }
+
+    /// `box`: opposite corners `a`, `b`; six quads in a group of their own.
+    fn box_(&mut self, into: GroupId, table: DeTable<'_>, span: Span) -> Result<(), Fail> {
+        let d: BoxDoc = de_table(table, &span)?;
+        let m = self.material_id(&d.material)?;
+        let (a, b) = (d.a.0, d.b.get_ref().0);
+        let size = (b - a).abs();
+        if size.min_element() == 0.0 {
+            return fail(
+                d.b.span(),
+                format!(
+                    "the box is flat: corners a and b must differ in x, y and z (size {} x {} x {})",
+                    size.x, size.y, size.z
+                ),
+            );
+        }
+        let g = self
+            .b
+            .box_group(a, b, m)
+            .or_else(|e| fail(span.clone(), e.to_string()))?;
+        self.add_placed(into, g, &d.transform, &span)?;
+        self.name(d.name, Named::Group(g))
+    }
+
+    /// `group`: its own `[[objects.objects]]`, with its own BVH.
+    fn group(
+        &mut self,
+        into: GroupId,
+        mut table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
+        let children = match take(&mut table, "objects") {
+            Some(o) => self.array(o, "an array of object tables ([[objects.objects]])")?,
+            None => Vec::new(),
+        };
+        let d: GroupDoc = de_table(table, &span)?;
+        if children.is_empty() {
+            return fail(
+                span,
+                "a group needs at least one object ([[objects.objects]])",
+            );
+        }
+        let g = self.b.group();
+        let t = self.compose(&d.transform, &span)?;
+        let inner_to_world = t.then(to_world);
+        for c in children {
+            self.object(g, c, inner_to_world)?;
+        }
+        self.add_placed(into, g, &d.transform, &span)?;
+        self.name(d.name, Named::Group(g))
+    }
+
+    /// `instance`: `of` = the name of a group or box defined earlier, placed again.
+    fn instance(&mut self, into: GroupId, table: DeTable<'_>, span: Span) -> Result<(), Fail> {
+        let d: InstanceDoc = de_table(table, &span)?;
+        let g = match self.names.get(d.of.get_ref()) {
+            Some((_, Named::Group(g))) => *g,
+            _ => {
+                let mut groups: Vec<&str> = self
+                    .names
+                    .iter()
+                    .filter(|(_, (_, n))| matches!(n, Named::Group(_)))
+                    .map(|(k, _)| k.as_str())
+                    .collect();
+                groups.sort_unstable();
+                return fail(
+                    d.of.span(),
+                    format!(
+                        "`{}` is not a group or box defined earlier in the file; {}",
+                        d.of.get_ref(),
+                        known("groups and boxes", groups.into_iter())
+                    ),
+                );
+            }
+        };
+        self.add_placed(into, g, &d.transform, &span)?;
+        self.name(d.name, Named::Other("an instance"))
+    }
+
+    /// `medium`: a constant-density medium (`density`, `albedo`) inside a `boundary` object.
+    fn medium(
+        &mut self,
+        into: GroupId,
+        mut table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
+        let Some(boundary) = take(&mut table, "boundary") else {
+            return fail(span, "missing field `boundary`");
+        };
+        let d: MediumDoc = de_table(table, &span)?;
+        let density = positive(&d.density, "density")?;
+        let albedo = self.reflectance(&d.albedo)?;
+        let p = self.placement(into, &d.transform, to_world, &span)?;
+        let bounds = self.b.group();
+        self.object(bounds, boundary, p.to_world)?;
+        let phase = self.b.material(Material::Isotropic { albedo });
+        self.b
+            .medium(p.group, bounds, density, phase)
+            .or_else(|e| fail(span.clone(), e.to_string()))?;
+        self.place(into, &p);
+        self.name(d.name, Named::Other("a medium"))
+    }
+
+    /// Add group `g` to `into`, through an instance if it has a transform.
+    fn add_placed(
+        &mut self,
+        into: GroupId,
+        g: GroupId,
+        steps: &[Step],
+        span: &Span,
+    ) -> Result<(), Fail> {
+        if steps.is_empty() {
+            self.b.add_to(into, Object::Group(g));
+        } else {
+            let t = self.compose(steps, span)?;
+            self.b.instance(into, g, t);
+        }
+        Ok(())
+    }
+
+    /// An importance target: the name of a sphere or quad, or an inline `{ type = "sphere" | "quad" }`.
+    pub(super) fn light(&mut self, v: Val<'_>) -> Result<(), Fail> {
+        let span = v.span();
+        if let Some(name) = v.get_ref().as_str() {
+            let target = self.named_target(name, span)?;
+            self.b.targets.push(target);
+            return Ok(());
+        }
+        let Typed { kind, table, span } = typed(v, "importance target", &["sphere", "quad"])?;
+        let target = if kind == "sphere" {
+            let d: TargetSphereDoc = de_table(table, &span)?;
+            let r = positive(&d.radius, "radius")?;
+            Target::Sphere(Sphere::new(d.center.0, r, NO_MATERIAL))
+        } else {
+            let d: TargetQuadDoc = de_table(table, &span)?;
+            let (u, v) = (d.u.get_ref().0, d.v.get_ref().0);
+            check_quad(u, v, &d.u, &d.v)?;
+            match Quad::new(d.q.0, u, v, NO_MATERIAL) {
+                Some(q) => Target::Quad(q),
+                None => return fail(span, "degenerate quad"),
+            }
+        };
+        self.b.targets.push(target);
+        Ok(())
+    }
+
+    /// The importance target a name in `lights` stands for.
+    fn named_target(&self, name: &str, span: Span) -> Result<Target, Fail> {
+        match self.names.get(name) {
+            Some((_, Named::Sphere(s))) => Ok(Target::Sphere(*s)),
+            Some((_, Named::Quad(q))) => Ok(Target::Quad(*q)),
+            Some((_, Named::Group(_))) => fail(
+                span,
+                format!("`{name}` is a group or box; importance targets are spheres and quads"),
+            ),
+            Some((_, Named::Other(what))) => fail(
+                span,
+                format!("`{name}` is {what}; importance targets are spheres and quads"),
+            ),
+            None => {
+                let mut shapes: Vec<&str> = self
+                    .names
+                    .iter()
+                    .filter(|(_, (_, n))| matches!(n, Named::Sphere(_) | Named::Quad(_)))
+                    .map(|(k, _)| k.as_str())
+                    .collect();
+                shapes.sort_unstable();
+                fail(
+                    span,
+                    format!(
+                        "no object is named `{name}`; {}",
+                        known("named spheres and quads", shapes.into_iter())
+                    ),
+                )
+            }
+        }
+    }
+}
