@@ -28,7 +28,9 @@ pub struct AliasTable {
 impl AliasTable {
     // ANCHOR: build
     /// Builds the table; weights must be finite and `>= 0`, not all 0 (errors name the bad bin).
-    /// A bin of weight 0 gets `q = 0`, so it is never returned.
+    /// A bin of weight 0 gets `q = 0`, so it is never returned. The weights are divided by the
+    /// largest one before they are summed, so weights near `f64::MAX` (whose sum overflows) and
+    /// subnormal weights are sampled in proportion like any others.
     pub fn new(weights: &[f64]) -> Result<Self, SamplingError> {
         let n = weights.len();
         if n == 0 {
@@ -44,17 +46,19 @@ impl AliasTable {
                 max: u32::MAX as usize,
             });
         }
-        let mut total = 0.0;
+        let mut largest = 0.0f64;
         for (bin, &w) in weights.iter().enumerate() {
             if !(w.is_finite() && w >= 0.0) {
                 return Err(SamplingError::BadWeight { bin, value: w });
             }
-            total += w;
+            largest = largest.max(w);
         }
-        if total <= 0.0 || !total.is_finite() {
+        if largest == 0.0 {
             return Err(SamplingError::AllZero { bins: n });
         }
-        let pmf: Vec<f64> = weights.iter().map(|w| w / total).collect();
+        // Scaled into [0, 1], the sum lies in [1, n]: it neither overflows nor underflows.
+        let total: f64 = weights.iter().map(|w| w / largest).sum();
+        let pmf: Vec<f64> = weights.iter().map(|w| (w / largest) / total).collect();
         // Scaled probabilities average 1; `small` holds columns below 1, `large` the rest.
         let mut scaled: Vec<f64> = pmf.iter().map(|p| p * n as f64).collect();
         let (mut small, mut large): (Vec<usize>, Vec<usize>) =
@@ -168,6 +172,19 @@ impl AliasPiecewise {
         // Validates the edges and weights with the same errors as a tabulated CDF.
         crate::TabulatedCdf::from_edges_and_weights(edges, weights)?;
         let table = AliasTable::new(weights)?;
+        // The alias table's probabilities may round differently from the CDF's steps: check the
+        // densities it will report, too.
+        for (bin, (e, &probability)) in edges.windows(2).zip(&table.pmf).enumerate() {
+            let (width, density) = (e[1] - e[0], probability / (e[1] - e[0]));
+            if probability > 0.0 && !(density > 0.0 && density.is_finite()) {
+                return Err(SamplingError::DensityOutOfRange {
+                    bin,
+                    probability,
+                    width,
+                    density,
+                });
+            }
+        }
         let outcome = |i: usize, stretch: f64| Outcome {
             x0: edges[i],
             x1: edges[i + 1],
