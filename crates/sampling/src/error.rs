@@ -32,7 +32,7 @@ pub enum SamplingError {
     /// A bin (or an interval) is wider than the largest `f64`, so its width and density cannot be
     /// computed.
     #[error(
-        "bin {bin} from {x0} to {x1} has a width that overflows f64 (more than {max:e})",
+        "bin {bin} from {x0:?} to {x1:?} has a width that overflows f64 (more than {max:e})",
         max = f64::MAX
     )]
     WidthOverflow { bin: usize, x0: f64, x1: f64 },
