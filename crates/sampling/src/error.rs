@@ -61,6 +61,15 @@ pub enum SamplingError {
         col: usize,
         density: f64,
     },
+    /// A parameter of an analytic density outside the range where its samples are finite and
+    /// carry a positive finite density.
+    #[error("{what} = {value:?} is outside [{min:e}, {max:e}]")]
+    OutOfRange {
+        what: &'static str,
+        value: f64,
+        min: f64,
+        max: f64,
+    },
     /// Two slices that must match in length do not.
     #[error("{what} has {got} entries, expected {expected}")]
     LengthMismatch {

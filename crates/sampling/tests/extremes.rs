@@ -231,3 +231,64 @@ fn integrate_over_a_domain_wider_than_f64_max_is_finite() {
     let i = integrate(|_| 1e-300, -1e308, 1e308, 4);
     assert!((i - 2e8).abs() < 1e-6, "{i}");
 }
+
+#[test]
+fn numerical_inversion_on_a_domain_wider_than_f64_max_converges_inside_it() {
+    use rtl_sampling::NumericInverse;
+    // F(x) = x / 2e308 + 1/2 written so that it never overflows
+    let cdf = |x: f64| 0.5 + x / 4e307 / 5.0;
+    let brent = NumericInverse::new(cdf, -1e308, 1e308).unwrap();
+    let newton = NumericInverse::with_density(cdf, |_| 1.0 / 4e307 / 5.0, -1e308, 1e308).unwrap();
+    for u in [0.0, 1e-300, 0.25, 0.5, 0.75, 1.0 - f64::EPSILON] {
+        for inv in [brent.invert(u).unwrap(), newton.invert(u).unwrap()] {
+            let want = (u - 0.5) * 1e308 * 2.0;
+            assert!(
+                inv.x.is_finite() && (-1e308..=1e308).contains(&inv.x),
+                "u = {u}: {inv:?}"
+            );
+            assert!(
+                (inv.x - want).abs() <= 1e-9 * 1e308,
+                "u = {u}: {} vs {want}",
+                inv.x
+            );
+        }
+    }
+}
+
+#[test]
+fn uniform_density_on_a_domain_wider_than_f64_max_is_positive_and_a_too_narrow_one_is_refused() {
+    use rtl_sampling::analytic::Uniform;
+    let wide = Uniform::new(-1e308, 1e308).unwrap();
+    for u in us() {
+        let s = wide.sample(u);
+        assert!(s.x.is_finite() && s.pdf > 0.0 && s.pdf.is_finite(), "{s:?}");
+        assert_eq!(s.pdf, wide.pdf(s.x));
+        assert!((wide.invert(s.x) - u).abs() < 1e-15, "u = {u}");
+    }
+    assert!((wide.pdf(0.0) * 2e307 - 0.1).abs() < 1e-16);
+    let e = Uniform::new(0.0, 1e-310).unwrap_err();
+    assert!(matches!(e, SamplingError::DensityOutOfRange { .. }), "{e}");
+    assert!(matches!(
+        Uniform::new(1.0, 1.0),
+        Err(SamplingError::BadInterval { .. })
+    ));
+}
+
+#[test]
+fn exponential_rates_whose_samples_overflow_are_refused_naming_the_limit() {
+    use rtl_sampling::analytic::Exponential;
+    for rate in [Exponential::MIN_RATE, 1.0, f64::MAX] {
+        let d = Exponential::new(rate).unwrap();
+        for u in us() {
+            let s = d.sample(u);
+            assert!(
+                s.x.is_finite() && s.pdf > 0.0 && s.pdf.is_finite(),
+                "rate {rate}, u = {u}: {s:?}"
+            );
+        }
+    }
+    for rate in [0.0, -1.0, 1e-310, f64::INFINITY, f64::NAN] {
+        let e = Exponential::new(rate).unwrap_err();
+        assert!(e.to_string().contains("1e-306"), "{e}");
+    }
+}
