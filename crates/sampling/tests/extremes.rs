@@ -292,3 +292,24 @@ fn exponential_rates_whose_samples_overflow_are_refused_naming_the_limit() {
         assert!(e.to_string().contains("1e-306"), "{e}");
     }
 }
+
+/// Found by the `tables` fuzz target (docs/fuzzing.md): a weight of 2.1e-322 after one of 2 does not
+/// move the CDF (the tabulated bin has probability 0), but the alias table gave it probability 1e-322
+/// over a width of 1.4e39, a density that underflowed to 0, and refused a table the CDF accepts.
+#[test]
+fn alias_piecewise_accepts_what_the_tabulated_cdf_accepts_and_samples_the_same_bins() {
+    let edges = [0.0, 1.2500000000002274, 3.0, 1.361129467683754e39];
+    let weights = [1.39067116159862e-309, 2.000000001862645, 2.1e-322];
+    let t = TabulatedCdf::from_edges_and_weights(&edges, &weights).unwrap();
+    let a = AliasPiecewise::new(&edges, &weights).unwrap();
+    assert_eq!(t.bin_probability(2), 0.0);
+    for u in us() {
+        let s = a.sample(u);
+        assert!(
+            s.x < 3.0 && s.pdf > 0.0 && s.pdf.is_finite(),
+            "{s:?} at u = {u}"
+        );
+        assert_eq!(s.pdf, a.pdf(s.x));
+        assert_eq!(s.pdf, t.pdf(s.x));
+    }
+}
