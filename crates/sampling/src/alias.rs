@@ -42,6 +42,7 @@ impl AliasTable {
         }
         if n > u32::MAX as usize {
             return Err(SamplingError::TooMany {
+                what: "bins",
                 got: n,
                 max: u32::MAX as usize,
             });

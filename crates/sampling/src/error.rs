@@ -23,9 +23,13 @@ pub enum SamplingError {
         min: usize,
         got: usize,
     },
-    /// More bins than a 32-bit index can name.
-    #[error("{got} bins is more than this table supports ({max})")]
-    TooMany { got: usize, max: usize },
+    /// More bins (or guide cells) than a 32-bit index can name, or than a table sensibly needs.
+    #[error("{got} {what} is more than this table supports ({max})")]
+    TooMany {
+        what: &'static str,
+        got: usize,
+        max: usize,
+    },
     /// `nx × ny` cells are more than a `usize` can count.
     #[error("{nx} × {ny} cells is more than a table can count ({max})", max = usize::MAX)]
     CellCountOverflow { nx: usize, ny: usize },

@@ -376,6 +376,14 @@ pub(crate) fn equal_edges(a: f64, b: f64, n: usize) -> Result<Vec<f64>, Sampling
             got: 0,
         });
     }
+    // Refused before the edges are allocated (n = usize::MAX would overflow the capacity).
+    if n > u32::MAX as usize {
+        return Err(SamplingError::TooMany {
+            what: "bins",
+            got: n,
+            max: u32::MAX as usize,
+        });
+    }
     let edges: Vec<f64> = (0..=n)
         .map(|i| {
             let t = i as f64 / n as f64;

@@ -313,3 +313,36 @@ fn alias_piecewise_accepts_what_the_tabulated_cdf_accepts_and_samples_the_same_b
         assert_eq!(s.pdf, t.pdf(s.x));
     }
 }
+
+#[test]
+fn counts_of_usize_max_are_refused_before_any_allocation() {
+    let e = TabulatedCdf::from_density(|_| 1.0, 0.0, 1.0, usize::MAX).unwrap_err();
+    assert!(
+        matches!(e, SamplingError::TooMany { what: "bins", .. }),
+        "{e}"
+    );
+    assert!(e.to_string().contains(&usize::MAX.to_string()), "{e}");
+    let t = TabulatedCdf::from_weights(0.0, 1.0, &[1.0, 2.0]).unwrap();
+    let e = GuideTable::with_cells(t.clone(), usize::MAX).unwrap_err();
+    assert_eq!(
+        e,
+        SamplingError::TooMany {
+            what: "guide cells",
+            got: usize::MAX,
+            max: 128
+        }
+    );
+    assert!(GuideTable::with_cells(t, 128).is_ok());
+}
+
+#[test]
+fn one_bin_and_one_weight_sample_the_whole_domain() {
+    let t = TabulatedCdf::from_weights(-1.0, 1.0, &[1e-300]).unwrap();
+    let a = AliasTable::new(&[f64::MAX]).unwrap();
+    let m = PiecewiseConstant2D::new(&[5e-324], 1, 1, (0.0, 1.0), (0.0, 1.0)).unwrap();
+    for u in us() {
+        assert_eq!(t.sample(u).pdf, 0.5);
+        assert_eq!(a.sample(u).0, 0);
+        assert_eq!(m.sample(u, u).pdf, 1.0);
+    }
+}
