@@ -30,7 +30,8 @@ impl GuideTable {
 
     // ANCHOR: build
     /// A guide table with `1 ≤ m ≤ 64 N` cells (at most `u32::MAX`). Cell `j` holds the `u` with
-    /// `⌊u m⌋ = j` as computed in floating point (so rounding of `u m` can never send a query to a cell that starts after it).
+    /// `⌊u m⌋ = j` as computed in floating point (so rounding of `u m` can never send a query to a
+    /// cell that starts after it).
     pub fn with_cells(table: TabulatedCdf, m: usize) -> Result<Self, SamplingError> {
         let n = table.len();
         if m == 0 {
