@@ -202,3 +202,21 @@ fn sample_counts_that_overflow_a_u64_are_an_error_before_any_work() {
     let e = jittered(|_| 1.0, domain, u64::MAX, 2, &mut rng()).unwrap_err();
     assert!(matches!(e, McError::TooManySamples { .. }), "{e}");
 }
+
+#[test]
+fn importance_weights_that_overflow_are_an_error_naming_the_point() {
+    use rand::Rng;
+    let e = rtl_mc::importance(
+        |_: f64| 1.0,
+        |r: &mut Xoshiro256PlusPlus| r.random::<f64>(),
+        |_| 5e-324, // a subnormal pdf: f / p = 2e323 overflows
+        10,
+        &mut rng(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, McError::NonFiniteIntegrand { value, .. } if value == f64::INFINITY),
+        "{e}"
+    );
+    assert!(e.to_string().contains("f/p"), "{e}");
+}
