@@ -220,3 +220,13 @@ fn importance_weights_that_overflow_are_an_error_naming_the_point() {
     );
     assert!(e.to_string().contains("f/p"), "{e}");
 }
+
+#[test]
+fn mean_test_with_an_alpha_outside_zero_one_fails_instead_of_panicking() {
+    let est = plain(|x| x, Interval::new(0.0, 1.0).unwrap(), 2000, &mut rng()).unwrap();
+    for alpha in [0.0, 1.0, 3.0, -1.0, f64::NAN] {
+        let t = rtl_mc::check::mean_test(&est, 0.5, alpha);
+        assert!(!t.passed, "alpha {alpha}: {t:?}");
+    }
+    assert!(rtl_mc::check::mean_test(&est, 0.5, 1e-6).passed);
+}
