@@ -23,7 +23,8 @@ pub struct MeanTest {
 ///
 /// Rounding alone moves even a zero-variance estimate (a perfect importance sampler) a few ulp from
 /// `exact`, and its standard error is then 0 or tiny, so an estimate within 4 ulp of `exact` always
-/// passes. Otherwise a single unit, a standard error of 0, or a non-finite estimate fails.
+/// passes. Otherwise a single unit, a standard error of 0, a non-finite estimate, or an `alpha` outside
+/// `(0, 1)` fails.
 ///
 /// ```
 /// use rtl_mc::{Interval, check::mean_test, plain};
@@ -37,7 +38,9 @@ pub struct MeanTest {
 pub fn mean_test(estimate: &Estimate, exact: f64, alpha: f64) -> MeanTest {
     let units = estimate.stats.count();
     let value = estimate.value();
-    let critical = if units >= 1000 {
+    let critical = if !(alpha > 0.0 && alpha < 1.0) {
+        f64::NAN // no false-failure rate outside (0, 1): nothing passes but an exact estimate
+    } else if units >= 1000 {
         Normal::standard().inverse_cdf(1.0 - alpha / 2.0)
     } else if units >= 2 {
         student_t_quantile(1.0 - alpha / 2.0, units - 1)

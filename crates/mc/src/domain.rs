@@ -10,18 +10,22 @@ pub struct Interval {
 }
 
 impl Interval {
-    /// `[a, b]`, or [`McError::EmptyInterval`] unless `a < b` and both are finite.
+    /// `[a, b]`, or [`McError::EmptyInterval`] unless `a < b` and both are finite, or
+    /// [`McError::IntervalTooWide`] if `b - a` overflows (`[-1e308, 1e308]`).
     ///
     /// ```
     /// use rtl_mc::Interval;
     /// assert_eq!(Interval::new(0.0, 2.0).unwrap().length(), 2.0);
     /// assert!(Interval::new(1.0, 1.0).is_err());
+    /// assert!(Interval::new(-1e308, 1e308).is_err());
     /// ```
     pub fn new(a: f64, b: f64) -> Result<Self, McError> {
-        if a.is_finite() && b.is_finite() && a < b {
-            Ok(Self { a, b })
-        } else {
+        if !(a.is_finite() && b.is_finite() && a < b) {
             Err(McError::EmptyInterval { a, b })
+        } else if !(b - a).is_finite() {
+            Err(McError::IntervalTooWide { a, b })
+        } else {
+            Ok(Self { a, b })
         }
     }
 
@@ -55,12 +59,29 @@ pub struct Rect {
 }
 
 impl Rect {
-    /// The rectangle `[a, b] x [c, d]`, or [`McError::EmptyInterval`] naming the bad side.
+    /// The rectangle `[a, b] x [c, d]`, or [`McError::EmptyInterval`] naming the bad side, or
+    /// [`McError::AreaTooLarge`] if its area overflows.
     pub fn new(a: f64, b: f64, c: f64, d: f64) -> Result<Self, McError> {
-        Ok(Self {
+        let r = Self {
             x: Interval::new(a, b)?,
             y: Interval::new(c, d)?,
-        })
+        };
+        r.checked_area()?;
+        Ok(r)
+    }
+
+    /// Its area, or [`McError::AreaTooLarge`] (the sides are public, so a `Rect` built by hand is
+    /// checked here, where the estimators ask for it).
+    pub fn checked_area(&self) -> Result<f64, McError> {
+        let area = self.area();
+        if area.is_finite() {
+            Ok(area)
+        } else {
+            Err(McError::AreaTooLarge {
+                width: self.x.length(),
+                height: self.y.length(),
+            })
+        }
     }
 
     /// Its area `(b - a)(d - c)`.

@@ -8,6 +8,30 @@ pub enum McError {
     /// An interval `[a, b]` needs finite ends with `a < b`.
     #[error("empty or invalid interval [{a}, {b}]: need finite a < b")]
     EmptyInterval { a: f64, b: f64 },
+    /// An interval wider than the largest `f64`: its length, the `1 / p` of uniform sampling, is not
+    /// a number.
+    #[error("interval [{a:?}, {b:?}] is wider than f64::MAX ({max:e}): b - a overflows", max = f64::MAX)]
+    IntervalTooWide { a: f64, b: f64 },
+    /// A rectangle whose area overflows.
+    #[error(
+        "rectangle of sides {width:e} x {height:e} has an area beyond f64::MAX ({max:e})",
+        max = f64::MAX
+    )]
+    AreaTooLarge { width: f64, height: f64 },
+    /// A sample or a replicate estimate, finite factors, overflows: `(b - a) f(x)`, say, beyond
+    /// `f64::MAX`. The integral itself (or the sample's share of it) is not an `f64`.
+    #[error("{estimator}: {what} overflows f64 (beyond {max:e}) at {at}", max = f64::MAX)]
+    Overflow {
+        estimator: &'static str,
+        what: &'static str,
+        at: String,
+    },
+    /// More samples than a `u64` counts (`nx * ny * replicates`).
+    #[error("{estimator}: {what} samples is more than a u64 counts ({max})", max = u64::MAX)]
+    TooManySamples {
+        estimator: &'static str,
+        what: String,
+    },
     /// An estimator was asked for zero samples (or zero strata, or zero Sobol points).
     #[error("{estimator}: asked for 0 samples; need at least 1")]
     NoSamples { estimator: &'static str },

@@ -74,6 +74,42 @@ pub(crate) fn finite<T: Debug>(estimator: &'static str, at: T, value: f64) -> Re
     }
 }
 
+/// `factor * value` (both finite), or [`McError::Overflow`] naming `what` overflowed and where.
+#[inline]
+pub(crate) fn product<T: Debug>(
+    estimator: &'static str,
+    what: &'static str,
+    at: T,
+    factor: f64,
+    value: f64,
+) -> Result<f64, McError> {
+    let p = factor * value;
+    if p.is_finite() {
+        Ok(p)
+    } else {
+        Err(McError::Overflow {
+            estimator,
+            what,
+            at: format!("{at:?}"),
+        })
+    }
+}
+
+/// `a * b * c` sample counts, or [`McError::TooManySamples`].
+pub(crate) fn sample_count(
+    estimator: &'static str,
+    a: u64,
+    b: u64,
+    c: u64,
+) -> Result<u64, McError> {
+    a.checked_mul(b)
+        .and_then(|ab| ab.checked_mul(c))
+        .ok_or_else(|| McError::TooManySamples {
+            estimator,
+            what: format!("{a} x {b} x {c}"),
+        })
+}
+
 pub(crate) fn nonzero(estimator: &'static str, n: u64) -> Result<(), McError> {
     if n == 0 {
         Err(McError::NoSamples { estimator })
@@ -104,7 +140,8 @@ where
     let mut stats = RunningStats::new();
     for _ in 0..n {
         let x = domain.lerp(rng.random::<f64>());
-        stats.push(domain.length() * finite("plain", x, f(x))?);
+        let fx = finite("plain", x, f(x))?;
+        stats.push(product("plain", "(b - a) f(x)", x, domain.length(), fx)?);
     }
     Ok(Estimate {
         stats,
@@ -121,11 +158,13 @@ where
     R: Rng + ?Sized,
 {
     nonzero("plain_2d", n)?;
+    let area = domain.checked_area()?;
     let start = Instant::now();
     let mut stats = RunningStats::new();
     for _ in 0..n {
         let p = domain.lerp(rng.random::<f64>(), rng.random::<f64>());
-        stats.push(domain.area() * finite("plain_2d", p, f(p))?);
+        let fp = finite("plain_2d", p, f(p))?;
+        stats.push(product("plain_2d", "area f(x, y)", p, area, fp)?);
     }
     Ok(Estimate {
         stats,

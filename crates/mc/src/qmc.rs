@@ -1,6 +1,6 @@
 //! Randomised quasi-Monte Carlo: the average of `f` over an Owen-scrambled Sobol point set.
 
-use crate::estimate::{finite, nonzero};
+use crate::estimate::{finite, nonzero, product};
 use crate::sequence::{ScrambledSobol2, scrambled_sobol};
 use crate::stratified::replicates_ok;
 use crate::{Estimate, Interval, McError, Rect, RunningStats};
@@ -38,12 +38,14 @@ where
     let mut stats = RunningStats::new();
     for _ in 0..replicates {
         let seed = rng.next_u64();
-        let mut sum = 0.0;
+        // the mean of f, summed as f / points so that it cannot overflow
+        let (mut mean, w) = (0.0, 1.0 / points as f64);
         for i in 0..points {
             let x = domain.lerp(scrambled_sobol(i as u32, 0, seed));
-            sum += finite("sobol", x, f(x))?;
+            mean += finite("sobol", x, f(x))? * w;
         }
-        stats.push(domain.length() * sum / points as f64);
+        let what = "(b - a) times the mean of f";
+        stats.push(product("sobol", what, domain, domain.length(), mean)?);
     }
     Ok(Estimate {
         stats,
@@ -67,16 +69,18 @@ where
 {
     points_ok("sobol_2d", points)?;
     replicates_ok("sobol_2d", replicates)?;
+    let area = domain.checked_area()?;
     let start = Instant::now();
     let mut stats = RunningStats::new();
     for _ in 0..replicates {
         let seed = rng.next_u64();
-        let mut sum = 0.0;
+        let (mut mean, w) = (0.0, 1.0 / points as f64);
         for [s, t] in ScrambledSobol2::new(seed).take(points as usize) {
             let p = domain.lerp(s, t);
-            sum += finite("sobol_2d", p, f(p))?;
+            mean += finite("sobol_2d", p, f(p))? * w;
         }
-        stats.push(domain.area() * sum / points as f64);
+        let what = "area times the mean of f";
+        stats.push(product("sobol_2d", what, domain, area, mean)?);
     }
     Ok(Estimate {
         stats,

@@ -68,6 +68,10 @@ pub fn byte_product(tables: &[[u32; 256]; 4], i: u32) -> u32 {
 
 /// The unscrambled Sobol point `i` in dimension `dim` (0 or 1) as a 32-bit binary fraction: the XOR
 /// of the direction numbers of the bits set in `i` (for dimension 1 by four table lookups).
+///
+/// # Panics
+/// For `dim >= 2`: only two dimensions exist, and the dimension is fixed by the calling code, never
+/// read from input.
 #[inline]
 pub fn sobol_bits(i: u32, dim: usize) -> u32 {
     match dim {

@@ -13,6 +13,14 @@ use statrs::distribution::{ContinuousCDF, StudentsT};
 /// handles deviations from the running mean. Two partial statistics merge exactly by the parallel
 /// formula of Chan, Golub and LeVeque (1979), so threads can each keep their own and combine at the end.
 ///
+/// The mean and `M2` are kept in units of a power of two `scale` no smaller than half the largest
+/// `|x|` seen (rescaling by a power of two is exact), so values near `f64::MAX` neither overflow a
+/// deviation nor the sum of squares, and subnormal values keep their variance: the results are those
+/// of the plain update wherever it does not overflow or underflow. Values must be finite (a NaN or an
+/// infinity makes the statistics NaN; the estimators refuse them before they get here). The mean is
+/// always finite; a variance beyond `f64::MAX` is `+inf`, while the standard error (its square root
+/// over `n`) stays finite whenever it fits.
+///
 /// ```
 /// use rtl_mc::RunningStats;
 /// let mut s = RunningStats::new();
@@ -25,8 +33,24 @@ use statrs::distribution::{ContinuousCDF, StudentsT};
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct RunningStats {
     count: u64,
+    /// The mean, in units of `scale`.
     mean: f64,
+    /// `M2`, in units of `scale^2`.
     m2: f64,
+    /// A power of two with every `|x| < 2 scale`; 0 while every value is 0.
+    scale: f64,
+}
+
+/// The largest power of two `<= x`, for finite `x > 0` (subnormals included).
+#[inline]
+fn power_of_two_below(x: f64) -> f64 {
+    let bits = x.to_bits();
+    if bits >> 52 == 0 {
+        // subnormal: keep the highest set bit of the significand
+        f64::from_bits(1u64 << (63 - bits.leading_zeros()))
+    } else {
+        f64::from_bits(bits & (0x7ff << 52))
+    }
 }
 
 impl RunningStats {
@@ -36,12 +60,35 @@ impl RunningStats {
             count: 0,
             mean: 0.0,
             m2: 0.0,
+            scale: 0.0,
         }
     }
 
-    /// Adds one value: `mean += (x - mean) / n`, `M2 += (x - mean_old)(x - mean_new)`.
+    /// The same statistics in units of the power of two `scale >= self.scale` (exact unless the
+    /// smaller parts underflow, where they are negligible).
+    #[inline]
+    fn rescaled(&self, scale: f64) -> Self {
+        if self.scale == scale {
+            return *self;
+        }
+        let r = self.scale / scale; // a power of two <= 1, or 0
+        Self {
+            count: self.count,
+            mean: self.mean * r,
+            m2: self.m2 * r * r,
+            scale,
+        }
+    }
+
+    /// Adds one value: `mean += (x - mean) / n`, `M2 += (x - mean_old)(x - mean_new)` (in units of
+    /// `scale`, grown first if `|x|` needs it).
     #[inline]
     pub fn push(&mut self, x: f64) {
+        let ax = x.abs();
+        if ax >= 2.0 * self.scale && ax > 0.0 && ax.is_finite() {
+            *self = self.rescaled(power_of_two_below(ax));
+        }
+        let x = if self.scale > 0.0 { x / self.scale } else { x };
         self.count += 1;
         let delta = x - self.mean;
         self.mean += delta / self.count as f64;
@@ -58,16 +105,25 @@ impl RunningStats {
         if other.count == 0 {
             return *self;
         }
-        let count = self.count + other.count;
-        let (na, nb, n) = (self.count as f64, other.count as f64, count as f64);
-        let delta = other.mean - self.mean;
+        let scale = self.scale.max(other.scale);
+        let (a, b) = (self.rescaled(scale), other.rescaled(scale));
+        let count = a.count + b.count;
+        let (na, nb, n) = (a.count as f64, b.count as f64, count as f64);
+        let delta = b.mean - a.mean;
         Self {
             count,
-            mean: self.mean + delta * (nb / n),
-            m2: self.m2 + other.m2 + delta * delta * (na * nb / n),
+            mean: a.mean + delta * (nb / n),
+            m2: a.m2 + b.m2 + delta * delta * (na * nb / n),
+            scale,
         }
     }
     // ANCHOR_END: running_stats
+
+    /// `scale`, or 1 while every value is 0.
+    #[inline]
+    fn unit(&self) -> f64 {
+        if self.scale > 0.0 { self.scale } else { 1.0 }
+    }
 
     /// How many values were pushed.
     pub fn count(&self) -> u64 {
@@ -76,17 +132,21 @@ impl RunningStats {
 
     /// The sample mean (0 before any value).
     pub fn mean(&self) -> f64 {
-        self.mean
+        self.mean * self.unit()
     }
 
-    /// The unbiased sample variance `M2 / (n - 1)`; `None` with fewer than two values.
+    /// The unbiased sample variance `M2 / (n - 1)`; `None` with fewer than two values, `+inf` if it
+    /// exceeds `f64::MAX` (values near `±1e308`).
     pub fn variance(&self) -> Option<f64> {
-        (self.count >= 2).then(|| self.m2 / (self.count - 1) as f64)
+        (self.count >= 2).then(|| self.m2 / (self.count - 1) as f64 * self.unit() * self.unit())
     }
 
     /// The standard error of the mean, `sqrt(variance / n)`; `None` with fewer than two values.
+    /// Computed in units of `scale`, so it is finite whenever it fits in an `f64`, even where the
+    /// variance does not.
     pub fn std_error(&self) -> Option<f64> {
-        self.variance().map(|v| (v / self.count as f64).sqrt())
+        (self.count >= 2)
+            .then(|| (self.m2 / (self.count - 1) as f64 / self.count as f64).sqrt() * self.unit())
     }
 
     // ANCHOR: confidence_interval
@@ -102,15 +162,25 @@ impl RunningStats {
         let se = self
             .std_error()
             .ok_or(McError::TooFewValues { count: self.count })?;
-        let t = student_t_quantile(0.5 + level / 2.0, self.count - 1);
-        Ok((self.mean - t * se, self.mean + t * se))
+        // The upper quantile from the tail (1 - level) / 2, which does not round to 0 for levels
+        // within 2^-53 of 1, where (1 + level) / 2 would round to 1 and t to infinity (and a
+        // standard error of 0 times an infinite t to NaN).
+        let t = -student_t_quantile((1.0 - level) / 2.0, self.count - 1);
+        let mean = self.mean();
+        // An interval wider than f64::MAX has infinite ends, never NaN ones.
+        let half = if se == 0.0 { 0.0 } else { t * se };
+        Ok((mean - half, mean + half))
     }
     // ANCHOR_END: confidence_interval
 }
 
-/// The `p` quantile of Student's t distribution with `dof >= 1` degrees of freedom.
+/// The `p` quantile of Student's t distribution with `dof` degrees of freedom; `dof = 0` is taken
+/// as 1 (the widest t there is), so no argument panics. `p` outside `[0, 1]` gives NaN.
 pub fn student_t_quantile(p: f64, dof: u64) -> f64 {
-    StudentsT::new(0.0, 1.0, dof as f64)
+    if !(0.0..=1.0).contains(&p) {
+        return f64::NAN; // statrs would panic
+    }
+    StudentsT::new(0.0, 1.0, dof.max(1) as f64)
         .expect("location 0, scale 1 and dof >= 1 are valid parameters")
         .inverse_cdf(p)
 }

@@ -1,6 +1,6 @@
 //! Stratified ("jittered") sampling: one uniform sample in each of `n` equal cells of the domain.
 
-use crate::estimate::{finite, nonzero};
+use crate::estimate::{finite, nonzero, product, sample_count};
 use crate::{Estimate, Interval, McError, Rect, RunningStats};
 use rand::Rng;
 use std::time::Instant;
@@ -37,20 +37,23 @@ where
 {
     nonzero("jittered", strata)?;
     replicates_ok("jittered", replicates)?;
+    let samples = sample_count("jittered", strata, replicates as u64, 1)?;
     let start = Instant::now();
     let mut stats = RunningStats::new();
     let width = 1.0 / strata as f64;
     for _ in 0..replicates {
-        let mut sum = 0.0;
+        // the mean of f over the strata, summed as f / strata so that it cannot overflow
+        let mut mean = 0.0;
         for k in 0..strata {
             let x = domain.lerp((k as f64 + rng.random::<f64>()) * width);
-            sum += finite("jittered", x, f(x))?;
+            mean += finite("jittered", x, f(x))? * width;
         }
-        stats.push(domain.length() * sum * width);
+        let what = "(b - a) times the mean of f";
+        stats.push(product("jittered", what, domain, domain.length(), mean)?);
     }
     Ok(Estimate {
         stats,
-        samples: strata * replicates as u64,
+        samples,
         elapsed: start.elapsed(),
     })
 }
@@ -72,24 +75,27 @@ where
 {
     nonzero("jittered_2d", nx.min(ny))?;
     replicates_ok("jittered_2d", replicates)?;
+    let samples = sample_count("jittered_2d", nx, ny, replicates as u64)?;
+    let area = domain.checked_area()?;
     let start = Instant::now();
     let mut stats = RunningStats::new();
     let (wx, wy) = (1.0 / nx as f64, 1.0 / ny as f64);
     for _ in 0..replicates {
-        let mut sum = 0.0;
+        let mut mean = 0.0;
         for i in 0..nx {
             for j in 0..ny {
                 let s = (i as f64 + rng.random::<f64>()) * wx;
                 let t = (j as f64 + rng.random::<f64>()) * wy;
                 let p = domain.lerp(s, t);
-                sum += finite("jittered_2d", p, f(p))?;
+                mean += finite("jittered_2d", p, f(p))? * wx * wy;
             }
         }
-        stats.push(domain.area() * sum * wx * wy);
+        let what = "area times the mean of f";
+        stats.push(product("jittered_2d", what, domain, area, mean)?);
     }
     Ok(Estimate {
         stats,
-        samples: nx * ny * replicates as u64,
+        samples,
         elapsed: start.elapsed(),
     })
 }

@@ -11,6 +11,20 @@
 use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI, TAU};
 
+/// The smallest `cos theta` a hemisphere warp returns, `2^-40` (about `9e-13`): far above the rounding
+/// of a frame that carries the direction to the world (about `1e-16`), so the direction stays above
+/// the horizon there too, where its density is positive; and far below the `cos theta` of any `u`
+/// away from the boundary of the square, so only `u` on that boundary (or within `2^-40` of it) move.
+const MIN_COS_THETA: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The largest `2 u - 1` of the concentric map, `1 - 2^-52`: what `u = 1 - 2^-53` gives. `u = 0` is
+/// mapped as its neighbour `2^-53` is, so neither end of `[0, 1)` reaches the rim of the disk.
+const CONCENTRIC_MAX: f64 = 1.0 - f64::EPSILON;
+
+/// The largest `u.x` of the cone warp, `1 - 2^-48`: the rounding of `1 - cos theta` recomputed from the
+/// direction (a few ulps) cannot then carry the last `u` outside the cone.
+const CONE_U_MAX: f64 = 1.0 - 16.0 * f64::EPSILON;
+
 /// The azimuth `phi` of `w` about `+z`, in `[0, 1)` turns (so `phi / 2 pi`).
 #[inline]
 fn azimuth_turns(w: DVec3) -> f64 {
@@ -103,10 +117,11 @@ pub fn invert_uniform_sphere_sample(w: DVec3) -> DVec2 {
 // ANCHOR: uniform_hemisphere
 /// A direction uniform over the hemisphere `z >= 0`, density `1 / (2 pi)` per steradian.
 ///
-/// `cos theta = u.x`, `phi = 2 pi u.y`.
+/// `cos theta = u.x`, `phi = 2 pi u.y`; `cos theta` is at least `MIN_COS_THETA` (`2^-40`), so `u.x = 0`
+/// gives a direction just above the horizon, not in the tangent plane.
 #[inline]
 pub fn sample_uniform_hemisphere(u: DVec2) -> DVec3 {
-    let z = u.x;
+    let z = u.x.max(MIN_COS_THETA);
     let r = ((1.0 - z) * (1.0 + z)).max(0.0).sqrt();
     let (sin_phi, cos_phi) = sin_cos_turns(u.y);
     DVec3::new(r * cos_phi, r * sin_phi, z)
@@ -128,10 +143,12 @@ pub fn invert_uniform_hemisphere_sample(w: DVec3) -> DVec2 {
 // ANCHOR: concentric_disk
 /// A point uniform on the unit disk, density `1 / pi` per unit area, by the concentric map of
 /// Shirley and Chiu ("A Low Distortion Map Between Disk and Square", 1997): squares around the
-/// centre of `[-1, 1]^2` go to circles, so strata stay compact.
+/// centre of `[-1, 1]^2` go to circles, so strata stay compact. `2 u - 1` is kept within
+/// `±(1 - 2^-52)`, so the point is strictly inside the disk at both ends of `u`.
 #[inline]
 pub fn sample_uniform_disk_concentric(u: DVec2) -> DVec2 {
-    let o = 2.0 * u - DVec2::ONE;
+    let o =
+        (2.0 * u - DVec2::ONE).clamp(DVec2::splat(-CONCENTRIC_MAX), DVec2::splat(CONCENTRIC_MAX));
     if o.x == 0.0 && o.y == 0.0 {
         return DVec2::ZERO;
     }
@@ -174,11 +191,14 @@ pub fn invert_uniform_disk_concentric(p: DVec2) -> DVec2 {
 ///
 /// Malley's method: a point uniform on the unit disk (here by the concentric map) lifted straight up
 /// to the hemisphere. The projected-area measure `cos theta d omega` is the disk's area measure, so the
-/// density per steradian is `(1 / pi) cos theta`.
+/// density per steradian is `(1 / pi) cos theta`. Near the rim, where `1 - |d|^2` rounds towards 0,
+/// `cos theta` is kept at least `MIN_COS_THETA` (`2^-40`): the direction stays above the horizon,
+/// where its density is positive.
 #[inline]
 pub fn sample_cosine_hemisphere(u: DVec2) -> DVec3 {
     let d = sample_uniform_disk_concentric(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    // (a negative 1 - |d|^2 gives a NaN square root, which `max` replaces)
+    let z = (1.0 - d.length_squared()).sqrt().max(MIN_COS_THETA);
     DVec3::new(d.x, d.y, z)
 }
 
@@ -215,10 +235,11 @@ pub fn cone_one_minus_cos(sin2_theta_max: f64) -> f64 {
 ///
 /// The cone is given by `1 - cos theta_max` (in `(0, 2]`; 2 is the whole sphere) rather than
 /// `cos theta_max`, so that very narrow cones keep their size: `1 - cos theta = u.x (1 - cos theta_max)`,
-/// `sin theta = sqrt(t (2 - t))` with `t = 1 - cos theta`, `phi = 2 pi u.y`.
+/// `sin theta = sqrt(t (2 - t))` with `t = 1 - cos theta`, `phi = 2 pi u.y`. `u.x` is kept at most
+/// `1 - 2^-48`, so the direction is inside the cone even after rounding.
 #[inline]
 pub fn sample_uniform_cone(u: DVec2, one_minus_cos_max: f64) -> DVec3 {
-    let t = u.x * one_minus_cos_max;
+    let t = u.x.min(CONE_U_MAX) * one_minus_cos_max;
     let cos_theta = 1.0 - t;
     let sin_theta = (t * (2.0 - t)).max(0.0).sqrt();
     let (sin_phi, cos_phi) = sin_cos_turns(u.y);

@@ -28,7 +28,9 @@ pub struct AliasTable {
 impl AliasTable {
     // ANCHOR: build
     /// Builds the table; weights must be finite and `>= 0`, not all 0 (errors name the bad bin).
-    /// A bin of weight 0 gets `q = 0`, so it is never returned.
+    /// A bin of weight 0 gets `q = 0`, so it is never returned. The weights are divided by the
+    /// largest one before they are summed, so weights near `f64::MAX` (whose sum overflows) and
+    /// subnormal weights are sampled in proportion like any others.
     pub fn new(weights: &[f64]) -> Result<Self, SamplingError> {
         let n = weights.len();
         if n == 0 {
@@ -40,21 +42,24 @@ impl AliasTable {
         }
         if n > u32::MAX as usize {
             return Err(SamplingError::TooMany {
+                what: "bins",
                 got: n,
                 max: u32::MAX as usize,
             });
         }
-        let mut total = 0.0;
+        let mut largest = 0.0f64;
         for (bin, &w) in weights.iter().enumerate() {
             if !(w.is_finite() && w >= 0.0) {
                 return Err(SamplingError::BadWeight { bin, value: w });
             }
-            total += w;
+            largest = largest.max(w);
         }
-        if total <= 0.0 || !total.is_finite() {
+        if largest == 0.0 {
             return Err(SamplingError::AllZero { bins: n });
         }
-        let pmf: Vec<f64> = weights.iter().map(|w| w / total).collect();
+        // Scaled into [0, 1], the sum lies in [1, n]: it neither overflows nor underflows.
+        let total: f64 = weights.iter().map(|w| w / largest).sum();
+        let pmf: Vec<f64> = weights.iter().map(|w| (w / largest) / total).collect();
         // Scaled probabilities average 1; `small` holds columns below 1, `large` the rest.
         let mut scaled: Vec<f64> = pmf.iter().map(|p| p * n as f64).collect();
         let (mut small, mut large): (Vec<usize>, Vec<usize>) =
@@ -167,15 +172,20 @@ pub struct AliasPiecewise {
 }
 
 impl AliasPiecewise {
-    /// Bins with the given edges (strictly increasing) and weights.
+    /// Bins with the given edges (strictly increasing) and weights, validated as a tabulated CDF is
+    /// (the same errors). The alias table is built from that table's bin probabilities and reports
+    /// its densities, so both sample the same bins with the same density: a weight too small to move
+    /// the CDF (`2e-322` after a weight of 2) is a bin of probability 0 for both, never one that the
+    /// alias table would sample with a density that underflowed to 0.
     pub fn new(edges: &[f64], weights: &[f64]) -> Result<Self, SamplingError> {
-        // Validates the edges and weights with the same errors as a tabulated CDF.
-        crate::TabulatedCdf::from_edges_and_weights(edges, weights)?;
-        let table = AliasTable::new(weights)?;
+        let t = crate::TabulatedCdf::from_edges_and_weights(edges, weights)?;
+        let probability: Vec<f64> = (0..t.len()).map(|i| t.bin_probability(i)).collect();
+        let table = AliasTable::new(&probability)?;
+        // positive and finite wherever the probability is positive: the table checked it
         let outcome = |i: usize, stretch: f64| Outcome {
             x0: edges[i],
             x1: edges[i + 1],
-            pdf: table.pmf[i] / (edges[i + 1] - edges[i]),
+            pdf: probability[i] / (edges[i + 1] - edges[i]),
             stretch,
         };
         let columns = table

@@ -15,7 +15,7 @@
 //! assert_eq!(Linear.invert(1.0), 0.25);
 //! ```
 
-use crate::{InverseTransform, Sample, clamp_u, distribution_by_inversion};
+use crate::{InverseTransform, Sample, SamplingError, clamp_u, distribution_by_inversion};
 
 /// Implements [`InverseTransform`] by the type's own (inherent) `sample`, `pdf` and `invert`.
 macro_rules! inverse_transform_by_inherent {
@@ -38,9 +38,40 @@ pub struct Uniform {
 }
 
 impl Uniform {
+    /// `[a, b]`, checked: finite `a < b`, and a width whose density `1 / (b - a)` is a positive
+    /// finite `f64` (widths beyond `f64::MAX`, as `[-1e308, 1e308]`, are fine; widths below
+    /// `1 / f64::MAX`, about `5.6e-309`, are not). The fields may also be set directly, unchecked.
+    pub fn new(a: f64, b: f64) -> Result<Self, SamplingError> {
+        if !(a.is_finite() && b.is_finite() && a < b) {
+            return Err(SamplingError::BadInterval { a, b });
+        }
+        let u = Self { a, b };
+        let density = u.density();
+        if !(density > 0.0 && density.is_finite()) {
+            return Err(SamplingError::DensityOutOfRange {
+                bin: 0,
+                probability: 1.0,
+                width: b - a,
+                density,
+            });
+        }
+        Ok(u)
+    }
+
+    /// `1 / (b - a)`, by halves where `b - a` overflows.
+    #[inline]
+    fn density(&self) -> f64 {
+        let w = self.b - self.a;
+        if w.is_finite() {
+            1.0 / w
+        } else {
+            0.5 / (0.5 * self.b - 0.5 * self.a)
+        }
+    }
+
     pub fn pdf(&self, x: f64) -> f64 {
         if (self.a..=self.b).contains(&x) {
-            1.0 / (self.b - self.a)
+            self.density()
         } else {
             0.0
         }
@@ -50,11 +81,17 @@ impl Uniform {
         let x = (1.0 - u) * self.a + u * self.b;
         Sample {
             x,
-            pdf: 1.0 / (self.b - self.a),
+            pdf: self.density(),
         }
     }
     pub fn invert(&self, x: f64) -> f64 {
-        ((x - self.a) / (self.b - self.a)).clamp(0.0, 1.0)
+        let w = self.b - self.a;
+        let t = if w.is_finite() {
+            (x - self.a) / w
+        } else {
+            (0.5 * x - 0.5 * self.a) / (0.5 * self.b - 0.5 * self.a)
+        };
+        t.clamp(0.0, 1.0)
     }
 }
 // ANCHOR_END: uniform
@@ -123,6 +160,25 @@ pub struct Exponential {
 }
 
 impl Exponential {
+    /// The smallest rate [`Exponential::new`] accepts: below about `2e-307` the sample for
+    /// `u = 1 - 2⁻⁵³`, `36.7 / λ`, overflows.
+    pub const MIN_RATE: f64 = 1e-306;
+
+    /// The exponential density of `rate`, checked: in `[MIN_RATE, f64::MAX]`, where every sample is
+    /// finite and carries a positive finite density. The field may also be set directly, unchecked.
+    pub fn new(rate: f64) -> Result<Self, SamplingError> {
+        if (Self::MIN_RATE..=f64::MAX).contains(&rate) {
+            Ok(Self { rate })
+        } else {
+            Err(SamplingError::OutOfRange {
+                what: "rate",
+                value: rate,
+                min: Self::MIN_RATE,
+                max: f64::MAX,
+            })
+        }
+    }
+
     pub fn pdf(&self, x: f64) -> f64 {
         if x >= 0.0 {
             self.rate * (-self.rate * x).exp()

@@ -23,9 +23,57 @@ pub enum SamplingError {
         min: usize,
         got: usize,
     },
-    /// More bins than a 32-bit index can name.
-    #[error("{got} bins is more than this table supports ({max})")]
-    TooMany { got: usize, max: usize },
+    /// More bins (or guide cells) than a 32-bit index can name, or than a table sensibly needs.
+    #[error("{got} {what} is more than this table supports ({max})")]
+    TooMany {
+        what: &'static str,
+        got: usize,
+        max: usize,
+    },
+    /// `nx × ny` cells are more than a `usize` can count.
+    #[error("{nx} × {ny} cells is more than a table can count ({max})", max = usize::MAX)]
+    CellCountOverflow { nx: usize, ny: usize },
+    /// A bin (or an interval) is wider than the largest `f64`, so its width and density cannot be
+    /// computed.
+    #[error(
+        "bin {bin} from {x0:?} to {x1:?} has a width that overflows f64 (more than {max:e})",
+        max = f64::MAX
+    )]
+    WidthOverflow { bin: usize, x0: f64, x1: f64 },
+    /// A bin of positive probability whose density, probability / width, underflows to 0 or
+    /// overflows to infinity: a sample in it could not carry its density.
+    #[error(
+        "bin {bin} has probability {probability:e} over width {width:e}: its density is {density:e}, \
+         outside the positive finite f64 range [{min:e}, {max:e}]",
+        min = f64::from_bits(1), max = f64::MAX
+    )]
+    DensityOutOfRange {
+        bin: usize,
+        probability: f64,
+        width: f64,
+        density: f64,
+    },
+    /// A cell of positive probability of a 2D table whose density with respect to area underflows
+    /// or overflows.
+    #[error(
+        "cell (row {row}, column {col}) has density {density:e} with respect to area, outside the \
+         positive finite f64 range [{min:e}, {max:e}]",
+        min = f64::from_bits(1), max = f64::MAX
+    )]
+    CellDensityOutOfRange {
+        row: usize,
+        col: usize,
+        density: f64,
+    },
+    /// A parameter of an analytic density outside the range where its samples are finite and
+    /// carry a positive finite density.
+    #[error("{what} = {value:?} is outside [{min:e}, {max:e}]")]
+    OutOfRange {
+        what: &'static str,
+        value: f64,
+        min: f64,
+        max: f64,
+    },
     /// Two slices that must match in length do not.
     #[error("{what} has {got} entries, expected {expected}")]
     LengthMismatch {

@@ -9,6 +9,9 @@ use crate::{
     InverseTransform, Sample, SamplingError, TabulatedCdf, clamp_u, distribution_by_inversion,
 };
 
+/// The most guide cells per bin [`GuideTable::with_cells`] accepts.
+pub const MAX_CELLS_PER_BIN: usize = 64;
+
 /// A [`TabulatedCdf`] with a guide table of `M` cells.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GuideTable {
@@ -26,8 +29,9 @@ impl GuideTable {
     }
 
     // ANCHOR: build
-    /// A guide table with `m ≥ 1` cells. Cell `j` holds the `u` with `⌊u m⌋ = j` as computed in
-    /// floating point (so rounding of `u m` can never send a query to a cell that starts after it).
+    /// A guide table with `1 ≤ m ≤ 64 N` cells (at most `u32::MAX`). Cell `j` holds the `u` with
+    /// `⌊u m⌋ = j` as computed in floating point (so rounding of `u m` can never send a query to a
+    /// cell that starts after it).
     pub fn with_cells(table: TabulatedCdf, m: usize) -> Result<Self, SamplingError> {
         let n = table.len();
         if m == 0 {
@@ -37,10 +41,21 @@ impl GuideTable {
                 got: 0,
             });
         }
-        if n > u32::MAX as usize || m > u32::MAX as usize {
+        if n > u32::MAX as usize {
             return Err(SamplingError::TooMany {
-                got: n.max(m),
+                what: "bins",
+                got: n,
                 max: u32::MAX as usize,
+            });
+        }
+        // More cells than bins buys nothing beyond a few per bin; a count such as usize::MAX would
+        // only exhaust memory (4 bytes a cell).
+        let max_cells = n.saturating_mul(MAX_CELLS_PER_BIN).min(u32::MAX as usize);
+        if m > max_cells {
+            return Err(SamplingError::TooMany {
+                what: "guide cells",
+                got: m,
+                max: max_cells,
             });
         }
         let cells = m as f64;

@@ -212,7 +212,8 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> NumericInverse<F, P> {
                 (fa, fb, fc) = (fb, fc, fb);
             }
             let tol1 = 2.0 * f64::EPSILON * b.abs() + f64::MIN_POSITIVE;
-            let xm = 0.5 * (c - b);
+            // halves first: c - b overflows on a bracket wider than f64::MAX
+            let xm = 0.5 * c - 0.5 * b;
             if fb.abs() <= self.tolerance || xm.abs() <= tol1 || evaluations >= MAX_EVALUATIONS {
                 return Ok(Inversion {
                     x: b,

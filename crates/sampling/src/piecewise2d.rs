@@ -26,6 +26,9 @@ impl PiecewiseConstant2D {
     // ANCHOR: build
     /// `weights` holds `ny` rows of `nx` cells, row by row (row `j` covers the `j`-th slice in y).
     /// Weights must be finite and `>= 0`, not all 0; an error names the bad cell's row and column.
+    /// They are divided by the largest weight before any sum, so weights near `f64::MAX` work; a
+    /// count `nx × ny` that overflows, and a cell whose density with respect to area is not a
+    /// positive finite `f64`, are errors.
     pub fn new(
         weights: &[f64],
         nx: usize,
@@ -33,11 +36,14 @@ impl PiecewiseConstant2D {
         (x0, x1): (f64, f64),
         (y0, y1): (f64, f64),
     ) -> Result<Self, SamplingError> {
-        if weights.len() != nx * ny {
+        let Some(cells) = nx.checked_mul(ny) else {
+            return Err(SamplingError::CellCountOverflow { nx, ny });
+        };
+        if weights.len() != cells {
             return Err(SamplingError::LengthMismatch {
                 what: "weights",
                 got: weights.len(),
-                expected: nx * ny,
+                expected: cells,
             });
         }
         if nx == 0 || ny == 0 {
@@ -54,12 +60,17 @@ impl PiecewiseConstant2D {
                 value: weights[k],
             });
         }
+        let largest = weights.iter().copied().fold(0.0, f64::max);
+        if largest == 0.0 {
+            return Err(SamplingError::AllZero { bins: cells });
+        }
         let x_edges = equal_edges(x0, x1, nx)?;
         let y_edges = equal_edges(y0, y1, ny)?;
         let mut rows = Vec::with_capacity(ny);
         let mut row_mass = Vec::with_capacity(ny);
         for row in weights.chunks_exact(nx) {
-            let mass: f64 = row.iter().sum();
+            // Each scaled weight is at most 1, so a row's mass is at most nx.
+            let mass: f64 = row.iter().map(|w| w / largest).sum();
             row_mass.push(mass);
             rows.push(if mass > 0.0 {
                 TabulatedCdf::from_edges_and_weights(&x_edges, row)?
@@ -67,14 +78,40 @@ impl PiecewiseConstant2D {
                 TabulatedCdf::from_edges_and_weights(&x_edges, &vec![1.0; nx])?
             });
         }
-        let marginal =
-            TabulatedCdf::from_edges_and_weights(&y_edges, &row_mass).map_err(|e| match e {
-                SamplingError::AllZero { .. } => SamplingError::AllZero { bins: nx * ny },
-                other => other,
-            })?;
-        Ok(Self { rows, marginal })
+        let marginal = TabulatedCdf::from_edges_and_weights(&y_edges, &row_mass)?;
+        let map = Self { rows, marginal };
+        map.check_cell_densities()?;
+        Ok(map)
     }
     // ANCHOR_END: build
+
+    /// Every cell that can be sampled (positive probability in the marginal and in its row) has a
+    /// density `p(y) p(x | y)` that is a positive finite `f64`.
+    fn check_cell_densities(&self) -> Result<(), SamplingError> {
+        let density = |t: &TabulatedCdf, i: usize| {
+            let x = t.nodes();
+            t.bin_probability(i) / (x[i + 1] - x[i])
+        };
+        for (row, conditional) in self.rows.iter().enumerate() {
+            if self.marginal.bin_probability(row) == 0.0 {
+                continue;
+            }
+            let py = density(&self.marginal, row);
+            for col in 0..conditional.len() {
+                if conditional.bin_probability(col) > 0.0 {
+                    let d = py * density(conditional, col);
+                    if !(d > 0.0 && d.is_finite()) {
+                        return Err(SamplingError::CellDensityOutOfRange {
+                            row,
+                            col,
+                            density: d,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
 
     // ANCHOR: sample
     /// The point for `(u₁, u₂)`: `u₂` picks the row (and `y`) through the marginal, `u₁` the column

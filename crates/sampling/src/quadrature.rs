@@ -22,7 +22,13 @@ pub(crate) const GL5: [(f64, f64); 5] = [
 /// ```
 pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, pieces: usize) -> f64 {
     let pieces = pieces.max(1);
-    let h = (b - a) / pieces as f64;
+    let n = pieces as f64;
+    // b - a overflows on a domain wider than f64::MAX (such as [-1e308, 1e308]); b/n - a/n does not.
+    let h = if (b - a).is_finite() {
+        (b - a) / n
+    } else {
+        b / n - a / n
+    };
     let mut sum = 0.0;
     for k in 0..pieces {
         let mid = a + (k as f64 + 0.5) * h;

@@ -57,21 +57,34 @@ impl TabulatedCdf {
             }
         }
         let (f0, fn_) = (points[0].1, points[points.len() - 1].1);
-        let total = fn_ - f0;
-        if total <= 0.0 {
+        if fn_ <= f0 {
             return Err(SamplingError::ZeroMass { f: f0 });
         }
-        // (F - F₀) / total is monotone in F and gives exactly 0 and exactly 1 at the ends.
-        let cdf = points.iter().map(|&(_, f)| (f - f0) / total).collect();
+        // Scaled by the largest |F| first, so that F - F₀ cannot overflow (F from -1e308 to 1e308):
+        // the scaled values lie in [-1, 1] and their differences in [0, 2]. (F - F₀) / total is
+        // monotone in F and gives exactly 0 and exactly 1 at the ends.
+        let scale = f0.abs().max(fn_.abs());
+        let (g0, total) = (f0 / scale, fn_ / scale - f0 / scale);
+        let cdf = points
+            .iter()
+            .map(|&(_, f)| (f / scale - g0) / total)
+            .collect();
         let x = points.iter().map(|&(x, _)| x).collect();
-        Ok(Self { x, cdf })
+        let table = Self { x, cdf };
+        table.check_densities()?;
+        Ok(table)
     }
     // ANCHOR_END: from_points
 
     // ANCHOR: from_weights
     /// A piecewise-constant density with the given bin edges (strictly increasing, one more than
-    /// the weights) and bin masses (finite, >= 0, not all 0). The masses are summed in `f64` with
-    /// compensation (Neumaier) and divided by their total, so the last CDF entry is exactly 1.
+    /// the weights) and bin masses (finite, >= 0, not all 0). The masses are divided by the largest
+    /// one (so that their sum cannot overflow, even for weights near `f64::MAX`), summed in `f64`
+    /// with compensation (Neumaier) and divided by their total, so the last CDF entry is exactly 1.
+    ///
+    /// Every bin must be narrower than `f64::MAX` and every bin of positive probability must have a
+    /// density `probability / width` that is a positive finite `f64`; otherwise an error names the
+    /// bin, so a sample never carries a density of 0 or infinity.
     pub fn from_edges_and_weights(edges: &[f64], weights: &[f64]) -> Result<Self, SamplingError> {
         if weights.is_empty() {
             return Err(SamplingError::TooFew {
@@ -104,13 +117,24 @@ impl TabulatedCdf {
                 });
             }
         }
-        let mut cdf = Vec::with_capacity(weights.len() + 1);
-        cdf.push(0.0);
-        let (mut sum, mut carry) = (0.0f64, 0.0f64);
+        let mut largest = 0.0f64;
         for (bin, &w) in weights.iter().enumerate() {
             if !(w.is_finite() && w >= 0.0) {
                 return Err(SamplingError::BadWeight { bin, value: w });
             }
+            largest = largest.max(w);
+        }
+        if largest == 0.0 {
+            return Err(SamplingError::AllZero {
+                bins: weights.len(),
+            });
+        }
+        let mut cdf = Vec::with_capacity(weights.len() + 1);
+        cdf.push(0.0);
+        let (mut sum, mut carry) = (0.0f64, 0.0f64);
+        for &w in weights {
+            // In [0, 1] after scaling (exact for a power-of-two scale, correctly rounded otherwise).
+            let w = w / largest;
             // Neumaier's compensated sum: `carry` keeps the low bits that `sum + w` rounds away.
             let t = sum + w;
             carry += if sum.abs() >= w {
@@ -121,19 +145,42 @@ impl TabulatedCdf {
             sum = t;
             cdf.push(sum + carry);
         }
-        let total = cdf[weights.len()];
-        if total <= 0.0 {
-            return Err(SamplingError::AllZero {
-                bins: weights.len(),
-            });
-        }
+        let total = cdf[weights.len()]; // >= 1: the largest weight scaled to 1 is in the sum
         for c in &mut cdf {
             *c /= total; // monotone, and total / total = 1 exactly
         }
-        Ok(Self {
+        let table = Self {
             x: edges.to_vec(),
             cdf,
-        })
+        };
+        table.check_densities()?;
+        Ok(table)
+    }
+
+    /// Every bin is narrower than `f64::MAX`, and every bin of positive probability has a density
+    /// that is a positive finite `f64` (the first bin that is not is the error).
+    fn check_densities(&self) -> Result<(), SamplingError> {
+        for (bin, (x, c)) in self.x.windows(2).zip(self.cdf.windows(2)).enumerate() {
+            let width = x[1] - x[0];
+            if !width.is_finite() {
+                return Err(SamplingError::WidthOverflow {
+                    bin,
+                    x0: x[0],
+                    x1: x[1],
+                });
+            }
+            let probability = c[1] - c[0];
+            let density = probability / width;
+            if probability > 0.0 && !(density > 0.0 && density.is_finite()) {
+                return Err(SamplingError::DensityOutOfRange {
+                    bin,
+                    probability,
+                    width,
+                    density,
+                });
+            }
+        }
+        Ok(())
     }
     // ANCHOR_END: from_weights
 
@@ -153,19 +200,37 @@ impl TabulatedCdf {
         n: usize,
     ) -> Result<Self, SamplingError> {
         let edges = equal_edges(a, b, n)?;
+        // Where a sum or difference of edges overflows (a domain such as [-1e308, 1e308]), the
+        // halves are taken first; elsewhere after, which is exact down to subnormal edges.
+        let half = |s: f64, a: f64, b: f64| {
+            if s.is_finite() {
+                0.5 * s
+            } else {
+                0.5 * a + 0.5 * b
+            }
+        };
+        let half_width = |e: &[f64]| half(e[1] - e[0], e[1], -e[0]);
+        let widest = edges.windows(2).map(half_width).fold(0.0, f64::max);
         let mut weights = Vec::with_capacity(n);
         for (bin, e) in edges.windows(2).enumerate() {
-            let (mid, half) = (0.5 * (e[0] + e[1]), 0.5 * (e[1] - e[0]));
+            let (mid, half) = (half(e[0] + e[1], e[0], e[1]), half_width(e));
             let mut mass = 0.0;
             for (t, w) in crate::quadrature::GL5 {
-                let x = mid + half * t;
+                let x = (mid + half * t).clamp(e[0], e[1]);
                 let value = p(x);
                 if !(value.is_finite() && value >= 0.0) {
                     return Err(SamplingError::BadDensity { bin, x, value });
                 }
-                mass += w * value;
+                // The weights sum to 2, so a quarter of each term keeps the sum below f64::MAX
+                // even for values near f64::MAX; the table only needs masses up to one factor.
+                mass += w * (0.25 * value);
             }
-            weights.push(mass * half);
+            // The bins are equal up to rounding: their width relative to the widest (<= 1).
+            weights.push(if widest > 0.0 {
+                mass * (half / widest)
+            } else {
+                mass
+            });
         }
         Self::from_edges_and_weights(&edges, &weights)
     }
@@ -309,6 +374,14 @@ pub(crate) fn equal_edges(a: f64, b: f64, n: usize) -> Result<Vec<f64>, Sampling
             what: "bins",
             min: 1,
             got: 0,
+        });
+    }
+    // Refused before the edges are allocated (n = usize::MAX would overflow the capacity).
+    if n > u32::MAX as usize {
+        return Err(SamplingError::TooMany {
+            what: "bins",
+            got: n,
+            max: u32::MAX as usize,
         });
     }
     let edges: Vec<f64> = (0..=n)

@@ -1,0 +1,7 @@
+//! The scene-file loader on arbitrary text: it returns a scene or an error, never panics or hangs.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|text: &str| {
+    let _ = rtl_render::scene_file::from_str(std::path::Path::new("fuzz.toml"), text);
+});
