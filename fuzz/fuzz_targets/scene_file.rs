@@ -3,5 +3,5 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|text: &str| {
-    let _ = rtl_render::scene_file::from_str(std::path::Path::new("fuzz.toml"), text);
+    let _ = rtl_render::scene_file::load_str(text, "fuzz.toml", std::path::Path::new("."));
 });
