@@ -17,6 +17,10 @@ pub enum SelectionError {
     /// The table has `table` entries but there are `parts` parts.
     #[error("selection: the table has {table} weights but there are {parts} parts")]
     LengthMismatch { table: usize, parts: usize },
+    /// The weights cannot be tabulated (a weight so small beside the largest that its probability
+    /// underflows, say).
+    #[error("selection: {0}")]
+    Table(SamplingError),
 }
 
 /// One discrete choice: the part, its probability, and the rest of the uniform number that chose it.
@@ -76,10 +80,8 @@ impl Selection {
         {
             return Err(SelectionError::BadWeight { index, weight });
         }
-        let total: f64 = weights.iter().sum();
-        if !(total > 0.0 && total.is_finite()) {
-            return Err(SelectionError::AllZero);
-        }
+        // The table scales the weights by the largest before summing, so weights whose sum overflows
+        // (`[1e308; 3]`) are chosen in proportion all the same.
         let cdf =
             TabulatedCdf::from_weights(0.0, weights.len() as f64, weights).map_err(
                 |e| match e {
@@ -87,7 +89,8 @@ impl Selection {
                         index: bin,
                         weight: value,
                     },
-                    _ => SelectionError::AllZero,
+                    SamplingError::AllZero { .. } => SelectionError::AllZero,
+                    other => SelectionError::Table(other),
                 },
             )?;
         Ok(Selection { cdf })
@@ -174,6 +177,21 @@ mod tests {
         ));
         assert!(Selection::from_weights(&[1.0, f64::INFINITY]).is_err());
         assert!(format!("{}", SelectionError::Empty).contains("empty"));
+    }
+
+    #[test]
+    fn weights_whose_sum_overflows_are_chosen_in_proportion() {
+        // 3e308 is past f64::MAX: summing first would call these "all zero".
+        let s = Selection::from_weights(&[1e308, 1e308, 1e308]).unwrap();
+        for i in 0..3 {
+            assert!(
+                (s.pmf(i) - 1.0 / 3.0).abs() < 1e-15,
+                "pmf({i}) = {}",
+                s.pmf(i)
+            );
+        }
+        let s = Selection::from_weights(&[f64::MAX, f64::MAX / 2.0]).unwrap();
+        assert!((s.pmf(0) - 2.0 / 3.0).abs() < 1e-15);
     }
 
     #[test]

@@ -6,7 +6,9 @@ use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
 use crate::ids::{GroupId, MaterialId, TextureId};
 use crate::material::{Albedo, Material};
-use crate::scene::{Accel, Background, ConstantMedium, Features, Group, Object, Scene, Target};
+use crate::scene::{
+    Accel, Background, ConstantMedium, Features, Group, ImportanceTarget, Object, Scene,
+};
 use crate::shapes::{Quad, Sphere, box_quads};
 use crate::texture::Texture;
 use crate::transform::Transform;
@@ -48,7 +50,7 @@ pub struct SceneBuilder {
     pub camera: CameraSettings,
     pub background: Background,
     pub max_depth: u32,
-    pub targets: Vec<Target>,
+    pub targets: Vec<ImportanceTarget>,
 }
 
 impl Default for SceneBuilder {

@@ -13,7 +13,7 @@
 //! `pdf` is 0, so what a list of targets draws is what its density describes.
 
 use crate::material::Material;
-use crate::scene::{GroupId, MaterialId, Object, Scene, Target as SceneShape, Transform};
+use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, Scene, Transform};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
 use rtl_pdf::{DirectionSample, QuadTarget, ShapeSampler, SphereTarget};

@@ -87,7 +87,7 @@ impl Background {
 /// aimed at. Its material says whether it emits (then `mis` aims shadow rays at it); a shape given only
 /// to aim at, not placed in the scene, has the material [`NO_MATERIAL`].
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub enum Target {
+pub enum ImportanceTarget {
     Quad(Quad),
     Sphere(Sphere),
 }
@@ -126,6 +126,6 @@ pub struct Scene {
     pub background: Background,
     /// Most intersections a path may have.
     pub max_depth: u32,
-    pub targets: Vec<Target>,
+    pub targets: Vec<ImportanceTarget>,
     pub features: Features,
 }

@@ -3,7 +3,8 @@
 use crate::camera::CameraSettings;
 use crate::material::{Albedo, Material};
 use crate::scene::{
-    Background, GroupId, MaterialId, Object, Scene, SceneBuilder, SceneError, Target, Transform,
+    Background, GroupId, ImportanceTarget, MaterialId, Object, Scene, SceneBuilder, SceneError,
+    Transform,
 };
 use crate::shapes::box_quads;
 use crate::texture::{ImageData, Texture};
@@ -707,11 +708,12 @@ pub fn cornell(_: &SceneOptions) -> Result<Built, SceneError> {
     b.instance(w, box1, t1);
     let glass = b.material(Material::Dielectric { ior: 1.5 });
     b.sphere(w, Point3::new(190.0, 90.0, 190.0), 90.0, glass)?;
-    b.targets.push(Target::Quad(lq));
-    b.targets.push(Target::Sphere(crate::shapes::Sphere::new(
-        Point3::new(190.0, 90.0, 190.0),
-        90.0,
-        glass,
-    )));
+    b.targets.push(ImportanceTarget::Quad(lq));
+    b.targets
+        .push(ImportanceTarget::Sphere(crate::shapes::Sphere::new(
+            Point3::new(190.0, 90.0, 190.0),
+            90.0,
+            glass,
+        )));
     built(b)
 }

@@ -3,7 +3,7 @@
 
 use rtl_render::integrator::Strategy;
 use rtl_render::render::{RenderSettings, render};
-use rtl_render::scene::{Background, Target};
+use rtl_render::scene::{Background, ImportanceTarget};
 use rtl_render::scene_file::{self, SceneFile};
 use rtl_render::scenes;
 use rtl_render::vec::{Point3, Vec3};
@@ -36,10 +36,10 @@ fn cornell_toml_is_the_built_in_cornell_box() {
     // The same target shapes (material indices may differ: materials are created in file order).
     for (a, b) in ours.targets.iter().zip(&theirs.targets) {
         match (a, b) {
-            (Target::Quad(a), Target::Quad(b)) => {
+            (ImportanceTarget::Quad(a), ImportanceTarget::Quad(b)) => {
                 assert_eq!((a.q, a.u, a.v, a.normal), (b.q, b.u, b.v, b.normal))
             }
-            (Target::Sphere(a), Target::Sphere(b)) => {
+            (ImportanceTarget::Sphere(a), ImportanceTarget::Sphere(b)) => {
                 assert_eq!((a.center, a.radius), (b.center, b.radius))
             }
             _ => panic!("targets differ: {a:?} vs {b:?}"),
@@ -496,7 +496,7 @@ fn transforms_apply_in_order_and_reach_the_importance_targets() {
     );
     let text = format!("lights = [\"lamp\", \"ball\"]\n{text}");
     let scene = load(&text).unwrap().built.scene;
-    let Target::Quad(q) = scene.targets[0] else {
+    let ImportanceTarget::Quad(q) = scene.targets[0] else {
         panic!("{:?}", scene.targets[0])
     };
     // rotate_y(90) takes x to -z; then up by 5.
@@ -504,7 +504,7 @@ fn transforms_apply_in_order_and_reach_the_importance_targets() {
     assert!(close(q.q, Point3::new(0.0, 5.0, -1.0)), "{:?}", q.q);
     assert!(close(q.u, Vec3::new(0.0, 0.0, -1.0)), "{:?}", q.u);
     assert!(close(q.v, Vec3::new(1.0, 0.0, 0.0)), "{:?}", q.v);
-    assert!(matches!(scene.targets[1], Target::Sphere(s) if s.radius == 1.0));
+    assert!(matches!(scene.targets[1], ImportanceTarget::Sphere(s) if s.radius == 1.0));
 }
 
 #[test]

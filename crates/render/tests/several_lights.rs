@@ -9,7 +9,7 @@ use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{RenderSettings, render};
-use rtl_render::scene::{Background, Scene, SceneBuilder, Target};
+use rtl_render::scene::{Background, ImportanceTarget, Scene, SceneBuilder};
 use rtl_render::shapes::Sphere;
 use rtl_render::vec::{Point3, Vec3};
 use statrs::distribution::{ContinuousCDF, StudentsT};
@@ -95,14 +95,14 @@ pub fn three_kinds_of_emitters() -> Scene {
             two_sided,
         )
         .unwrap();
-    b.targets.push(Target::Quad(lower));
-    b.targets.push(Target::Quad(upper));
-    b.targets.push(Target::Sphere(Sphere::new(
+    b.targets.push(ImportanceTarget::Quad(lower));
+    b.targets.push(ImportanceTarget::Quad(upper));
+    b.targets.push(ImportanceTarget::Sphere(Sphere::new(
         Point3::new(1.5, 1.0, -1.0),
         0.5,
         two_sided,
     )));
-    b.targets.push(Target::Quad(upright));
+    b.targets.push(ImportanceTarget::Quad(upright));
     b.camera = CameraSettings {
         lookfrom: Point3::new(0.0, 2.0, 7.0),
         lookat: Point3::new(0.0, 2.0, 0.0),
@@ -149,7 +149,7 @@ pub fn medium_and_lights() -> Scene {
             ceiling,
         )
         .unwrap();
-    b.targets.push(Target::Quad(lamp));
+    b.targets.push(ImportanceTarget::Quad(lamp));
     let boundary = b
         .box_group(
             Point3::new(-1.5, 0.5, -1.5),

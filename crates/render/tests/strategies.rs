@@ -14,7 +14,7 @@ use rtl_render::lights::{LightTarget, Lights};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{RenderSettings, Renderer, render};
 use rtl_render::sampler::Ctx;
-use rtl_render::scene::{Background, Scene, SceneBuilder, Target};
+use rtl_render::scene::{Background, ImportanceTarget, Scene, SceneBuilder};
 use rtl_render::scenes;
 use rtl_render::shapes::Sphere;
 use rtl_render::vec::{Point3, Vec3};
@@ -232,8 +232,11 @@ fn furnace() -> Scene {
     });
     b.sphere(w, Point3::ZERO, 1.0, white).unwrap();
     b.sphere(w, Point3::ZERO, 100.0, glow).unwrap();
-    b.targets
-        .push(Target::Sphere(Sphere::new(Point3::ZERO, 100.0, glow)));
+    b.targets.push(ImportanceTarget::Sphere(Sphere::new(
+        Point3::ZERO,
+        100.0,
+        glow,
+    )));
     b.camera = CameraSettings {
         lookfrom: Point3::new(0.0, 0.0, 4.0),
         lookat: Point3::ZERO,
@@ -363,7 +366,7 @@ fn edge_on_scene() -> Scene {
             light,
         )
         .unwrap();
-    b.targets.push(Target::Quad(q));
+    b.targets.push(ImportanceTarget::Quad(q));
     b.camera = CameraSettings {
         lookfrom: Point3::new(0.0, 3.0, 3.0),
         lookat: Point3::ZERO,
@@ -435,7 +438,7 @@ fn pitfall_a_one_sided_light_seen_from_behind() {
             light,
         )
         .unwrap();
-    b.targets.push(Target::Quad(q));
+    b.targets.push(ImportanceTarget::Quad(q));
     b.camera = CameraSettings {
         lookfrom: Point3::new(0.0, 0.5, 0.0),
         lookat: Point3::new(0.0, 1.0, 0.0),

@@ -9,7 +9,7 @@ use crate::numeric::NumericInverse;
 use std::f64::consts::{PI, SQRT_2, TAU};
 
 /// A normalised density on a finite interval with its exact CDF.
-pub trait Target {
+pub trait TargetDensity {
     /// A short name for tables and file names.
     fn name(&self) -> &'static str;
     /// The support `[a, b]`.
@@ -62,7 +62,7 @@ impl BookSinSquared {
     }
 }
 
-impl Target for BookSinSquared {
+impl TargetDensity for BookSinSquared {
     fn name(&self) -> &'static str {
         "book_sin2"
     }
@@ -129,7 +129,7 @@ impl TruncatedNormal {
     }
 }
 
-impl Target for TruncatedNormal {
+impl TargetDensity for TruncatedNormal {
     fn name(&self) -> &'static str {
         "normal"
     }
@@ -163,7 +163,7 @@ impl SpikeOnBase {
     }
 }
 
-impl Target for SpikeOnBase {
+impl TargetDensity for SpikeOnBase {
     fn name(&self) -> &'static str {
         "spike"
     }
@@ -210,7 +210,7 @@ mod tests {
         }
     }
 
-    fn check(t: &dyn Target) {
+    fn check(t: &dyn TargetDensity) {
         let (a, b) = t.domain();
         assert_eq!(t.cdf(a), 0.0, "{}", t.name());
         assert!((t.cdf(b) - 1.0).abs() < 1e-15, "{}", t.name());

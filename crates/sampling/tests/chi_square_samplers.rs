@@ -10,7 +10,7 @@ use rtl_sampling::chi_square::{
     ChiSquareError, chi_square, expected_counts, histogram, sidak_alpha,
 };
 use rtl_sampling::numeric::NumericInverse;
-use rtl_sampling::targets::{BookSinSquared, Target};
+use rtl_sampling::targets::{BookSinSquared, TargetDensity};
 use rtl_sampling::{
     AliasPiecewise, AliasTable, EytzingerCdf, GuideTable, InverseTransform, PiecewiseConstant2D,
     TabulatedCdf,

@@ -11,7 +11,7 @@
 //!   inverse of a cubic departs from a straight line by about 0.38 h, so the slope is only -1.
 
 use rtl_sampling::TabulatedCdf;
-use rtl_sampling::targets::{BookSinSquared, Target};
+use rtl_sampling::targets::{BookSinSquared, TargetDensity};
 use std::f64::consts::TAU;
 
 /// Least-squares slope of log y against log x.

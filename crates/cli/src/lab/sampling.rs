@@ -24,7 +24,7 @@ use rtl_pdf::{CosinePdf, HemispherePdf, MixturePdf, Onb, Pdf, SpherePdf};
 use rtl_sampling::analytic::{Linear, Quadratic};
 use rtl_sampling::chi_square::{chi_square, histogram};
 use rtl_sampling::numeric::NumericInverse;
-use rtl_sampling::targets::{BookSinSquared, SpikeOnBase, Target, TruncatedNormal};
+use rtl_sampling::targets::{BookSinSquared, SpikeOnBase, TargetDensity, TruncatedNormal};
 use rtl_sampling::{AliasPiecewise, GuideTable, Sample, TabulatedCdf};
 use serde_json::{Value, json};
 use std::f64::consts::PI;
@@ -39,7 +39,7 @@ pub const HISTOGRAM_BINS: (usize, usize) = (8, 200);
 pub const TOLERANCE: (f64, f64) = (1e-12, 1e-2);
 pub const SPHERE_CELLS: (usize, usize) = (4, 40);
 
-/// One of the book's densities with an inverse on paper, as a [`Target`].
+/// One of the book's densities with an inverse on paper, as a [`TargetDensity`].
 struct OnPaper<S> {
     name: &'static str,
     s: S,
@@ -47,7 +47,7 @@ struct OnPaper<S> {
 
 macro_rules! on_paper {
     ($t:ty) => {
-        impl Target for OnPaper<$t> {
+        impl TargetDensity for OnPaper<$t> {
             fn name(&self) -> &'static str {
                 self.name
             }
@@ -78,7 +78,7 @@ const QUADRATIC: OnPaper<Quadratic> = OnPaper {
     s: Quadratic,
 };
 
-fn targets() -> [(&'static dyn Target, &'static str, bool); 5] {
+fn targets() -> [(&'static dyn TargetDensity, &'static str, bool); 5] {
     [
         (
             &BookSinSquared,

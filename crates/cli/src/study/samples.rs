@@ -19,7 +19,7 @@ use rtl_pdf::{
 };
 use rtl_sampling::TabulatedCdf;
 use rtl_sampling::analytic::{Linear, Quadratic};
-use rtl_sampling::targets::{BookSinSquared, Target as _};
+use rtl_sampling::targets::{BookSinSquared, TargetDensity as _};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::cell::RefCell;
 use std::f64::consts::TAU;

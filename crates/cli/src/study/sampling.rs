@@ -19,7 +19,7 @@ use clap::Args;
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_sampling::numeric::NumericInverse;
-use rtl_sampling::targets::{BookSinSquared, SpikeOnBase, Target, TruncatedNormal};
+use rtl_sampling::targets::{BookSinSquared, SpikeOnBase, TargetDensity, TruncatedNormal};
 use rtl_sampling::{
     AliasPiecewise, EytzingerCdf, GuideTable, ONE_MINUS_EPSILON, Sample, TabulatedCdf,
 };
@@ -71,7 +71,7 @@ pub(crate) struct Reference {
 }
 
 impl Reference {
-    pub(crate) fn new(target: &dyn Target, rng: &mut Xoshiro256PlusPlus) -> Self {
+    pub(crate) fn new(target: &dyn TargetDensity, rng: &mut Xoshiro256PlusPlus) -> Self {
         let m = 4096;
         let mut us: Vec<f64> = (0..m)
             .map(|k| (k as f64 + rng.random::<f64>()) / m as f64)
@@ -82,7 +82,11 @@ impl Reference {
     }
 
     /// (max u-error, max x-error) of an inverse.
-    pub(crate) fn errors(&self, target: &dyn Target, inverse: impl Fn(f64) -> f64) -> (f64, f64) {
+    pub(crate) fn errors(
+        &self,
+        target: &dyn TargetDensity,
+        inverse: impl Fn(f64) -> f64,
+    ) -> (f64, f64) {
         let (mut eu, mut ex) = (0.0f64, 0.0f64);
         for (&u, &x) in self.us.iter().zip(&self.xs) {
             let xh = inverse(u);
@@ -98,7 +102,7 @@ fn ms_since(t: Instant) -> f64 {
 }
 
 /// All rows for one target.
-fn study_target(target: &dyn Target, sizes: &[usize], queries: usize, rows: &mut Vec<Row>) {
+fn study_target(target: &dyn TargetDensity, sizes: &[usize], queries: usize, rows: &mut Vec<Row>) {
     let name = target.name();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(2024);
     let reference = Reference::new(target, &mut rng);
@@ -266,7 +270,7 @@ fn series(rows: &[Row], target: &str, method: &str, point: impl Fn(&Row) -> (f64
     }
 }
 
-fn plots(rows: &[Row], targets: &[&dyn Target], out: &std::path::Path) -> Result<()> {
+fn plots(rows: &[Row], targets: &[&dyn TargetDensity], out: &std::path::Path) -> Result<()> {
     for t in targets {
         let name = t.name();
         let all: Vec<Series> = METHODS
@@ -373,7 +377,7 @@ pub fn run(args: SamplingArgs) -> Result<()> {
         vec![16, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000]
     };
     let queries = if args.quick { 1 << 16 } else { 1 << 19 };
-    let targets: [&dyn Target; 3] = [&BookSinSquared, &TruncatedNormal, &SpikeOnBase];
+    let targets: [&dyn TargetDensity; 3] = [&BookSinSquared, &TruncatedNormal, &SpikeOnBase];
     let mut rows = Vec::new();
     for t in targets {
         eprintln!("target {}", t.name());

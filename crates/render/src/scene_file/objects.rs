@@ -9,7 +9,7 @@ use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
 use super::values::Step;
 use crate::material::Material;
-use crate::scene::{GroupId, NO_MATERIAL, Object, Target, Transform};
+use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::shapes::{Quad, Sphere};
 use toml::de::DeTable;
 
@@ -234,13 +234,13 @@ impl Loader {
         let target = if kind == "sphere" {
             let d: TargetSphereDoc = de_table(table, &span)?;
             let r = positive(&d.radius, "radius")?;
-            Target::Sphere(Sphere::new(d.center.0, r, NO_MATERIAL))
+            ImportanceTarget::Sphere(Sphere::new(d.center.0, r, NO_MATERIAL))
         } else {
             let d: TargetQuadDoc = de_table(table, &span)?;
             let (u, v) = (d.u.get_ref().0, d.v.get_ref().0);
             check_quad(u, v, &d.u, &d.v)?;
             match Quad::new(d.q.0, u, v, NO_MATERIAL) {
-                Some(q) => Target::Quad(q),
+                Some(q) => ImportanceTarget::Quad(q),
                 None => return fail(span, "degenerate quad"),
             }
         };
@@ -249,10 +249,10 @@ impl Loader {
     }
 
     /// The importance target a name in `lights` stands for.
-    fn named_target(&self, name: &str, span: Span) -> Result<Target, Fail> {
+    fn named_target(&self, name: &str, span: Span) -> Result<ImportanceTarget, Fail> {
         match self.names.get(name) {
-            Some((_, Named::Sphere(s))) => Ok(Target::Sphere(*s)),
-            Some((_, Named::Quad(q))) => Ok(Target::Quad(*q)),
+            Some((_, Named::Sphere(s))) => Ok(ImportanceTarget::Sphere(*s)),
+            Some((_, Named::Quad(q))) => Ok(ImportanceTarget::Quad(*q)),
             Some((_, Named::Group(_))) => fail(
                 span,
                 format!("`{name}` is a group or box; importance targets are spheres and quads"),
