@@ -118,3 +118,69 @@ fn the_checker_finds_a_lost_thin_space_and_an_unclosed_formula() {
     let good = "a \\\\(p(t)\\\\,dt\\\\) b \\* `\\\\( \\, \\\\)`\n```\n\\\\( \\, \\\\)\n```";
     assert!(lost_escapes(good).is_empty(), "{:?}", lost_escapes(good));
 }
+
+/// Lines that Markdown and KaTeX would silently mangle: a control character (a `\t`, `\b` or `\r`
+/// that an editor or a script turned from the two characters of `\times`, `\bar` or `\rfloor` into
+/// one), or a formula opened with a single backslash, `\(`, which Markdown reads as an escaped
+/// parenthesis, so KaTeX never sees a formula (code spans and fences are skipped).
+fn mangled_lines(text: &str) -> Vec<(usize, String)> {
+    let mut problems = Vec::new();
+    let mut in_fence = false;
+    for (n, line) in text.lines().enumerate() {
+        let n = n + 1;
+        if let Some(c) = line.chars().find(|c| c.is_control()) {
+            problems.push((n, format!("control character {:?}", c)));
+        }
+        if line.trim_start().starts_with("```") {
+            in_fence = !in_fence;
+            continue;
+        }
+        if in_fence {
+            continue;
+        }
+        let b = line.as_bytes();
+        let mut in_code = false;
+        for i in 0..b.len() {
+            if b[i] == b'`' {
+                in_code = !in_code;
+            }
+            let single = b[i] == b'\\'
+                && (i == 0 || b[i - 1] != b'\\')
+                && b.get(i + 1).is_some_and(|c| b"()[]".contains(c));
+            if single && !in_code {
+                problems.push((
+                    n,
+                    "a formula delimiter with one backslash: write \\\\( \\\\)".into(),
+                ));
+                break;
+            }
+        }
+    }
+    problems
+}
+
+#[test]
+fn no_line_of_the_book_is_mangled_by_a_control_character_or_a_single_backslash_delimiter() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../book/src");
+    let mut all = Vec::new();
+    for entry in fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            let text = fs::read_to_string(&path).unwrap();
+            for (line, message) in mangled_lines(&text) {
+                all.push(format!("{}:{line}: {message}", path.display()));
+            }
+        }
+    }
+    assert!(all.is_empty(), "{}", all.join("\n"));
+}
+
+#[test]
+fn the_mangling_checker_finds_a_tab_for_times_and_a_single_backslash_formula() {
+    let bad = "a \\\\(1.8 \times 10\\\\)\nb \\(k\\) c";
+    let found = mangled_lines(bad);
+    assert_eq!(found.len(), 2, "{found:?}");
+    assert_eq!((found[0].0, found[1].0), (1, 2));
+    let good = "a \\\\(1.8 \\\\times 10\\\\) `\\(code\\)`\n```\n\\(fenced\\)\n```";
+    assert!(mangled_lines(good).is_empty(), "{:?}", mangled_lines(good));
+}
