@@ -18,7 +18,9 @@ use rtl_render::scene::{Background, ImportanceTarget, Scene, SceneBuilder};
 use rtl_render::scenes;
 use rtl_render::shapes::Sphere;
 use rtl_render::vec::{Point3, Vec3};
-use statrs::distribution::{ContinuousCDF, StudentsT};
+
+mod batch_means;
+use batch_means::{mean_var, welch_p};
 
 fn settings(width: usize, seed: u64, strategy: Strategy) -> RenderSettings {
     RenderSettings {
@@ -100,37 +102,6 @@ fn batch_means(scene: &Scene, strategy: Strategy) -> Vec<Vec<Color>> {
     }
     out
 }
-
-fn mean_var(x: &[f64]) -> (f64, f64) {
-    let n = x.len() as f64;
-    let m = x.iter().sum::<f64>() / n;
-    let v = x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / (n - 1.0);
-    (m, v)
-}
-
-// ANCHOR: welch
-/// Two-sided p-value of Welch's t-test that two samples of batch means have the same expectation.
-/// Two samples without any spread are compared exactly (p = 1 if equal to 1e-12 relative, else 0).
-fn welch_p(a: &[f64], b: &[f64]) -> f64 {
-    let (ma, va) = mean_var(a);
-    let (mb, vb) = mean_var(b);
-    let (sa, sb) = (va / a.len() as f64, vb / b.len() as f64);
-    let se2 = sa + sb;
-    if se2 == 0.0 {
-        return if (ma - mb).abs() <= 1e-12 * ma.abs().max(mb.abs()) {
-            1.0
-        } else {
-            0.0
-        };
-    }
-    let t = (ma - mb) / se2.sqrt();
-    // Welch-Satterthwaite degrees of freedom.
-    let df = se2 * se2
-        / (sa * sa / (a.len() as f64 - 1.0) + sb * sb / (b.len() as f64 - 1.0))
-            .max(f64::MIN_POSITIVE);
-    2.0 * StudentsT::new(0.0, 1.0, df).unwrap().sf(t.abs())
-}
-// ANCHOR_END: welch
 
 /// Every comparison (region x channel) of strategy `a` against `b`: the smallest p-value and where.
 fn compare(a: &[Vec<Color>], b: &[Vec<Color>]) -> Vec<(f64, String)> {
