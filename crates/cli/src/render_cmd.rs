@@ -10,7 +10,9 @@ use rtl_render::integrator::Strategy;
 use rtl_render::limits::{self, MAX_SIDE, MAX_THREADS};
 use rtl_render::output::{OutputFile, OutputKind, check_outputs};
 use rtl_render::output::{Transfer, write_linear, write_png};
-use rtl_render::render::{Accumulator, RenderSettings, Renderer};
+use rtl_render::render::{
+    Accumulator, BOOK_MIXTURE_WEIGHT, RenderSettings, Renderer, check_mixture_weight,
+};
 use rtl_render::sampler::Stats;
 use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
@@ -43,6 +45,10 @@ pub struct RenderArgs {
     /// mis (next-event estimation + MIS, the best we have).
     #[arg(long, default_value = "mis", value_parser = parse_strategy)]
     pub strategy: Strategy,
+    /// `mixture`'s share of directions drawn towards the importance targets, strictly between 0 and
+    /// 1 (default: the book's 0.5).
+    #[arg(long, value_name = "W")]
+    pub mixture_weight: Option<f64>,
     /// `mis` without Russian roulette.
     #[arg(long)]
     pub no_rr: bool,
@@ -221,7 +227,10 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
                         settings.strategy.name()
                     ),
                     Strategy::Light => "sampled alone: biased (indirect light is missed)".into(),
-                    Strategy::Mixture => "mixed 50/50 with the material's density".into(),
+                    Strategy::Mixture => format!(
+                        "mixed with the material's density, a share of {} towards the targets",
+                        settings.mixture_weight
+                    ),
                     Strategy::Mis(_) => "emitters by next-event estimation, the others \
                         mixed with the material's density"
                         .into(),
@@ -312,6 +321,17 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
              cores)"
         ),
     };
+    let mixture_weight = match (args.mixture_weight, args.strategy) {
+        (None, _) => BOOK_MIXTURE_WEIGHT,
+        (Some(w), Strategy::Mixture) => match check_mixture_weight(w) {
+            Ok(w) => w,
+            Err(e) => bail!("--mixture-weight {w}: {e}"),
+        },
+        (Some(w), s) => bail!(
+            "--mixture-weight {w}: only the 'mixture' strategy has a mixture weight, not '{}'",
+            s.name()
+        ),
+    };
     // With only a time budget, render until the time is up.
     let spp = match (args.spp, args.time) {
         (Some(n), _) => n,
@@ -344,6 +364,7 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
             }
             other => other,
         },
+        mixture_weight,
     };
     let output = args
         .output

@@ -241,6 +241,31 @@ fn every_bad_parameter_is_refused_with_a_message() {
         ("POST", "/api/render/settings?rr=maybe", "rr"),
         (
             "POST",
+            "/api/render/settings?mixture_weight=1",
+            "mixture_weight=1",
+        ),
+        (
+            "POST",
+            "/api/render/settings?mixture_weight=0",
+            "mixture_weight=0",
+        ),
+        (
+            "POST",
+            "/api/render/settings?mixture_weight=NaN",
+            "mixture_weight",
+        ),
+        (
+            "POST",
+            "/api/render/settings?mixture_weight=-0.5",
+            "mixture_weight",
+        ),
+        (
+            "POST",
+            "/api/render/settings?mixture_weight=half",
+            "mixture_weight",
+        ),
+        (
+            "POST",
             "/api/render/settings?colour=red",
             "unknown parameter",
         ),

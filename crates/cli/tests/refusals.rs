@@ -312,6 +312,88 @@ fn merge_checks_its_outputs_before_reading_and_never_overwrites_a_part() {
 }
 
 #[test]
+fn a_mixture_weight_outside_0_to_1_or_without_the_mixture_is_refused() {
+    let d = dir("mixture-weight");
+    for w in ["0", "1", "1.5", "NaN", "inf", "-0.25"] {
+        let flag = format!("--mixture-weight={w}");
+        refused(
+            &d,
+            &render(&["--strategy", "mixture", &flag]),
+            &["--mixture-weight", "not strictly between 0 and 1"],
+        );
+    }
+    refused(
+        &d,
+        &render(&["--mixture-weight", "0.3"]),
+        &["--mixture-weight 0.3", "only the 'mixture' strategy"],
+    );
+    assert!(files(&d).is_empty(), "{:?}", files(&d));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_resume_with_another_mixture_weight_is_refused() {
+    let d = dir("identity-weight");
+    // The book's weight is left out of the record: a checkpoint of the default resumes as before.
+    ok(
+        &d,
+        &render(&["--strategy", "mixture", "--checkpoint", "ck"]),
+    );
+    let resume = |extra: &[&'static str]| {
+        let mut v = vec![
+            "render",
+            "cornell",
+            "--width",
+            "16",
+            "--spp",
+            "4",
+            "--resume",
+            "ck",
+            "--strategy",
+            "mixture",
+        ];
+        v.extend_from_slice(extra);
+        v
+    };
+    refused(
+        &d,
+        &resume(&["--mixture-weight", "0.2"]),
+        &["mixture_weight: absent in the checkpoint, 0.2 in this render"],
+    );
+    ok(&d, &resume(&["--mixture-weight", "0.5"]));
+    ok(
+        &d,
+        &render(&[
+            "--strategy",
+            "mixture",
+            "--mixture-weight",
+            "0.25",
+            "--checkpoint",
+            "ck2",
+        ]),
+    );
+    refused(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "16",
+            "--spp",
+            "4",
+            "--resume",
+            "ck2",
+            "--strategy",
+            "mixture",
+            "--mixture-weight",
+            "0.75",
+        ],
+        &["mixture_weight: 0.25 in the checkpoint, 0.75 in this render"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
 fn a_resume_with_other_settings_names_the_serialised_field_that_differs() {
     let d = dir("identity");
     ok(&d, &render(&["--checkpoint", "ck"]));

@@ -61,6 +61,7 @@ fn bench(c: &mut Criterion) {
             max_depth: scene.max_depth,
             seed: 1,
             strategy,
+            mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
         };
         let n = (width * width) as u64 * spp;
         g.throughput(Throughput::Elements(n));
@@ -84,6 +85,7 @@ fn bench(c: &mut Criterion) {
             max_depth: 50,
             seed: 1,
             strategy: Strategy::Cosine,
+            mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
         };
         g.throughput(Throughput::Elements(64 * 64 * 4));
         g.bench_function(label, |b| b.iter(|| pool.install(|| render(&scene, st, 4))));

@@ -28,6 +28,7 @@ fn main() -> Result<(), String> {
         max_depth: built.scene.max_depth,
         seed: 1,
         strategy: Strategy::Cosine,
+        mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
     };
     let start = Instant::now();
     let (acc, stats) = render(&built.scene, settings, spp);

@@ -67,7 +67,8 @@ pub enum Strategy {
     /// Towards the importance targets only (chapter 9's experiment). Biased: directions that meet no
     /// target are never sampled, so light arriving from anywhere else is missed.
     Light,
-    /// The book's final method: a 50/50 mixture of the targets' density and the material's.
+    /// The book's final method: a mixture of the targets' density and the material's, 50/50 in the
+    /// book; the share of the targets is the render settings' `mixture_weight`.
     Mixture,
     /// Next-event estimation to every emitter of the scene, listed or not (through media with their
     /// transmittance), combined with material sampling (mixed with the non-emitting targets) by the
@@ -113,9 +114,11 @@ impl Strategy {
             Strategy::Light => "towards the importance targets only (book 3, ch. 9): BIASED, it \
                 never samples directions that miss the targets, so indirect light is lost"
                 .into(),
-            Strategy::Mixture => "50/50 mixture of the targets' density and the material's, \
+            Strategy::Mixture => {
+                "mixture of the targets' density and the material's (50/50 unless weighted), \
                 weighted s/p: the book's final method"
-                .into(),
+                    .into()
+            }
             Strategy::Mis(o) => {
                 let on_off = |b: bool| if b { "on" } else { "off" };
                 format!(
@@ -169,6 +172,7 @@ fn ratio(s: f64, p: f64) -> Option<f64> {
 #[inline]
 fn sample_diffuse(
     strategy: Strategy,
+    mixture_weight: f64,
     pdf: &ScatterPdf,
     p: Point3,
     normal: Vec3,
@@ -190,16 +194,22 @@ fn sample_diffuse(
             None => Some((pdf.sample(u)?.direction, 1.0)),
             Some(towards) => weighted(towards.sample(u)?),
         },
-        // (`mis` has its own integrator; were it asked here, it would get the book's mixture.)
+        // (`mis` has its own integrator; were it asked here, it would get the mixture.)
+        // `mixture_weight` was checked to be in (0, 1) when the renderer was built.
         (Strategy::Mixture, _) | (Strategy::Mis(_), _) => match HittablePdf::new(p, &lights.all) {
             None => Some((pdf.sample(u)?.direction, 1.0)),
-            Some(towards) => weighted(MixturePdf::new(towards, *pdf).sample(u)?),
+            Some(towards) => weighted(
+                MixturePdf::with_weight(towards, *pdf, mixture_weight)
+                    .ok()?
+                    .sample(u)?,
+            ),
         },
     }
 }
 // ANCHOR_END: sample_diffuse
 
-/// The radiance arriving along `ray`, estimated by one path of at most `max_depth` intersections.
+/// The radiance arriving along `ray`, estimated by one path of at most `max_depth` intersections;
+/// `mixture_weight` (in `(0, 1)`) is `mixture`'s share of directions towards the targets.
 #[inline]
 pub fn radiance(
     scene: &Scene,
@@ -207,11 +217,12 @@ pub fn radiance(
     ray: Ray,
     max_depth: u32,
     strategy: Strategy,
+    mixture_weight: f64,
     ctx: &mut Ctx,
 ) -> Color {
     match strategy {
         Strategy::Mis(options) => radiance_mis(scene, lights, ray, max_depth, options, ctx),
-        _ => radiance_one_sample(scene, lights, ray, max_depth, strategy, ctx),
+        _ => radiance_one_sample(scene, lights, ray, max_depth, strategy, mixture_weight, ctx),
     }
 }
 
@@ -224,6 +235,7 @@ fn radiance_one_sample(
     ray: Ray,
     max_depth: u32,
     strategy: Strategy,
+    mixture_weight: f64,
     ctx: &mut Ctx,
 ) -> Color {
     let mut ray = ray;
@@ -252,7 +264,7 @@ fn radiance_one_sample(
             Some(Scatter::Diffuse { attenuation, pdf }) => {
                 let u = ctx.sample_2d(Dimension::Material(depth));
                 let Some((direction, weight)) =
-                    sample_diffuse(strategy, &pdf, hit.p, hit.normal, lights, u)
+                    sample_diffuse(strategy, mixture_weight, &pdf, hit.p, hit.normal, lights, u)
                 else {
                     break; // p = 0 or s = 0: the sample keeps the emission it has
                 };

@@ -12,7 +12,9 @@
 //! ```
 //! use rtl_render::{integrator::Strategy, render::{RenderSettings, render}, scenes};
 //! let built = (scenes::find("cornell").unwrap().build)(&Default::default()).unwrap();
-//! let settings = RenderSettings { width: 8, max_depth: 50, seed: 1, strategy: Strategy::Cosine };
+//! let settings = RenderSettings {
+//!     width: 8, max_depth: 50, seed: 1, strategy: Strategy::Cosine, mixture_weight: 0.5,
+//! };
 //! let (image, stats) = render(&built.scene, settings, 2);
 //! assert_eq!(stats.samples, 8 * 8 * 2);
 //! assert!(image.image().iter().all(|c| c.is_finite()));

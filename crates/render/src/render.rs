@@ -19,6 +19,39 @@ pub struct RenderSettings {
     pub max_depth: u32,
     pub seed: u64,
     pub strategy: Strategy,
+    /// `mixture`'s share of directions drawn from the importance targets' density, `w` in
+    /// `p = w p_targets + (1 - w) p_material`, strictly between 0 and 1 (see [`check_mixture_weight`]);
+    /// the book's is [`BOOK_MIXTURE_WEIGHT`]. The other strategies ignore it. Left out of the settings'
+    /// record (the checkpoint identity) when it is the book's, so records made before it existed
+    /// still match.
+    #[serde(skip_serializing_if = "is_book_mixture_weight")]
+    pub mixture_weight: f64,
+}
+
+/// The book's even mixture (book 3, ch. 10): half the directions towards the targets.
+pub const BOOK_MIXTURE_WEIGHT: f64 = 0.5;
+
+fn is_book_mixture_weight(w: &f64) -> bool {
+    *w == BOOK_MIXTURE_WEIGHT
+}
+
+/// Why a mixture weight was refused.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "the mixture weight is {0}, not strictly between 0 and 1 (0 would be the 'cosine' strategy, 1 \
+     the biased 'light' one)"
+)]
+pub struct MixtureWeightError(pub f64);
+
+/// `w` if it is a mixture weight `mixture` can use: `0 < w < 1` (NaN is refused). At 1 the targets
+/// alone would be sampled, which misses the directions they do not cover (biased, the `light`
+/// strategy); at 0 it is the material's density alone (the `cosine` strategy).
+pub fn check_mixture_weight(w: f64) -> Result<f64, MixtureWeightError> {
+    if w > 0.0 && w < 1.0 {
+        Ok(w)
+    } else {
+        Err(MixtureWeightError(w))
+    }
 }
 
 /// Per-pixel sums of finite sample values, how many were summed, and how many were dropped as
@@ -95,7 +128,13 @@ pub struct Renderer<'a> {
 }
 
 impl<'a> Renderer<'a> {
+    ///
+    /// Panics if `settings.mixture_weight` is refused by [`check_mixture_weight`] (callers check
+    /// their users' input first, with its flag or field in the message).
     pub fn new(scene: &'a Scene, settings: RenderSettings) -> Self {
+        if let Err(e) = check_mixture_weight(settings.mixture_weight) {
+            panic!("RenderSettings: {e}");
+        }
         let camera = Camera::new(&scene.camera, settings.width, scene.features.motion);
         let options = settings.strategy.mis_options();
         let spherical_rectangles = options.is_some_and(|o| o.spherical_rectangles);
@@ -136,6 +175,7 @@ impl<'a> Renderer<'a> {
             ray,
             self.settings.max_depth,
             self.settings.strategy,
+            self.settings.mixture_weight,
             ctx,
         );
         ctx.stats.samples += 1;

@@ -16,6 +16,7 @@ fn settings(width: usize, seed: u64, max_depth: u32) -> RenderSettings {
         max_depth,
         seed,
         strategy: Strategy::Cosine,
+        mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
     }
 }
 

@@ -159,6 +159,7 @@ proptest! {
                     max_depth: 4,
                     seed: 1,
                     strategy: Integrator::default(),
+                    mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
                 };
                 let (acc, stats) = render(&file.built.scene, settings, 2);
                 prop_assert!(acc.image().iter().all(|c| c.is_finite() && c.min_element() >= 0.0));

@@ -178,6 +178,7 @@ fn settings(seed: u64, strategy: Strategy) -> RenderSettings {
         max_depth: 50,
         seed,
         strategy,
+        mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
     }
 }
 

@@ -23,11 +23,22 @@ mod batch_means;
 use batch_means::{mean_var, welch_p};
 
 fn settings(width: usize, seed: u64, strategy: Strategy) -> RenderSettings {
+    weighted(
+        width,
+        seed,
+        strategy,
+        rtl_render::render::BOOK_MIXTURE_WEIGHT,
+    )
+}
+
+/// [`settings`] with `mixture`'s share of directions towards the targets.
+fn weighted(width: usize, seed: u64, strategy: Strategy, mixture_weight: f64) -> RenderSettings {
     RenderSettings {
         width,
         max_depth: 50,
         seed,
         strategy,
+        mixture_weight,
     }
 }
 
@@ -80,9 +91,14 @@ const BATCH_SPP: u64 = 16;
 
 /// Per region, the region's mean radiance in each of `BATCHES` independent renders (seeds 1000 + b).
 fn batch_means(scene: &Scene, strategy: Strategy) -> Vec<Vec<Color>> {
+    batch_means_weighted(scene, strategy, rtl_render::render::BOOK_MIXTURE_WEIGHT)
+}
+
+/// [`batch_means`] with `mixture`'s weight.
+fn batch_means_weighted(scene: &Scene, strategy: Strategy, w: f64) -> Vec<Vec<Color>> {
     let mut out = vec![Vec::new(); REGIONS.len()];
     for b in 0..BATCHES {
-        let (acc, stats) = render(scene, settings(WIDTH, 1000 + b, strategy), BATCH_SPP);
+        let (acc, stats) = render(scene, weighted(WIDTH, 1000 + b, strategy, w), BATCH_SPP);
         assert_eq!(
             stats.non_finite,
             0,
@@ -127,13 +143,22 @@ fn compare(a: &[Vec<Color>], b: &[Vec<Color>]) -> Vec<(f64, String)> {
 #[test]
 fn every_unbiased_strategy_gives_the_same_region_means() {
     let scene = cornell();
+    // (strategy, mixture weight): the weight matters to `mixture` only.
     let strategies = [
-        Strategy::Uniform,
-        Strategy::Cosine,
-        Strategy::Mixture,
-        Strategy::Mis(MisOptions::default()),
+        (Strategy::Uniform, 0.5),
+        (Strategy::Cosine, 0.5),
+        (Strategy::Mixture, 0.5),
+        (Strategy::Mixture, 0.2),
+        (Strategy::Mis(MisOptions::default()), 0.5),
     ];
-    let means: Vec<_> = strategies.iter().map(|&s| batch_means(&scene, s)).collect();
+    let means: Vec<_> = strategies
+        .iter()
+        .map(|&(s, w)| batch_means_weighted(&scene, s, w))
+        .collect();
+    let name = |(s, w): (Strategy, f64)| match s {
+        Strategy::Mixture => format!("mixture w={w}"),
+        s => s.name().to_string(),
+    };
     let pairs = strategies.len() * (strategies.len() - 1) / 2;
     let comparisons = pairs * REGIONS.len() * 3;
     // Family-wise false-failure rate 1e-6, Bonferroni over every comparison.
@@ -144,14 +169,48 @@ fn every_unbiased_strategy_gives_the_same_region_means() {
                 assert!(
                     p >= alpha,
                     "{} vs {}: {what}, p = {p:.2e} < {alpha:.1e}",
-                    strategies[x].name(),
-                    strategies[y].name()
+                    name(strategies[x]),
+                    name(strategies[y])
                 );
             }
         }
     }
 }
 // ANCHOR_END: unbiased
+
+#[test]
+fn the_mixture_weight_is_used() {
+    // Towards the targets most of the time or hardly ever: other directions, so other images (both
+    // unbiased: the batch-means test above and the furnace test below).
+    let scene = cornell();
+    let image = |w: f64| {
+        render(&scene, weighted(12, 1, Strategy::Mixture, w), 4)
+            .0
+            .image()
+    };
+    let (near_one, near_zero, even) = (image(0.95), image(0.05), image(0.5));
+    assert_ne!(near_one, near_zero);
+    assert_ne!(near_one, even);
+    // Only `mixture` reads it.
+    let cosine = |w: f64| {
+        render(&scene, weighted(12, 1, Strategy::Cosine, w), 4)
+            .0
+            .image()
+    };
+    assert_eq!(cosine(0.95), cosine(0.5));
+}
+
+#[test]
+fn the_mixture_weight_is_checked() {
+    use rtl_render::render::check_mixture_weight;
+    for w in [0.5, 1e-9, 0.999] {
+        assert_eq!(check_mixture_weight(w), Ok(w));
+    }
+    for w in [0.0, 1.0, -0.1, 1.5, f64::NAN, f64::INFINITY] {
+        let e = check_mixture_weight(w).unwrap_err();
+        assert!(e.to_string().contains("mixture weight"), "{e}");
+    }
+}
 
 #[test]
 fn the_batch_means_test_catches_the_biased_light_strategy() {
@@ -220,7 +279,18 @@ fn furnace() -> Scene {
 
 /// Every sample of a `w x w` render at `spp`, channel 0 (the scene is grey).
 fn samples(scene: &Scene, strategy: Strategy, w: usize, spp: u64) -> Vec<f64> {
-    let r = Renderer::new(scene, settings(w, 7, strategy));
+    samples_weighted(
+        scene,
+        strategy,
+        rtl_render::render::BOOK_MIXTURE_WEIGHT,
+        w,
+        spp,
+    )
+}
+
+/// [`samples`] with `mixture`'s weight.
+fn samples_weighted(scene: &Scene, strategy: Strategy, mw: f64, w: usize, spp: u64) -> Vec<f64> {
+    let r = Renderer::new(scene, weighted(w, 7, strategy, mw));
     let mut ctx = Ctx::new();
     let mut out = Vec::new();
     for j in 0..r.camera.height {
@@ -251,14 +321,19 @@ fn white_furnace_every_strategy_within_its_standard_error() {
     let scene = furnace();
     let mut strategies = vec![Strategy::Uniform, Strategy::Light, Strategy::Mixture];
     strategies.extend(mis_variants());
-    for s in strategies {
-        let x = samples(&scene, s, 16, 64);
+    let mut runs: Vec<(Strategy, f64)> = strategies.into_iter().map(|s| (s, 0.5)).collect();
+    runs.extend([(Strategy::Mixture, 0.05), (Strategy::Mixture, 0.95)]);
+    for (s, w) in runs {
+        let x = samples_weighted(&scene, s, w, 16, 64);
         let (m, v) = mean_var(&x);
         let se = (v / x.len() as f64).sqrt();
-        assert!(se > 0.0, "{s:?}: no spread at all?");
+        assert!(se > 0.0, "{s:?} w={w}: no spread at all?");
         let z = (m - FURNACE) / se;
         // two-sided false-failure rate 1e-6
-        assert!(z.abs() < 4.89, "{s:?}: mean {m} vs {FURNACE}, z = {z}");
+        assert!(
+            z.abs() < 4.89,
+            "{s:?} w={w}: mean {m} vs {FURNACE}, z = {z}"
+        );
     }
 }
 // ANCHOR_END: furnace

@@ -11,7 +11,7 @@
 //! once in the background and cached there).
 
 use super::glue::{self, Settings};
-use crate::study::render::{errors, heat, reference};
+use crate::study::render::{errors, heat, reference_until};
 use rtl_mc::RunningStats;
 use rtl_render::Color;
 use rtl_render::output::{Transfer, to_rgb8};
@@ -103,6 +103,10 @@ pub fn label(s: &Settings) -> String {
                 }
             }
             l
+        }
+        // The weight only where it is not the book's 50/50.
+        Strategy::Mixture if s.mixture_weight != rtl_render::render::BOOK_MIXTURE_WEIGHT => {
+            format!("mixture w={}", s.mixture_weight)
         }
         other => other.name().to_string(),
     };
@@ -204,13 +208,23 @@ impl Bench {
                 .map_err(anyhow::Error::from)
                 .and_then(|pool| {
                     std::fs::create_dir_all(dir)?;
-                    pool.install(|| reference(dir, glue::SCENE, &scene, width, spp))
+                    // Stopped when nobody watches: the page closed, or went to another bench.
+                    let stop = || me.is_idle();
+                    pool.install(|| reference_until(dir, glue::SCENE, &scene, width, spp, &stop))
                 });
-            let state = match result {
-                Ok(img) => Reference::Ready(Arc::new(img)),
-                Err(e) => Reference::Failed(format!("{e:#}")),
-            };
-            me.references.lock().unwrap().insert(width, state);
+            let mut refs = me.references.lock().unwrap();
+            match result {
+                Ok(Some(img)) => {
+                    refs.insert(width, Reference::Ready(Arc::new(img)));
+                }
+                // Asked for again (from the start) when the page is back.
+                Ok(None) => {
+                    refs.remove(&width);
+                }
+                Err(e) => {
+                    refs.insert(width, Reference::Failed(format!("{e:#}")));
+                }
+            }
             me.reference_busy.store(false, Ordering::SeqCst);
         });
         Reference::Rendering
@@ -370,6 +384,7 @@ mod tests {
             strategy: Strategy::Cosine,
             seed: 1,
             max_depth: glue::BOOK_DEPTH,
+            mixture_weight: 0.5,
         };
         let others = [
             Settings { width: 32, ..s },
@@ -387,9 +402,20 @@ mod tests {
                 strategy: glue::strategy("mis", false, false, false).unwrap(),
                 ..s
             },
+            Settings {
+                strategy: Strategy::Mixture,
+                ..s
+            },
+            Settings {
+                strategy: Strategy::Mixture,
+                mixture_weight: 0.2,
+                ..s
+            },
         ];
         let mut labels: Vec<String> = others.iter().map(label).collect();
         labels.push(label(&s));
+        assert_eq!(label(&others[6]), "mixture seed 1 16px");
+        assert_eq!(label(&others[7]), "mixture w=0.2 seed 1 16px");
         let n = labels.len();
         labels.sort();
         labels.dedup();
@@ -405,6 +431,7 @@ mod tests {
             strategy: Strategy::Cosine,
             seed: 1,
             max_depth: 50,
+            mixture_weight: 0.5,
         };
         let bench = Arc::new(Bench::new(s, dir.clone(), 16));
         {
@@ -445,6 +472,42 @@ mod tests {
         let spp = bench.frame.lock().unwrap().spp;
         std::thread::sleep(Duration::from_millis(500));
         assert_eq!(bench.frame.lock().unwrap().spp, spp);
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn a_reference_stops_when_nobody_watches() {
+        let scene = Arc::new(glue::scene().unwrap());
+        let dir = std::env::temp_dir().join(format!("rtl-lab-ref-test-{}", std::process::id()));
+        let s = Settings {
+            width: 16,
+            strategy: Strategy::Cosine,
+            seed: 1,
+            max_depth: 50,
+            mixture_weight: 0.5,
+        };
+        // Far more samples than a test could wait for: only a stop ends it.
+        let bench = Arc::new(Bench::new(s, dir.clone(), 1 << 40));
+        bench.touch();
+        assert!(matches!(bench.reference(&scene, 16), Reference::Rendering));
+        std::thread::sleep(Duration::from_millis(200));
+        assert!(
+            bench.reference_busy.load(Ordering::SeqCst),
+            "still rendering"
+        );
+        bench.last_seen_ms.store(NEVER, Ordering::SeqCst);
+        let start = Instant::now();
+        while bench.reference_busy.load(Ordering::SeqCst) {
+            assert!(
+                start.elapsed() < Duration::from_secs(60),
+                "the reference went on"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        // Forgotten, to be asked for again; nothing written.
+        assert!(bench.references.lock().unwrap().get(&16).is_none());
+        let written = std::fs::read_dir(&dir).map_or(0, |d| d.count());
+        assert_eq!(written, 0);
         let _ = std::fs::remove_dir_all(dir);
     }
 }

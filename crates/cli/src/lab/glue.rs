@@ -29,6 +29,9 @@ pub struct Settings {
     pub strategy: Strategy,
     pub seed: u64,
     pub max_depth: u32,
+    /// `mixture`'s share of directions towards the targets, in `(0, 1)` (kept across strategies, used
+    /// by `mixture` only).
+    pub mixture_weight: f64,
 }
 
 /// The Cornell box, as `rtl render cornell` builds it.
@@ -74,6 +77,7 @@ pub fn renderer<'a>(scene: &'a Scene, s: &Settings) -> Renderer<'a> {
             max_depth: s.max_depth,
             seed: s.seed,
             strategy: s.strategy,
+            mixture_weight: s.mixture_weight,
         },
     )
 }
@@ -133,6 +137,7 @@ mod tests {
                 strategy: strategy(name, true, true, false).unwrap(),
                 seed: 5,
                 max_depth: 50,
+                mixture_weight: 0.5,
             };
             let r = renderer(&scene, &s);
             let mut cli = r.accumulator();
@@ -158,6 +163,7 @@ mod tests {
             strategy: Strategy::Cosine,
             seed: 1,
             max_depth: 50,
+            mixture_weight: 0.5,
         };
         let r = renderer(&scene, &s);
         let mut acc = r.accumulator();

@@ -63,6 +63,7 @@ fn initial_settings(width: usize) -> glue::Settings {
         strategy: rtl_render::integrator::Strategy::default(),
         seed: 1,
         max_depth: glue::BOOK_DEPTH,
+        mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
     }
 }
 

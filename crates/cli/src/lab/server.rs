@@ -7,6 +7,7 @@ use super::cornell::{self, Bench};
 use super::glue::{self, Settings};
 use super::params::{BadRequest, Query, bad};
 use super::{mc, sampling};
+use rtl_render::render::check_mixture_weight;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -238,12 +239,12 @@ fn settings_json(s: &Settings) -> Value {
     json!({
         "width": s.width, "strategy": s.strategy.name(), "seed": s.seed, "max_depth": s.max_depth,
         "rr": o.russian_roulette, "lds": o.low_discrepancy, "sph_rect": o.spherical_rectangles,
-        "label": cornell::label(s),
+        "mixture_weight": s.mixture_weight, "label": cornell::label(s),
     })
 }
 
-/// `POST /api/render/settings?strategy=S&width=W&seed=K&max_depth=D&rr=1&lds=1&sph_rect=0`; what is
-/// not given stays as it is.
+/// `POST /api/render/settings?strategy=S&width=W&seed=K&max_depth=D&rr=1&lds=1&sph_rect=0&
+/// mixture_weight=0.5`; what is not given stays as it is.
 fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
     let q = Query::parse(
         query,
@@ -255,6 +256,7 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
             "rr",
             "lds",
             "sph_rect",
+            "mixture_weight",
         ],
     )?;
     let d = app.bench.settings();
@@ -271,11 +273,15 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
         q.flag("sph_rect", o.spherical_rectangles)?,
     )
     .map_err(bad)?;
+    let w = q.number("mixture_weight", d.mixture_weight, 0.0, 1.0)?;
+    let mixture_weight =
+        check_mixture_weight(w).map_err(|e| bad(format!("`mixture_weight={w}`: {e}")))?;
     let s = Settings {
         width,
         strategy,
         seed,
         max_depth,
+        mixture_weight,
     };
     let generation = app.bench.set(s);
     Ok(json!({ "generation": generation, "settings": settings_json(&s) }))

@@ -126,6 +126,7 @@ fn settings(width: usize, scene: &Scene, seed: u64, strategy: Strategy) -> Rende
         max_depth: scene.max_depth,
         seed,
         strategy,
+        mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
     }
 }
 
@@ -177,13 +178,28 @@ pub(crate) fn reference(
     width: usize,
     spp: u64,
 ) -> Result<Vec<Color>> {
+    Ok(reference_until(dir, name, scene, width, spp, &|| false)?
+        .expect("a reference that is never stopped is made"))
+}
+
+/// [`reference`] that gives up as soon as `stop()` is true (asked before each pixel of each pass):
+/// then `None`, and nothing is written. Unstopped, the same passes as [`reference`], so the same
+/// image bit for bit.
+pub(crate) fn reference_until(
+    dir: &Path,
+    name: &str,
+    scene: &Scene,
+    width: usize,
+    spp: u64,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<Option<Vec<Color>>> {
     let path = dir.join(format!("render-reference-{name}-{width}-{spp}.pfm"));
     if path.exists() {
         let (w, h, px) = read_pfm(&path)?;
         let camera = &Renderer::new(scene, settings(width, scene, 999, Strategy::default())).camera;
         if (w, h) == (camera.width, camera.height) {
             eprintln!("reference: cached {}", path.display());
-            return Ok(px);
+            return Ok(Some(px));
         }
         eprintln!(
             "reference: {} is {w}x{h}, not {}x{}: rendering it again",
@@ -200,7 +216,10 @@ pub(crate) fn reference(
     let mut k = 0;
     while k < spp {
         let k1 = (k + 256).min(spp);
-        r.render_pass(&mut acc, k, k1, &|| {});
+        if r.render_pass_until(&mut acc, k, k1, &|| {}, stop).is_none() {
+            eprintln!("\nreference: stopped at {k}/{spp} spp, nothing written");
+            return Ok(None);
+        }
         k = k1;
         eprint!("\r  {k}/{spp} spp ");
     }
@@ -217,7 +236,7 @@ pub(crate) fn reference(
             rayon::current_num_threads()
         ),
     )?;
-    Ok(img)
+    Ok(Some(img))
 }
 
 /// RMSE and relative MSE (`(x - r)^2 / (r^2 + 0.01)`, pbrt's guard) over every pixel and channel.

@@ -2,7 +2,8 @@
 // usage: node lab.test.cjs URL SCREENSHOT_DIR
 // Checks: the page loads with no console error and no request outside 127.0.0.1; a Monte Carlo run
 // draws its band; a sampling run draws its histogram; switching the Cornell box from `uniform` to `mis`
-// changes the image and adds a curve. Writes one screenshot of each bench.
+// changes the image and adds a curve, and `mixture` at weight 0.2 adds a curve named by its weight.
+// Writes one screenshot of each bench.
 "use strict";
 const { chromium } = require("playwright-core");
 const path = require("path");
@@ -118,6 +119,18 @@ const check = (ok, what) => {
   // let the curves grow a little for the screenshot
   await page.waitForTimeout(4000);
   await page.screenshot({ path: path.join(shots, "lab-cornell.png"), fullPage: true });
+
+  // The mixture weight: `mixture` at 0.2 restarts the render and adds a curve named by its weight.
+  await page.selectOption("#c-strategy", "mixture");
+  const g3 = await generationAfter(g2);
+  await page.fill("#c-weight", "0.2");
+  await page.dispatchEvent("#c-weight", "change");
+  const g4 = await generationAfter(g3);
+  await frameOf(g4, 4);
+  const named = await page.waitForFunction(
+    () => [...document.querySelectorAll("#c-curves .curve")].some((c) => (c.dataset.label || "").startsWith("mixture w=0.2 ")),
+    null, { timeout: 30000 }).then(() => true, () => false);
+  check(named, "mixture at weight 0.2 adds a curve labelled with its weight");
 
   check(errors.length === 0, `no console error${errors.length ? ": " + errors.join(" | ") : ""}`);
   check(outside.length === 0, `no request outside 127.0.0.1${outside.length ? ": " + outside.join(" ") : ""}`);

@@ -343,13 +343,14 @@ const cornell = { frame: -1, polling: false, timer: null, colors: {} };
 
 function cSettings() {
   return new URLSearchParams({ strategy: $("c-strategy").value, width: $("c-width").value,
-    seed: $("c-seed").value, max_depth: $("c-depth").value,
+    seed: $("c-seed").value, max_depth: $("c-depth").value, mixture_weight: $("c-weight").value,
     rr: $("c-rr").checked ? 1 : 0, lds: $("c-lds").checked ? 1 : 0, sph_rect: $("c-sph").checked ? 1 : 0 });
 }
 
 async function cApply() {
   const mis = $("c-strategy").value === "mis";
   for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = !mis;
+  $("c-weight").disabled = $("c-strategy").value !== "mixture";
   try {
     const r = await api("/api/render/settings?" + cSettings(), { method: "POST" });
     document.body.dataset.renderGeneration = r.generation;
@@ -411,13 +412,14 @@ function syncControls(s) {
   $("c-width").value = s.width; $("c-seed").value = s.seed; $("c-depth").value = s.max_depth;
   $("c-rr").checked = s.rr; $("c-lds").checked = s.lds; $("c-sph").checked = s.sph_rect;
   for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = s.strategy !== "mis";
+  $("c-weight").value = s.mixture_weight; $("c-weight").disabled = s.strategy !== "mixture";
 }
 
 async function cornellInit() {
   const l = await api("/api/render/list");
   for (const s of l.strategies) $("c-strategy").add(new Option(s, s));
   syncControls(l.current);
-  for (const id of ["c-strategy", "c-rr", "c-lds", "c-sph", "c-width", "c-seed", "c-depth"]) $(id).onchange = cApply;
+  for (const id of ["c-strategy", "c-weight", "c-rr", "c-lds", "c-sph", "c-width", "c-seed", "c-depth"]) $(id).onchange = cApply;
   $("c-clear").onclick = () => api("/api/render/clear", { method: "POST" });
   document.addEventListener("visibilitychange", () => { if (activeBench === "cornell") pollRender(); });
 }
