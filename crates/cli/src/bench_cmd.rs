@@ -164,7 +164,7 @@ fn program(scene: CompareScene) -> BookProgram {
     }
 }
 
-fn compare(a: CompareArgs) -> Result<()> {
+fn compare(mut a: CompareArgs) -> Result<()> {
     validate(&a)?;
     let depth = a.max_depth.unwrap_or(match a.scene {
         CompareScene::Cornell => 50,
@@ -172,6 +172,10 @@ fn compare(a: CompareArgs) -> Result<()> {
     });
     std::fs::create_dir_all(&a.scratch)
         .with_context(|| format!("--scratch {}: cannot create it", a.scratch.display()))?;
+    // The programs run with their own directory as the working directory, so every path handed to
+    // them must be absolute (a relative default such as target/bench-compare would not be found).
+    a.scratch = std::fs::canonicalize(&a.scratch)
+        .with_context(|| format!("--scratch {}: cannot resolve it", a.scratch.display()))?;
     let cpu = cpu_model();
     println!("CPU: {cpu} ({} logical cores)", num_cores());
     println!(
