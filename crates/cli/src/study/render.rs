@@ -182,8 +182,8 @@ pub(crate) fn reference(
         .expect("a reference that is never stopped is made"))
 }
 
-/// [`reference`] that gives up as soon as `stop()` is true (asked before each pixel of each pass):
-/// then `None`, and nothing is written. Unstopped, the same passes as [`reference`], so the same
+/// [`reference()`] that gives up as soon as `stop()` is true (asked before each pixel of each pass):
+/// then `None`, and nothing is written. Unstopped, the same passes as [`reference()`], so the same
 /// image bit for bit.
 pub(crate) fn reference_until(
     dir: &Path,
