@@ -75,6 +75,11 @@ pub struct CompareArgs {
     /// The book's samples per pixel whose noise is the target (when `--target-rmse` is not given).
     #[arg(long, default_value_t = 1000)]
     target_book_spp: u64,
+    /// The image width (square) the times are projected to, e.g. 800 for book 2's final render
+    /// measured at 400 (default: `--width`). The noise constant is per pixel, so this assumes it
+    /// stays the same at the larger size: pixels are smaller, not different.
+    #[arg(long)]
+    project_width: Option<usize>,
     /// The two seeds of each renderer's pair of renders.
     #[arg(long, value_delimiter = ',', default_values_t = [1u32, 2])]
     seeds: Vec<u32>,
@@ -118,6 +123,14 @@ fn cpu_model() -> String {
 fn validate(a: &CompareArgs) -> Result<()> {
     if a.width == 0 || a.spp == 0 || a.threads == 0 || a.cores == 0 {
         bail!("--width, --spp, --threads and --cores must be positive");
+    }
+    if let Some(w) = a.project_width
+        && (w == 0 || w > rtl_render::limits::MAX_SIDE)
+    {
+        bail!(
+            "--project-width must be in 1..={}, got {w}",
+            rtl_render::limits::MAX_SIDE
+        );
     }
     if a.seeds.len() != 2 || a.seeds[0] == a.seeds[1] {
         bail!("--seeds: give two different seeds, got {:?}", a.seeds);
@@ -204,10 +217,11 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         (None, Some(c)) => c / (a.target_book_spp as f64).sqrt(),
         (None, None) => unreachable!("validated"),
     };
-    let pixels = a.width * a.width;
+    let side = a.project_width.unwrap_or(a.width);
+    let pixels = side * side;
     println!();
     println!(
-        "target: per-pixel RMSE {target:.5} (display values, gamma 2){}",
+        "target: per-pixel RMSE {target:.5} (display values, gamma 2){}; times for {side} x {side} pixels",
         if a.target_rmse.is_none() {
             format!(", the book's C++ at {} spp", a.target_book_spp)
         } else {
@@ -539,6 +553,11 @@ mod tests {
         let e = err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]);
         assert!(e.contains("--strategy") && e.contains("fast"), "{e}");
         assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
+        for w in ["0", "65537"] {
+            let e = err(&["--target-rmse", "0.01", "--project-width", w]);
+            assert!(e.contains("--project-width") && e.contains(w), "{e}");
+        }
+        assert!(validate(&parse(&["--target-rmse", "0.01", "--project-width", "800"])).is_ok());
         let dir = std::env::temp_dir().join(format!("rtl-bench-no-book-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
