@@ -390,7 +390,11 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
                 a.width
             );
         }
-        eprintln!("  {s:?}");
+        eprintln!(
+            "  {:.2} s processor time, {:.2} s wall",
+            s.cpu.unwrap_or(f64::NAN),
+            s.wall
+        );
         images.push(img);
         secs += s.seconds();
         wall += s.wall;
@@ -499,7 +503,11 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
         }
         eprintln!("running rtl --strategy {strategy}, seed {seed}");
         let (_, s) = timed(&mut cmd, "rtl render")?;
-        eprintln!("  {s:?}");
+        eprintln!(
+            "  {:.2} s processor time, {:.2} s wall",
+            s.cpu.unwrap_or(f64::NAN),
+            s.wall
+        );
         secs += s.seconds();
         wall += s.wall;
         images.push(parse_pfm(&read(&pfm)?, &pfm.display().to_string())?);
