@@ -335,6 +335,12 @@ fn trace_shadow(scene: &Scene, ray: &Ray, ctx: &mut Ctx) -> Option<(Hit, f64)> {
 /// the emitter with the transmittance's probability, the shadow ray carries it as a factor). After a
 /// specular (delta) bounce only the material could have found the emitter: full weight.
 ///
+/// Inside a dielectric (the path refracted into one and not yet out) no light sample is taken: a
+/// shadow ray from there can only meet the dielectric's boundary, a specular surface, so it would
+/// cost a traversal and add nothing (book 2's blue subsurface sphere: glass filled with a dense
+/// medium, where most of the path's vertices are). Emission found from such a vertex has weight 1,
+/// which keeps the estimator unbiased even for an emitter inside the glass or an open dielectric.
+///
 /// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
 /// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
 fn radiance_mis(
@@ -345,7 +351,44 @@ fn radiance_mis(
     options: MisOptions,
     ctx: &mut Ctx,
 ) -> Color {
+    radiance_mis_variant(
+        scene,
+        lights,
+        ray,
+        max_depth,
+        options,
+        MisVariant::Book,
+        ctx,
+    )
+}
+
+/// Variants of [`radiance_mis`] for the unbiasedness tests: the estimator itself, and deliberately
+/// wrong ones that a test must catch.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MisVariant {
+    /// The estimator `mis` renders with.
+    Book,
+    /// Wrong: skips next-event estimation inside dielectrics but still weights the emission the path
+    /// meets from there by `w_m`, as if the light strategy had been used.
+    WrongWeightInsideDielectrics,
+}
+
+/// [`radiance_mis`] with a [`MisVariant`] (for tests).
+#[doc(hidden)]
+pub fn radiance_mis_variant(
+    scene: &Scene,
+    lights: &Lights,
+    ray: Ray,
+    max_depth: u32,
+    options: MisOptions,
+    variant: MisVariant,
+    ctx: &mut Ctx,
+) -> Color {
     let mut ray = ray;
+    // How many dielectric boundaries the path has passed into and not yet out of (see
+    // `radiance_mis`'s notes on next-event estimation inside dielectrics).
+    let mut inside_dielectrics: u32 = 0;
     let mut throughput = Color::ONE;
     let mut l = Color::ZERO;
     // The previous diffuse vertex and its material-sampling density of `ray.direction`; `None` after
@@ -378,6 +421,17 @@ fn radiance_mis(
                 attenuation,
                 direction,
             }) => {
+                // Refracted (not reflected) through a dielectric: into it from its front, out of it
+                // from its back.
+                if matches!(material, Material::Dielectric { .. })
+                    && direction.dot(hit.normal) < 0.0
+                {
+                    inside_dielectrics = if hit.front_face {
+                        inside_dielectrics + 1
+                    } else {
+                        inside_dielectrics.saturating_sub(1)
+                    };
+                }
                 throughput *= attenuation;
                 ray = hit.spawn(direction, ray.time);
                 previous = None;
@@ -385,10 +439,15 @@ fn radiance_mis(
             }
             Some(Scatter::Diffuse { attenuation, pdf }) => (attenuation, pdf),
         };
+        // Inside a dielectric every shadow ray meets its boundary first (a specular surface, which
+        // next-event estimation cannot pass): no light sample is taken there, and emission the path
+        // meets from this vertex then has weight 1 (the material strategy alone).
+        let light_strategy = inside_dielectrics == 0;
         let towards_others = HittablePdf::new(hit.p, &lights.others);
 
         // Next-event estimation: only if the shadow ray's hit is within the path's depth.
         if depth + 1 < max_depth
+            && light_strategy
             && let Some(towards_lights) = HittablePdf::new(hit.p, &lights.emitters)
             && let Some(ls) = towards_lights.sample(ctx.sample_2d(Dimension::Light(depth)))
             && let Some(s_over_p) = ratio(pdf.pdf(ls.direction), ls.pdf)
@@ -420,7 +479,8 @@ fn radiance_mis(
             break;
         };
         throughput *= attenuation * s_over_p;
-        previous = Some((hit.p, ms.pdf));
+        previous = (light_strategy || variant == MisVariant::WrongWeightInsideDielectrics)
+            .then_some((hit.p, ms.pdf));
         ray = hit.spawn(ms.direction, ray.time);
 
         // Russian roulette: survive with probability q = min(1, max throughput / ROULETTE_BELOW),
