@@ -1,8 +1,13 @@
-//! `mis` inside dielectrics and media: a glass ball filled with a medium (book 2's subsurface
-//! sphere) with an emitter inside it, under a ceiling light. `mis` takes no light sample inside the
-//! glass; it must still agree with `cosine` (which never samples lights) on the mean of every image
-//! region (batch means, Welch t-test), and a deliberately wrong variant (no light sample inside, but
-//! the emission found from there weighted as if there had been one) must be caught.
+//! `mis` in media and inside dielectrics, against `cosine` (which never samples lights) on the mean
+//! of every image region (batch means, Welch t-test), each with a deliberately wrong variant that must
+//! be caught:
+//! - a glass ball filled with a medium (book 2's subsurface sphere) with an emitter inside it, under a
+//!   ceiling light: `mis` takes no light sample inside the glass (wrong: the emission found from there
+//!   weighted as if it had);
+//! - a thin fog around everything (book 2's) and a denser smoke box with a glowing ball in it: `mis`
+//!   takes the light sample of a medium at an equiangular point of the path's segment (wrong: without
+//!   the transmittance from the segment's start), and must also agree with the light sample taken
+//!   where the path scatters.
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
@@ -68,6 +73,67 @@ pub fn glass_ball_with_medium_and_glow() -> Scene {
         lookfrom: Point3::new(0.0, 1.5, 5.0),
         lookat: Point3::new(0.0, 1.0, 0.0),
         vfov: 40.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+/// A floor under a one-sided ceiling light, all inside a fog (a ball of radius 12, density 0.04,
+/// albedo 0.9, the camera in it), and on the floor a smoke box (density 0.6, albedo 0.8) with a
+/// glowing ball inside: segments cross one medium or two at once.
+pub fn fog_and_smoke() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let fog = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.9)),
+    });
+    let smoke = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.8)),
+    });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(6.0)),
+        two_sided: false,
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(3.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-1.0, 4.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    let boundary = b
+        .box_group(
+            Point3::new(-2.5, 0.5, -1.5),
+            Point3::new(0.5, 2.5, 1.5),
+            white,
+        )
+        .unwrap();
+    b.medium(w, boundary, 0.6, smoke).unwrap();
+    b.sphere(w, Point3::new(-1.0, 1.5, 0.0), 0.3, glow).unwrap();
+    let fog_boundary = b.group();
+    b.sphere(fog_boundary, Point3::ZERO, 12.0, glass).unwrap();
+    b.medium(w, fog_boundary, 0.04, fog).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 2.0, 7.0),
+        lookat: Point3::new(0.0, 1.8, 0.0),
+        vfov: 55.0,
         ..CameraSettings::default()
     };
     b.background = Background::Solid(Color::ZERO);
@@ -194,4 +260,27 @@ fn the_variant_loop_is_the_renderers() {
     for (a, b) in acc.image().iter().zip(&ours) {
         assert!((*a - *b).abs().max_element() <= 1e-12 * a.abs().max_element().max(1.0));
     }
+}
+
+#[test]
+fn mis_with_segment_light_samples_agrees_and_the_missing_transmittance_is_caught() {
+    let scene = fog_and_smoke();
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let scattered =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::LightSampleWhereScattered));
+    let d = disagreements(&scattered, &mis);
+    assert!(
+        d.is_empty(),
+        "light samples on segments vs where scattered:\n{}",
+        d.join("\n")
+    );
+    let wrong =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongSegmentTransmittance));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the missing transmittance went unnoticed"
+    );
 }
