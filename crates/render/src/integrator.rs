@@ -9,6 +9,7 @@
 use crate::hit::Hit;
 use crate::lights::{LightTarget, Lights};
 use crate::material::{Material, Scatter, ScatterPdf};
+use crate::metal_pdf::FuzzyMetalPdf;
 use crate::ray::{Interval, Ray};
 use crate::sampler::{Ctx, Dimension, MediaCrossed, MediumMode};
 use crate::scene::{GroupId, Scene};
@@ -332,7 +333,7 @@ fn light_sample(
     lights: &Lights,
     hit: &Hit,
     time: f64,
-    pdf: &ScatterPdf,
+    pdf: &VertexPdf,
     towards_others: Option<&HittablePdf<'_, LightTarget>>,
     u: glam::DVec2,
     ctx: &mut Ctx,
@@ -555,7 +556,7 @@ fn segment_light(
         lights,
         &hit,
         ray.time,
-        &pdf,
+        &VertexPdf::Material(pdf),
         towards_others.as_ref(),
         u,
         ctx,
@@ -594,6 +595,10 @@ fn segment_light(
 /// medium, where most of the path's vertices are). Emission found from such a vertex has weight 1,
 /// which keeps the estimator unbiased even for an emitter inside the glass or an open dielectric.
 ///
+/// The books' fuzzy metal is no specular bounce here: its directions have a density in closed form
+/// ([`FuzzyMetalPdf`]), so it takes light samples and its emission hits are weighted like a diffuse
+/// vertex's (a metal of fuzz 0 stays a mirror).
+///
 /// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
 /// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
 fn radiance_mis(
@@ -630,6 +635,52 @@ pub enum MisVariant {
     LightSampleWhereScattered,
     /// Wrong: the segment's light sample without the transmittance from the segment's start.
     WrongSegmentTransmittance,
+    /// The estimator before the fuzzy metal's density: the metal is a specular bounce, sampled only by
+    /// its own directions (correct, noisier; for comparison).
+    MetalAsSpecular,
+    /// Wrong: the fuzzy metal's density taken to be a cosine lobe about the mirror direction (right
+    /// only for fuzz 1).
+    WrongMetalDensity,
+}
+
+/// The density a `mis` vertex samples its direction from and weighs light samples by: a diffuse
+/// material's, or the fuzzy metal's lobe ([`FuzzyMetalPdf`]).
+#[derive(Clone, Copy, Debug)]
+enum VertexPdf {
+    Material(ScatterPdf),
+    Metal(FuzzyMetalPdf),
+    /// [`MisVariant::WrongMetalDensity`]: the metal's directions with a cosine lobe's density.
+    WrongMetal(FuzzyMetalPdf),
+}
+
+impl Pdf for VertexPdf {
+    #[inline]
+    fn pdf(&self, direction: Vec3) -> f64 {
+        match self {
+            VertexPdf::Material(p) => p.pdf(direction),
+            VertexPdf::Metal(p) => p.pdf(direction),
+            VertexPdf::WrongMetal(p) => wrong_metal_pdf(p, direction),
+        }
+    }
+    #[inline]
+    fn sample(&self, u: glam::DVec2) -> Option<DirectionSample> {
+        match self {
+            VertexPdf::Material(p) => p.sample(u),
+            VertexPdf::Metal(p) => p.sample(u),
+            VertexPdf::WrongMetal(p) => p.sample(u).map(|s| DirectionSample {
+                pdf: wrong_metal_pdf(p, s.direction),
+                ..s
+            }),
+        }
+    }
+}
+
+fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
+    if direction.dot(p.normal) > 0.0 {
+        direction.dot(p.reflected).max(0.0) / std::f64::consts::PI
+    } else {
+        0.0
+    }
 }
 
 /// [`radiance_mis`] with a [`MisVariant`] (for tests).
@@ -687,29 +738,50 @@ pub fn radiance_mis_variant(
                 l += throughput * weight * emitted;
             }
         }
-        let (attenuation, pdf) = match material.scatter(&ray, &hit, &scene.textures, ctx) {
-            None => break,
-            Some(Scatter::Specular {
-                attenuation,
-                direction,
-            }) => {
-                // Refracted (not reflected) through a dielectric: into it from its front, out of it
-                // from its back.
-                if matches!(material, Material::Dielectric { .. })
-                    && direction.dot(hit.normal) < 0.0
-                {
-                    inside_dielectrics = if hit.front_face {
-                        inside_dielectrics + 1
+        let fuzzy_metal = match material {
+            Material::Metal { albedo, fuzz }
+                if *fuzz > 0.0 && variant != MisVariant::MetalAsSpecular =>
+            {
+                let lobe = FuzzyMetalPdf::new(ray.direction, hit.normal, *fuzz);
+                Some((
+                    *albedo,
+                    if variant == MisVariant::WrongMetalDensity {
+                        VertexPdf::WrongMetal(lobe)
                     } else {
-                        inside_dielectrics.saturating_sub(1)
-                    };
-                }
-                throughput *= attenuation;
-                ray = hit.spawn(direction, ray.time);
-                previous = None;
-                continue;
+                        VertexPdf::Metal(lobe)
+                    },
+                ))
             }
-            Some(Scatter::Diffuse { attenuation, pdf }) => (attenuation, pdf),
+            _ => None,
+        };
+        let (attenuation, pdf) = match fuzzy_metal {
+            Some(metal) => metal,
+            None => match material.scatter(&ray, &hit, &scene.textures, ctx) {
+                None => break,
+                Some(Scatter::Specular {
+                    attenuation,
+                    direction,
+                }) => {
+                    // Refracted (not reflected) through a dielectric: into it from its front, out of it
+                    // from its back.
+                    if matches!(material, Material::Dielectric { .. })
+                        && direction.dot(hit.normal) < 0.0
+                    {
+                        inside_dielectrics = if hit.front_face {
+                            inside_dielectrics + 1
+                        } else {
+                            inside_dielectrics.saturating_sub(1)
+                        };
+                    }
+                    throughput *= attenuation;
+                    ray = hit.spawn(direction, ray.time);
+                    previous = None;
+                    continue;
+                }
+                Some(Scatter::Diffuse { attenuation, pdf }) => {
+                    (attenuation, VertexPdf::Material(pdf))
+                }
+            },
         };
         let towards_others = HittablePdf::new(hit.p, &lights.others);
 

@@ -7,7 +7,10 @@
 //! - a thin fog around everything (book 2's) and a denser smoke box with a glowing ball in it: `mis`
 //!   takes the light sample of a medium at an equiangular point of the path's segment (wrong: without
 //!   the transmittance from the segment's start), and must also agree with the light sample taken
-//!   where the path scatters.
+//!   where the path scatters;
+//! - fuzzy metal balls (fuzz 0.5 and 1.6) under a light: `mis` weights light samples and emission
+//!   hits by the metal's density (wrong: a cosine lobe's density), and must also agree with the metal
+//!   treated as a specular bounce.
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
@@ -134,6 +137,59 @@ pub fn fog_and_smoke() -> Scene {
         lookfrom: Point3::new(0.0, 2.0, 7.0),
         lookat: Point3::new(0.0, 1.8, 0.0),
         vfov: 55.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+/// A floor under a one-sided ceiling light with two fuzzy metal balls on it (fuzz 0.5: directions in
+/// a cone about the mirror direction; fuzz 1.6: all around it) and a small two-sided light beside.
+pub fn fuzzy_metals() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let narrow = b.material(Material::Metal {
+        albedo: Color::splat(0.9),
+        fuzz: 0.5,
+    });
+    let wide = b.material(Material::Metal {
+        albedo: Color::splat(0.8),
+        fuzz: 1.6,
+    });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(6.0)),
+        two_sided: false,
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(4.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-1.0, 3.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    b.sphere(w, Point3::new(-1.1, 1.0, 0.0), 1.0, narrow)
+        .unwrap();
+    b.sphere(w, Point3::new(1.1, 1.0, 0.0), 1.0, wide).unwrap();
+    b.sphere(w, Point3::new(0.0, 0.4, 1.6), 0.3, glow).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 1.5, 6.0),
+        lookat: Point3::new(0.0, 1.0, 0.0),
+        vfov: 45.0,
         ..CameraSettings::default()
     };
     b.background = Background::Solid(Color::ZERO);
@@ -282,5 +338,26 @@ fn mis_with_segment_light_samples_agrees_and_the_missing_transmittance_is_caught
     assert!(
         !disagreements(&cosine, &wrong).is_empty(),
         "the missing transmittance went unnoticed"
+    );
+}
+
+#[test]
+fn mis_with_the_fuzzy_metals_density_agrees_and_a_cosine_lobe_is_caught() {
+    let scene = fuzzy_metals();
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let specular = batch_means(|seed| render_variant(&scene, seed, MisVariant::MetalAsSpecular));
+    let d = disagreements(&specular, &mis);
+    assert!(
+        d.is_empty(),
+        "metal by its density vs specular:\n{}",
+        d.join("\n")
+    );
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongMetalDensity));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the cosine lobe's density went unnoticed"
     );
 }
