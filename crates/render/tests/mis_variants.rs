@@ -361,3 +361,82 @@ fn mis_with_the_fuzzy_metals_density_agrees_and_a_cosine_lobe_is_caught() {
         "the cosine lobe's density went unnoticed"
     );
 }
+
+/// book2-final itself: the estimator against the one before segment sampling and the metal's
+/// density, region by region (32 x 32 pixels, 16 batches of 64 samples). Expensive: run with
+/// `cargo test --release -p rtl-render --test mis_variants -- --ignored --nocapture`.
+#[test]
+#[ignore = "expensive: run in release with --ignored"]
+fn book2_final_agrees_with_the_estimator_before() {
+    let built =
+        (rtl_render::scenes::find("book2-final").unwrap().build)(&Default::default()).unwrap();
+    let scene = &built.scene;
+    let (width, spp, batches) = (32, 64, 16);
+    let options = MisOptions::DEFAULT;
+    let run = |seed: u64, variant: MisVariant| {
+        let r = Renderer::new(
+            scene,
+            RenderSettings {
+                width,
+                max_depth: scene.max_depth,
+                seed,
+                strategy: Strategy::Mis(options),
+                mixture_weight: BOOK_MIXTURE_WEIGHT,
+            },
+        );
+        let (w, h) = (r.camera.width, r.camera.height);
+        let mut ctx = Ctx::new();
+        let mut regions = vec![0.0; GRID * GRID];
+        for j in 0..h {
+            for i in 0..w {
+                let pixel = (j * w + i) as u64;
+                let key = sample_key(seed, pixel, u64::MAX);
+                for k in 0..spp {
+                    ctx.rng = SampleRng::for_sample(seed, pixel, k);
+                    ctx.sampler = Sampler {
+                        low_discrepancy: options.low_discrepancy,
+                        key,
+                        index: k,
+                    };
+                    let ray = r.camera.ray(i, j, key, k, &mut ctx);
+                    let v = radiance_mis_variant(
+                        scene,
+                        &r.lights,
+                        ray,
+                        scene.max_depth,
+                        options,
+                        variant,
+                        &mut ctx,
+                    );
+                    let v = if v.is_finite() { v } else { Color::ZERO };
+                    regions[(j * GRID / h) * GRID + i * GRID / w] +=
+                        (v.x + v.y + v.z) / 3.0 / (spp * (w * h / (GRID * GRID)) as u64) as f64;
+                }
+            }
+        }
+        regions
+    };
+    let means = |variant| {
+        let mut out = vec![Vec::new(); GRID * GRID];
+        for b in 0..batches {
+            for (o, v) in out.iter_mut().zip(run(5000 + b, variant)) {
+                o.push(v);
+            }
+        }
+        out
+    };
+    let before = means(MisVariant::LightSampleWhereScattered);
+    let now = means(MisVariant::Book);
+    for (r, (x, y)) in before.iter().zip(&now).enumerate() {
+        eprintln!(
+            "region {r}: {:.5} +- {:.5} vs {:.5} +- {:.5}, p = {:.3}",
+            mean_var(x).0,
+            (mean_var(x).1 / batches as f64).sqrt(),
+            mean_var(y).0,
+            (mean_var(y).1 / batches as f64).sqrt(),
+            welch_p(x, y)
+        );
+    }
+    let d = disagreements(&before, &now);
+    assert!(d.is_empty(), "{}", d.join("\n"));
+}
