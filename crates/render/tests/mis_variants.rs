@@ -3,7 +3,8 @@
 //! be caught:
 //! - a glass ball filled with a medium (book 2's subsurface sphere) with an emitter inside it, under a
 //!   ceiling light: `mis` takes no light sample inside the glass (wrong: the emission found from there
-//!   weighted as if it had);
+//!   weighted as if it had), and plays Russian roulette in media with its own threshold (wrong:
+//!   without reweighting the survivors);
 //! - a thin fog around everything (book 2's) and a denser smoke box with a glowing ball in it: `mis`
 //!   takes the light sample of a medium at an equiangular point of the path's segment (wrong: without
 //!   the transmittance from the segment's start), and must also agree with the light sample taken
@@ -289,7 +290,7 @@ fn cosine_means(scene: &Scene) -> Vec<Vec<f64>> {
 }
 
 #[test]
-fn mis_inside_glass_agrees_with_cosine_and_the_wrong_weight_is_caught() {
+fn mis_inside_glass_agrees_with_cosine_and_the_wrong_variants_are_caught() {
     let scene = glass_ball_with_medium_and_glow();
     let cosine = cosine_means(&scene);
     let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
@@ -300,6 +301,13 @@ fn mis_inside_glass_agrees_with_cosine_and_the_wrong_weight_is_caught() {
     assert!(
         !disagreements(&cosine, &wrong).is_empty(),
         "the wrong weight inside the glass went unnoticed"
+    );
+    // The glow reaches the camera through many scatterings in the ball: roulette that does not
+    // reweight its survivors loses that light.
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongRouletteInMedia));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "roulette in media without reweighting went unnoticed"
     );
 }
 
