@@ -580,51 +580,6 @@ fn segment_light(
 }
 // ANCHOR_END: segment_sampling
 
-// ANCHOR: radiance_mis
-/// Next-event estimation with multiple importance sampling (Veach 1997, ch. 9; pbrt-v4's path
-/// integrator). At every diffuse vertex two directions are drawn:
-/// - towards the emitters (`p_l`), every emitter of the scene, listed or not: a shadow ray, whose
-///   emission, times the transmittance of the media it crosses, counts with weight
-///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
-/// - from the material's density mixed 50/50 with the non-emitting targets (`p_m`): the path goes on
-///   that way, and emission it meets at the next vertex counts with `w_m = p_m^2 / (p_l^2 + p_m^2)`.
-///
-/// The two weights of every direction sum to 1, so light reaching a vertex directly is counted once in
-/// expectation, by whichever strategy sees it better (through a medium too: the path's own rays meet
-/// the emitter with the transmittance's probability, the shadow ray carries it as a factor). After a
-/// specular (delta) bounce only the material could have found the emitter: full weight.
-///
-/// Inside a dielectric (the path refracted into one and not yet out) no light sample is taken: a
-/// shadow ray from there can only meet the dielectric's boundary, a specular surface, so it would
-/// cost a traversal and add nothing (book 2's blue subsurface sphere: glass filled with a dense
-/// medium, where most of the path's vertices are). Emission found from such a vertex has weight 1,
-/// which keeps the estimator unbiased even for an emitter inside the glass or an open dielectric.
-///
-/// The books' fuzzy metal is no specular bounce here: its directions have a density in closed form
-/// ([`FuzzyMetalPdf`]), so it takes light samples and its emission hits are weighted like a diffuse
-/// vertex's (a metal of fuzz 0 stays a mirror).
-///
-/// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
-/// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
-fn radiance_mis(
-    scene: &Scene,
-    lights: &Lights,
-    ray: Ray,
-    max_depth: u32,
-    options: MisOptions,
-    ctx: &mut Ctx,
-) -> Color {
-    radiance_mis_variant(
-        scene,
-        lights,
-        ray,
-        max_depth,
-        options,
-        MisVariant::Book,
-        ctx,
-    )
-}
-
 /// Variants of [`radiance_mis`] for the unbiasedness tests: the estimator itself, and deliberately
 /// wrong ones that a test must catch.
 #[doc(hidden)]
@@ -688,6 +643,51 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
     } else {
         0.0
     }
+}
+
+// ANCHOR: radiance_mis
+/// Next-event estimation with multiple importance sampling (Veach 1997, ch. 9; pbrt-v4's path
+/// integrator). At every diffuse vertex two directions are drawn:
+/// - towards the emitters (`p_l`), every emitter of the scene, listed or not: a shadow ray, whose
+///   emission, times the transmittance of the media it crosses, counts with weight
+///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
+/// - from the material's density mixed 50/50 with the non-emitting targets (`p_m`): the path goes on
+///   that way, and emission it meets at the next vertex counts with `w_m = p_m^2 / (p_l^2 + p_m^2)`.
+///
+/// The two weights of every direction sum to 1, so light reaching a vertex directly is counted once in
+/// expectation, by whichever strategy sees it better (through a medium too: the path's own rays meet
+/// the emitter with the transmittance's probability, the shadow ray carries it as a factor). After a
+/// specular (delta) bounce only the material could have found the emitter: full weight.
+///
+/// Inside a dielectric (the path refracted into one and not yet out) no light sample is taken: a
+/// shadow ray from there can only meet the dielectric's boundary, a specular surface, so it would
+/// cost a traversal and add nothing (book 2's blue subsurface sphere: glass filled with a dense
+/// medium, where most of the path's vertices are). Emission found from such a vertex has weight 1,
+/// which keeps the estimator unbiased even for an emitter inside the glass or an open dielectric.
+///
+/// The books' fuzzy metal is no specular bounce here: its directions have a density in closed form
+/// ([`FuzzyMetalPdf`]), so it takes light samples and its emission hits are weighted like a diffuse
+/// vertex's (a metal of fuzz 0 stays a mirror).
+///
+/// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
+/// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
+fn radiance_mis(
+    scene: &Scene,
+    lights: &Lights,
+    ray: Ray,
+    max_depth: u32,
+    options: MisOptions,
+    ctx: &mut Ctx,
+) -> Color {
+    radiance_mis_variant(
+        scene,
+        lights,
+        ray,
+        max_depth,
+        options,
+        MisVariant::Book,
+        ctx,
+    )
 }
 
 /// [`radiance_mis`] with a [`MisVariant`] (for tests).
