@@ -554,6 +554,9 @@ fn segment_light(
     else {
         return Color::ZERO;
     };
+    if attenuation == Color::ZERO {
+        return Color::ZERO; // a black medium (book 2's smoke): its shadow ray would add nothing
+    }
     let towards_others = HittablePdf::new(hit.p, &lights.others);
     let u = glam::DVec2::new(ctx.uniform(), ctx.uniform());
     let Some((emitted, weight)) = light_sample(
