@@ -32,6 +32,7 @@ pub mod lanes;
 pub mod lights;
 pub mod limits;
 pub mod material;
+pub mod metal_pdf;
 pub mod output;
 pub mod perlin;
 pub mod ray;

@@ -274,6 +274,8 @@ pub enum MediumMode {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct MediaCrossed {
     stretches: [(f64, f64, f64); MediaCrossed::CAPACITY],
+    /// The phase function (material index) of each recorded stretch's medium.
+    phases: [u32; MediaCrossed::CAPACITY],
     len: usize,
     /// The optical depth of the stretches that did not fit, unclipped.
     spill: f64,
@@ -305,6 +307,24 @@ impl MediaCrossed {
             self.spill += (t1 - t0).max(0.0) * density;
             self.overflow = true;
         }
+    }
+
+    /// [`MediaCrossed::push`] for a medium whose phase function is material `phase`.
+    #[inline]
+    pub fn push_medium(&mut self, t0: f64, t1: f64, density: f64, phase: u32) {
+        if self.len < Self::CAPACITY {
+            self.phases[self.len] = phase;
+        }
+        self.push(t0, t1, density);
+    }
+
+    /// The recorded stretches `((t0, t1, density), phase)` (not the spilled ones).
+    #[inline]
+    pub fn stretches(&self) -> impl Iterator<Item = ((f64, f64, f64), u32)> + '_ {
+        self.stretches[..self.len]
+            .iter()
+            .copied()
+            .zip(self.phases[..self.len].iter().copied())
     }
 
     /// `sum_i density_i * |[t0_i, t1_i] clipped to t < t_max|` (the spilled stretches unclipped).

@@ -298,7 +298,8 @@ impl Scene {
         let inside = (t1 - t0) * len;
         if ctx.media == crate::sampler::MediumMode::Record {
             // a shadow ray passes through; its transmittance is taken from the stretches inside
-            ctx.crossed.push(t0, t1, len / -m.neg_inv_density);
+            ctx.crossed
+                .push_medium(t0, t1, len / -m.neg_inv_density, m.phase.0);
             return None;
         }
         // 1 - u lies in (0, 1], so the logarithm is finite.

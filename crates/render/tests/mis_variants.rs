@@ -1,0 +1,450 @@
+//! `mis` in media and inside dielectrics, against `cosine` (which never samples lights) on the mean
+//! of every image region (batch means, Welch t-test), each with a deliberately wrong variant that must
+//! be caught:
+//! - a glass ball filled with a medium (book 2's subsurface sphere) with an emitter inside it, under a
+//!   ceiling light: `mis` takes no light sample inside the glass (wrong: the emission found from there
+//!   weighted as if it had), and plays Russian roulette in media with its own threshold (wrong:
+//!   without reweighting the survivors);
+//! - a thin fog around everything (book 2's) and a denser smoke box with a glowing ball in it: `mis`
+//!   takes the light sample of a medium at an equiangular point of the path's segment (wrong: without
+//!   the transmittance from the segment's start), and must also agree with the light sample taken
+//!   where the path scatters;
+//! - fuzzy metal balls (fuzz 0.5 and 1.6) under a light: `mis` weights light samples and emission
+//!   hits by the metal's density (wrong: a cosine lobe's density), and must also agree with the metal
+//!   treated as a specular bounce.
+
+use rtl_render::Color;
+use rtl_render::camera::CameraSettings;
+use rtl_render::integrator::{MisOptions, MisVariant, Strategy, radiance_mis_variant};
+use rtl_render::material::{Albedo, Material};
+use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, Renderer, render};
+use rtl_render::sampler::{Ctx, SampleRng, Sampler, sample_key};
+use rtl_render::scene::{Background, Scene, SceneBuilder};
+use rtl_render::vec::{Point3, Vec3};
+
+mod batch_means;
+use batch_means::{mean_var, welch_p};
+
+const WIDTH: usize = 24;
+const BATCHES: u64 = 32;
+const BATCH_SPP: u64 = 16;
+/// The image is cut into `GRID x GRID` regions of 6 x 6 pixels.
+const GRID: usize = 4;
+const MAX_DEPTH: u32 = 50;
+
+/// A floor under a one-sided ceiling light, and on it a glass ball (radius 1) filled with a medium
+/// (density 1.5, albedo 0.8) with a small glowing ball at its centre. Nothing is listed as a target:
+/// next-event estimation finds both emitters by itself.
+pub fn glass_ball_with_medium_and_glow() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let smoke = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.8)),
+    });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(5.0)),
+        two_sided: false,
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(4.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-1.0, 3.5, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    let centre = Point3::new(0.0, 1.0, 0.0);
+    b.sphere(w, centre, 1.0, glass).unwrap();
+    let boundary = b.group();
+    b.sphere(boundary, centre, 1.0, glass).unwrap();
+    b.medium(w, boundary, 1.5, smoke).unwrap();
+    b.sphere(w, centre, 0.25, glow).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 1.5, 5.0),
+        lookat: Point3::new(0.0, 1.0, 0.0),
+        vfov: 40.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+/// A floor under a one-sided ceiling light, all inside a fog (a ball of radius 12, density 0.04,
+/// albedo 0.9, the camera in it), and on the floor a smoke box (density 0.6, albedo 0.8) with a
+/// glowing ball inside: segments cross one medium or two at once.
+pub fn fog_and_smoke() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let fog = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.9)),
+    });
+    let smoke = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.8)),
+    });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(6.0)),
+        two_sided: false,
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(3.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-1.0, 4.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    let boundary = b
+        .box_group(
+            Point3::new(-2.5, 0.5, -1.5),
+            Point3::new(0.5, 2.5, 1.5),
+            white,
+        )
+        .unwrap();
+    b.medium(w, boundary, 0.6, smoke).unwrap();
+    b.sphere(w, Point3::new(-1.0, 1.5, 0.0), 0.3, glow).unwrap();
+    let fog_boundary = b.group();
+    b.sphere(fog_boundary, Point3::ZERO, 12.0, glass).unwrap();
+    b.medium(w, fog_boundary, 0.04, fog).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 2.0, 7.0),
+        lookat: Point3::new(0.0, 1.8, 0.0),
+        vfov: 55.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+/// A floor under a one-sided ceiling light with two fuzzy metal balls on it (fuzz 0.5: directions in
+/// a cone about the mirror direction; fuzz 1.6: all around it) and a small two-sided light beside.
+pub fn fuzzy_metals() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let narrow = b.material(Material::Metal {
+        albedo: Color::splat(0.9),
+        fuzz: 0.5,
+    });
+    let wide = b.material(Material::Metal {
+        albedo: Color::splat(0.8),
+        fuzz: 1.6,
+    });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(6.0)),
+        two_sided: false,
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(4.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-1.0, 3.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    b.sphere(w, Point3::new(-1.1, 1.0, 0.0), 1.0, narrow)
+        .unwrap();
+    b.sphere(w, Point3::new(1.1, 1.0, 0.0), 1.0, wide).unwrap();
+    b.sphere(w, Point3::new(0.0, 0.4, 1.6), 0.3, glow).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 1.5, 6.0),
+        lookat: Point3::new(0.0, 1.0, 0.0),
+        vfov: 45.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+fn settings(seed: u64, strategy: Strategy) -> RenderSettings {
+    RenderSettings {
+        width: WIDTH,
+        max_depth: MAX_DEPTH,
+        seed,
+        strategy,
+        mixture_weight: BOOK_MIXTURE_WEIGHT,
+    }
+}
+
+/// The image of `spp` samples a pixel by `mis` as `variant` computes it (the renderer's sample loop:
+/// the same generator, sampler and camera ray for `(seed, pixel, k)`).
+fn render_variant(scene: &Scene, seed: u64, variant: MisVariant) -> Vec<Color> {
+    let options = MisOptions::DEFAULT;
+    let r = Renderer::new(scene, settings(seed, Strategy::Mis(options)));
+    let (w, h) = (r.camera.width, r.camera.height);
+    let mut ctx = Ctx::new();
+    let mut img = vec![Color::ZERO; w * h];
+    for j in 0..h {
+        for i in 0..w {
+            let pixel = (j * w + i) as u64;
+            let key = sample_key(seed, pixel, u64::MAX);
+            for k in 0..BATCH_SPP {
+                ctx.rng = SampleRng::for_sample(seed, pixel, k);
+                ctx.sampler = Sampler {
+                    low_discrepancy: options.low_discrepancy,
+                    key,
+                    index: k,
+                };
+                let ray = r.camera.ray(i, j, key, k, &mut ctx);
+                let v = radiance_mis_variant(
+                    scene, &r.lights, ray, MAX_DEPTH, options, variant, &mut ctx,
+                );
+                assert!(v.is_finite());
+                img[j * w + i] += v / BATCH_SPP as f64;
+            }
+        }
+    }
+    img
+}
+
+/// Per region, its mean radiance (channel 0; the scene is grey) in each of `BATCHES` renders.
+fn batch_means(image: impl Fn(u64) -> Vec<Color>) -> Vec<Vec<f64>> {
+    let cell = WIDTH / GRID;
+    let mut out = vec![Vec::new(); GRID * GRID];
+    for b in 0..BATCHES {
+        let img = image(3000 + b);
+        for (r, o) in out.iter_mut().enumerate() {
+            let (ci, cj) = (r % GRID, r / GRID);
+            let mut sum = 0.0;
+            for j in cj * cell..(cj + 1) * cell {
+                for i in ci * cell..(ci + 1) * cell {
+                    sum += img[j * WIDTH + i].x;
+                }
+            }
+            o.push(sum / (cell * cell) as f64);
+        }
+    }
+    out
+}
+
+/// The regions whose means differ at a family-wise false-failure rate of 1e-6 (Bonferroni over the
+/// regions).
+fn disagreements(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<String> {
+    let alpha = 1e-6 / (GRID * GRID) as f64;
+    a.iter()
+        .zip(b)
+        .enumerate()
+        .filter_map(|(r, (x, y))| {
+            let p = welch_p(x, y);
+            (p < alpha).then(|| {
+                format!(
+                    "region ({}, {}): {:.5} vs {:.5}, p = {p:.2e}",
+                    r % GRID,
+                    r / GRID,
+                    mean_var(x).0,
+                    mean_var(y).0
+                )
+            })
+        })
+        .collect()
+}
+
+fn cosine_means(scene: &Scene) -> Vec<Vec<f64>> {
+    batch_means(|seed| {
+        let (acc, stats) = render(scene, settings(seed, Strategy::Cosine), BATCH_SPP);
+        assert_eq!(stats.non_finite, 0);
+        acc.image()
+    })
+}
+
+#[test]
+fn mis_inside_glass_agrees_with_cosine_and_the_wrong_variants_are_caught() {
+    let scene = glass_ball_with_medium_and_glow();
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let wrong =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongWeightInsideDielectrics));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the wrong weight inside the glass went unnoticed"
+    );
+    // The glow reaches the camera through many scatterings in the ball: roulette that does not
+    // reweight its survivors loses that light.
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongRouletteInMedia));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "roulette in media without reweighting went unnoticed"
+    );
+}
+
+#[test]
+fn the_variant_loop_is_the_renderers() {
+    // `render_variant` with the estimator itself gives the renderer's image, bit for bit.
+    let scene = glass_ball_with_medium_and_glow();
+    let (acc, _) = render(
+        &scene,
+        settings(7, Strategy::Mis(MisOptions::DEFAULT)),
+        BATCH_SPP,
+    );
+    let ours = render_variant(&scene, 7, MisVariant::Book);
+    for (a, b) in acc.image().iter().zip(&ours) {
+        assert!((*a - *b).abs().max_element() <= 1e-12 * a.abs().max_element().max(1.0));
+    }
+}
+
+#[test]
+fn mis_with_segment_light_samples_agrees_and_the_missing_transmittance_is_caught() {
+    let scene = fog_and_smoke();
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let scattered =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::LightSampleWhereScattered));
+    let d = disagreements(&scattered, &mis);
+    assert!(
+        d.is_empty(),
+        "light samples on segments vs where scattered:\n{}",
+        d.join("\n")
+    );
+    let wrong =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongSegmentTransmittance));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the missing transmittance went unnoticed"
+    );
+}
+
+#[test]
+fn mis_with_the_fuzzy_metals_density_agrees_and_a_cosine_lobe_is_caught() {
+    let scene = fuzzy_metals();
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let specular = batch_means(|seed| render_variant(&scene, seed, MisVariant::MetalAsSpecular));
+    let d = disagreements(&specular, &mis);
+    assert!(
+        d.is_empty(),
+        "metal by its density vs specular:\n{}",
+        d.join("\n")
+    );
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongMetalDensity));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the cosine lobe's density went unnoticed"
+    );
+}
+
+/// book2-final itself: the estimator against the one before segment sampling and the metal's
+/// density, region by region (32 x 32 pixels, 16 batches of 64 samples). Expensive: run with
+/// `cargo test --release -p rtl-render --test mis_variants -- --ignored --nocapture`.
+#[test]
+#[ignore = "expensive: run in release with --ignored"]
+fn book2_final_agrees_with_the_estimator_before() {
+    let built =
+        (rtl_render::scenes::find("book2-final").unwrap().build)(&Default::default()).unwrap();
+    let scene = &built.scene;
+    let (width, spp, batches) = (32, 64, 16);
+    let options = MisOptions::DEFAULT;
+    let run = |seed: u64, variant: MisVariant| {
+        let r = Renderer::new(
+            scene,
+            RenderSettings {
+                width,
+                max_depth: scene.max_depth,
+                seed,
+                strategy: Strategy::Mis(options),
+                mixture_weight: BOOK_MIXTURE_WEIGHT,
+            },
+        );
+        let (w, h) = (r.camera.width, r.camera.height);
+        let mut ctx = Ctx::new();
+        let mut regions = vec![0.0; GRID * GRID];
+        for j in 0..h {
+            for i in 0..w {
+                let pixel = (j * w + i) as u64;
+                let key = sample_key(seed, pixel, u64::MAX);
+                for k in 0..spp {
+                    ctx.rng = SampleRng::for_sample(seed, pixel, k);
+                    ctx.sampler = Sampler {
+                        low_discrepancy: options.low_discrepancy,
+                        key,
+                        index: k,
+                    };
+                    let ray = r.camera.ray(i, j, key, k, &mut ctx);
+                    let v = radiance_mis_variant(
+                        scene,
+                        &r.lights,
+                        ray,
+                        scene.max_depth,
+                        options,
+                        variant,
+                        &mut ctx,
+                    );
+                    let v = if v.is_finite() { v } else { Color::ZERO };
+                    regions[(j * GRID / h) * GRID + i * GRID / w] +=
+                        (v.x + v.y + v.z) / 3.0 / (spp * (w * h / (GRID * GRID)) as u64) as f64;
+                }
+            }
+        }
+        regions
+    };
+    let means = |variant| {
+        let mut out = vec![Vec::new(); GRID * GRID];
+        for b in 0..batches {
+            for (o, v) in out.iter_mut().zip(run(5000 + b, variant)) {
+                o.push(v);
+            }
+        }
+        out
+    };
+    let before = means(MisVariant::LightSampleWhereScattered);
+    let now = means(MisVariant::Book);
+    for (r, (x, y)) in before.iter().zip(&now).enumerate() {
+        eprintln!(
+            "region {r}: {:.5} +- {:.5} vs {:.5} +- {:.5}, p = {:.3}",
+            mean_var(x).0,
+            (mean_var(x).1 / batches as f64).sqrt(),
+            mean_var(y).0,
+            (mean_var(y).1 / batches as f64).sqrt(),
+            welch_p(x, y)
+        );
+    }
+    let d = disagreements(&before, &now);
+    assert!(d.is_empty(), "{}", d.join("\n"));
+}
