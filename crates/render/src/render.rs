@@ -163,11 +163,7 @@ impl<'a> Renderer<'a> {
         let pixel = (j * self.camera.width + i) as u64;
         ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
         let pixel_key = self.pixel_key(pixel);
-        ctx.sampler = Sampler {
-            low_discrepancy: self.low_discrepancy,
-            key: pixel_key,
-            index: k,
-        };
+        ctx.sampler = Sampler::new(self.low_discrepancy, pixel_key, k);
         let ray = self.camera.ray(i, j, pixel_key, k, ctx);
         let value = radiance(
             self.scene,
