@@ -158,32 +158,34 @@ impl Pdf for HemispherePdf {
 /// Cosine-weighted about a unit normal: `value = max(0, cos theta) / pi`, exactly 0 at and below the
 /// horizon. The ideal density for a Lambertian surface, where it cancels the `cos theta / pi` of the
 /// scattering, so `f cos / p` is just the albedo.
+///
+/// Its value needs only the normal (`cos theta = d . n`); the basis `Onb::new(n)` that carries the
+/// cosine warp to the world is built when a direction is drawn. A mixture that draws from its other
+/// part (the book's: half the time towards the lights) then never builds it.
 #[derive(Clone, Copy, Debug)]
 pub struct CosinePdf {
-    uvw: Onb,
+    normal: DVec3,
 }
 
 impl CosinePdf {
     /// Cosine-weighted about the unit vector `normal`.
     #[inline]
     pub fn new(normal: DVec3) -> CosinePdf {
-        CosinePdf {
-            uvw: Onb::new(normal),
-        }
+        CosinePdf { normal }
     }
 
     /// The direction [`Pdf::sample`] gives for `u`, without its density (for callers whose weight is
     /// exactly 1, such as a Lambertian surface sampled by its own density).
     #[inline]
     pub fn direction(&self, u: DVec2) -> DVec3 {
-        self.uvw.transform(warp::sample_cosine_hemisphere(u))
+        Onb::new(self.normal).transform(warp::sample_cosine_hemisphere(u))
     }
 }
 
 impl Pdf for CosinePdf {
     #[inline]
     fn pdf(&self, direction: DVec3) -> f64 {
-        warp::cosine_hemisphere_pdf(direction.dot(self.uvw.w()))
+        warp::cosine_hemisphere_pdf(direction.dot(self.normal))
     }
     /// The concentric cosine warp; its density is `cos theta / pi` of the local direction (`None` for
     /// the measure-zero `u` that lands on the horizon, where the density is 0).
@@ -191,7 +193,7 @@ impl Pdf for CosinePdf {
     fn sample(&self, u: DVec2) -> Option<DirectionSample> {
         let local = warp::sample_cosine_hemisphere(u);
         DirectionSample::new(
-            self.uvw.transform(local),
+            Onb::new(self.normal).transform(local),
             warp::cosine_hemisphere_pdf(local.z),
         )
     }
