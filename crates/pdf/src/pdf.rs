@@ -10,6 +10,16 @@ pub(crate) fn random_unit_square<R: Rng + ?Sized>(rng: &mut R) -> DVec2 {
     DVec2::new(rng.random::<f64>(), rng.random::<f64>())
 }
 
+/// Whether `x` is positive and finite: `0 < x <= f64::MAX`, two floating-point comparisons.
+///
+/// The same test as `x > 0.0 && x.is_finite()`, written so that it stays two comparisons: LLVM turns
+/// that form (and `x < INFINITY`) into a test of the floating-point class, which x86-64 evaluates
+/// on the bits with about fifteen integer instructions. Hot: every density of a sample passes it.
+#[inline]
+pub(crate) fn positive_finite(x: f64) -> bool {
+    x > 0.0 && x <= f64::MAX
+}
+
 /// A direction drawn by a sampler, with the density it was drawn with (per steradian).
 ///
 /// Returning both at once is what pbrt-v4's samplers do (`SampleLi` returns `{L, wi, pdf}`): the
@@ -27,7 +37,7 @@ impl DirectionSample {
     /// A sample if `pdf` is positive and finite, else `None` (a direction that cannot be weighted).
     #[inline]
     pub fn new(direction: DVec3, pdf: f64) -> Option<DirectionSample> {
-        (pdf > 0.0 && pdf.is_finite()).then_some(DirectionSample { direction, pdf })
+        positive_finite(pdf).then_some(DirectionSample { direction, pdf })
     }
 }
 
@@ -204,3 +214,42 @@ impl Pdf for CosinePdf {
     }
 }
 // ANCHOR_END: cosine_pdf
+
+#[cfg(test)]
+mod tests {
+    use super::positive_finite;
+
+    /// The values at which a finiteness test can go wrong.
+    const EDGES: [f64; 14] = [
+        0.0,
+        -0.0,
+        f64::MIN_POSITIVE,
+        f64::MIN_POSITIVE / 4.0, // subnormal
+        -f64::MIN_POSITIVE / 4.0,
+        1.0,
+        -1.0,
+        f64::MAX,
+        -f64::MAX,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        -f64::NAN,
+        f64::EPSILON,
+    ];
+
+    #[test]
+    fn positive_finite_is_positive_and_is_finite() {
+        for x in EDGES {
+            assert_eq!(positive_finite(x), x > 0.0 && x.is_finite(), "{x}");
+        }
+    }
+
+    #[test]
+    fn the_check_sees_a_test_that_lets_zero_or_infinity_through() {
+        // Deliberately wrong variants: each must disagree with `x > 0 && finite` somewhere on the edges.
+        let wrong: [fn(f64) -> bool; 2] = [|x| (0.0..=f64::MAX).contains(&x), |x| x > 0.0];
+        for w in wrong {
+            assert!(EDGES.iter().any(|&x| w(x) != (x > 0.0 && x.is_finite())));
+        }
+    }
+}

@@ -84,7 +84,9 @@ impl Accumulator {
     /// Returns whether the sample was kept.
     #[inline]
     pub fn add(sum: &mut Color, count: &mut u64, dropped: &mut u64, value: Color) -> bool {
-        if value.is_finite() {
+        // `|value| <= MAX` in every component: `is_finite` by floating-point comparisons (NaN fails
+        // them), not by tests of each component's bits
+        if value.abs().cmple(Color::splat(f64::MAX)).all() {
             *sum += value;
             *count += 1;
             true
