@@ -431,14 +431,14 @@ impl Ctx {
         }
     }
 
-    #[inline(never)]
+    #[inline]
     fn low_discrepancy_2d(&mut self, d: Dimension) -> DVec2 {
         self.stats.random_numbers += 2;
         let [x, y] = self.sampler.padded.point_2d(d.pair());
         DVec2::new(unit(x), unit(y))
     }
 
-    #[inline(never)]
+    #[inline]
     fn low_discrepancy_1d(&mut self, d: Dimension) -> f64 {
         self.stats.random_numbers += 1;
         unit(self.sampler.padded.point_1d(d.pair()))
