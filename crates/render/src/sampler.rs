@@ -21,9 +21,7 @@ use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 pub use rtl_mc::sequence::mix64;
-use rtl_mc::sequence::{
-    DIRECTIONS_1, byte_product, byte_tables, laine_karras, owen_scramble, sobol_bits,
-};
+use rtl_mc::sequence::{DIRECTIONS_1, byte_product, byte_tables, laine_karras};
 
 /// A well-mixed 64-bit key for `(seed, pixel, k)`.
 #[inline]
@@ -61,8 +59,13 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
     let i = k as u32;
     let s0 = pixel_key as u32;
     let s1 = (pixel_key >> 32) as u32;
-    let x = owen_scramble(sobol_bits(i, 0), s0);
-    let y = owen_scramble(sobol_bits(i, 1), s1);
+    // `owen_scramble(v, s) = reverse(laine_karras(reverse(v), s))`. Dimension 0 is `reverse(i)`, so its
+    // scramble is `reverse(laine_karras(i, s0))`; dimension 1 is read reversed from the table of
+    // reversed columns. The two final reversals are one 64-bit reversal (`x` high, `y` low).
+    let x = laine_karras(i, s0);
+    let y = laine_karras(sobol1_reversed(i.reverse_bits()), s1);
+    let xy = (((y as u64) << 32) | x as u64).reverse_bits();
+    let (x, y) = ((xy >> 32) as u32, xy as u32);
     const SCALE: f64 = 1.0 / 4_294_967_296.0;
     // Add half an ulp of the 32-bit grid so positions are centred in their cells and never exactly 0.
     ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
@@ -454,6 +457,7 @@ impl Default for Ctx {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rtl_mc::sequence::{owen_scramble, sobol_bits};
 
     #[test]
     fn pixel_positions_are_stratified_at_every_power_of_two() {
@@ -474,6 +478,31 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The sub-pixel position as first written: two plain scrambles of the Sobol point.
+    fn pixel_position_reference(pixel_key: u64, k: u64) -> (f64, f64) {
+        let pixel_key = block_key(pixel_key, k);
+        let i = k as u32;
+        let x = owen_scramble(sobol_bits(i, 0), pixel_key as u32);
+        let y = owen_scramble(sobol_bits(i, 1), (pixel_key >> 32) as u32);
+        const SCALE: f64 = 1.0 / 4_294_967_296.0;
+        ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
+    }
+
+    #[test]
+    fn pixel_positions_agree_with_plain_scrambles() {
+        for i in 0..20_000u64 {
+            let (key, k) = (mix64(i), i * 7919 + ((i % 3) << 32));
+            assert_eq!(
+                pixel_position(key, k),
+                pixel_position_reference(key, k),
+                "{key} {k}"
+            );
+        }
+        // and the comparison sees a wrong variant: the coordinates' scrambles swapped
+        let swapped = |key: u64, k| pixel_position_reference(key.rotate_left(32), k);
+        assert!((1..100).all(|k| pixel_position(42, k) != swapped(42, k)));
     }
 
     #[test]
