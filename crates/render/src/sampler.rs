@@ -205,7 +205,7 @@ impl Dimension {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Sampler {
     /// On: padded Owen-scrambled Sobol pairs; off: the sample's generator, in call order.
-    pub low_discrepancy: bool,
+    low_discrepancy: bool,
     /// The pixel's scramble key.
     key: u64,
     /// The sample's index `k` in its pixel (64-bit: see the module's notes past 2^32).
@@ -229,6 +229,11 @@ impl Sampler {
                 PaddedIndex::default()
             },
         }
+    }
+
+    /// Whether the dimensions are padded Sobol pairs (else the sample's generator, in call order).
+    pub fn low_discrepancy(&self) -> bool {
+        self.low_discrepancy
     }
 
     /// The pixel's scramble key.
