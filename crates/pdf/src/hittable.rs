@@ -108,7 +108,7 @@ impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
 }
 
 impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
-    #[inline]
+    #[inline(always)]
     fn pdf(&self, direction: DVec3) -> f64 {
         if let [only] = self.targets {
             return only.pdf(self.origin, direction);
@@ -125,7 +125,7 @@ impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
         self.others_pdf(usize::MAX, direction)
     }
 
-    #[inline]
+    #[inline(always)]
     fn sample(&self, u: DVec2) -> Option<DirectionSample> {
         if let [only] = self.targets {
             return only.sample(self.origin, u);

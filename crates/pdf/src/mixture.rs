@@ -91,7 +91,7 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
         va + vb
     }
 
-    #[inline]
+    #[inline(always)]
     fn sample(&self, u: DVec2) -> Option<DirectionSample> {
         let wa = self.weight_a;
         let pdf = if u.x < wa {

@@ -5,7 +5,7 @@
 //! implements [`Target`]; [`SphereTarget`] and [`QuadTarget`] hold the geometry and the sampling so that a
 //! renderer's sphere or quad can delegate to them.
 
-use crate::pdf::random_unit_square;
+use crate::pdf::{positive_finite, random_unit_square};
 use crate::{DirectionSample, Onb, warp};
 use glam::{DVec2, DVec3};
 use rand::Rng;
@@ -281,7 +281,7 @@ impl QuadTarget {
         let h = self.height(origin)?;
         let denom = self.normal.dot(direction);
         let t = -h / denom;
-        if !(t > 0.0 && t.is_finite()) {
+        if !positive_finite(t) {
             return None;
         }
         let p = origin + t * direction - self.q;
@@ -317,7 +317,10 @@ impl ShapeSampler for QuadTarget {
             return DirectionSample::new(sr.sample_direction(u), sr.pdf());
         }
         let p = warp::sample_parallelogram(u, self.q, self.u, self.v);
-        let direction = (p - origin).try_normalize()?;
+        // glam's `try_normalize`, with the finiteness test kept to two comparisons
+        let to = p - origin;
+        let rcp = to.length_recip();
+        let direction = positive_finite(rcp).then(|| to * rcp)?;
         DirectionSample::new(
             direction,
             warp::area_to_solid_angle(1.0 / self.area, origin, p, self.normal),

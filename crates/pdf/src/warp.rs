@@ -297,7 +297,8 @@ pub fn area_to_solid_angle(pdf_area: f64, origin: DVec3, point: DVec3, normal: D
     let cos_light = normal.dot(to).abs() / d2.sqrt();
     if cos_light > 0.0 && d2 > 0.0 {
         let pdf = pdf_area * d2 / cos_light;
-        if pdf.is_finite() { pdf } else { 0.0 }
+        // `|pdf| <= MAX` is `pdf.is_finite()` by a floating-point comparison (see `positive_finite`)
+        if pdf.abs() <= f64::MAX { pdf } else { 0.0 }
     } else {
         0.0
     }

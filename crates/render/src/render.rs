@@ -84,7 +84,9 @@ impl Accumulator {
     /// Returns whether the sample was kept.
     #[inline]
     pub fn add(sum: &mut Color, count: &mut u64, dropped: &mut u64, value: Color) -> bool {
-        if value.is_finite() {
+        // `|value| <= MAX` in every component: `is_finite` by floating-point comparisons (NaN fails
+        // them), not by tests of each component's bits
+        if value.abs().cmple(Color::splat(f64::MAX)).all() {
             *sum += value;
             *count += 1;
             true
@@ -163,11 +165,7 @@ impl<'a> Renderer<'a> {
         let pixel = (j * self.camera.width + i) as u64;
         ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
         let pixel_key = self.pixel_key(pixel);
-        ctx.sampler = Sampler {
-            low_discrepancy: self.low_discrepancy,
-            key: pixel_key,
-            index: k,
-        };
+        ctx.sampler = Sampler::new(self.low_discrepancy, pixel_key, k);
         let ray = self.camera.ray(i, j, pixel_key, k, ctx);
         let value = radiance(
             self.scene,

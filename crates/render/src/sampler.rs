@@ -21,9 +21,7 @@ use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 pub use rtl_mc::sequence::mix64;
-use rtl_mc::sequence::{
-    DIRECTIONS_1, byte_product, byte_tables, laine_karras, owen_scramble, sobol_bits,
-};
+use rtl_mc::sequence::{DIRECTIONS_1, byte_product, byte_tables, laine_karras};
 
 /// A well-mixed 64-bit key for `(seed, pixel, k)`.
 #[inline]
@@ -61,8 +59,13 @@ pub fn pixel_position(pixel_key: u64, k: u64) -> (f64, f64) {
     let i = k as u32;
     let s0 = pixel_key as u32;
     let s1 = (pixel_key >> 32) as u32;
-    let x = owen_scramble(sobol_bits(i, 0), s0);
-    let y = owen_scramble(sobol_bits(i, 1), s1);
+    // `owen_scramble(v, s) = reverse(laine_karras(reverse(v), s))`. Dimension 0 is `reverse(i)`, so its
+    // scramble is `reverse(laine_karras(i, s0))`; dimension 1 is read reversed from the table of
+    // reversed columns. The two final reversals are one 64-bit reversal (`x` high, `y` low).
+    let x = laine_karras(i, s0);
+    let y = laine_karras(sobol1_reversed(i.reverse_bits()), s1);
+    let xy = (((y as u64) << 32) | x as u64).reverse_bits();
+    let (x, y) = ((xy >> 32) as u32, xy as u32);
     const SCALE: f64 = 1.0 / 4_294_967_296.0;
     // Add half an ulp of the 32-bit grid so positions are centred in their cells and never exactly 0.
     ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
@@ -87,33 +90,75 @@ fn block_key(key: u64, k: u64) -> u64 {
 /// and point `k` depends only on `(pixel_key, dim, k)` (prefix-stable).
 #[inline]
 pub fn padded_sobol_2d(pixel_key: u64, dim: u32, k: u64) -> [u64; 2] {
-    let pixel_key = block_key(pixel_key, k);
-    let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
-    // The shuffled index `i = owen_scramble(k)`, kept bit-reversed as `r` (reversing is the costly part
-    // of a scramble): `owen_scramble(sobol_bits(i, 0)) = reverse(laine_karras(i))`, and Sobol dimension 1 is
-    // read from `r` directly by a table of reversed columns.
-    // The final reversals of both coordinates are one 64-bit reversal: `x` in the high half, `y` low.
-    let r = laine_karras((k as u32).reverse_bits(), (h >> 32) as u32);
-    let x = laine_karras(r.reverse_bits(), h as u32);
-    let y = laine_karras(sobol1_reversed(r), (h >> 16) as u32 ^ 0x5bd1_e995);
-    let xy = (((y as u64) << 32) | x as u64).reverse_bits();
-    let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    [
-        (xy & 0xffff_ffff_0000_0000) | (low & 0xffff_ffff),
-        (xy << 32) | (low >> 32),
-    ]
+    PaddedIndex::new(pixel_key, k).point_2d(dim)
+}
+
+/// What the padded Sobol points of one sample share, whatever the pair: the scramble key of the
+/// sample's block of 2^32, the index `k` bit-reversed (the shuffle works on reversed digits), and
+/// `k`'s part of the low bits. Made once per sample, so a pair costs only its own scrambles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PaddedIndex {
+    /// [`block_key`] of the pixel's key and `k`.
+    key: u64,
+    /// `(k mod 2^32)` with its bits reversed.
+    reversed: u32,
+    /// `k * 0x9e37_79b9_7f4a_7c15` (mod 2^64), mixed into the low bits.
+    low: u64,
+}
+
+impl PaddedIndex {
+    /// Sample `k` of the pixel whose scramble key is `pixel_key`.
+    #[inline]
+    pub fn new(pixel_key: u64, k: u64) -> PaddedIndex {
+        PaddedIndex {
+            key: block_key(pixel_key, k),
+            reversed: (k as u32).reverse_bits(),
+            low: k.wrapping_mul(0x9e37_79b9_7f4a_7c15),
+        }
+    }
+
+    /// The pair's own scramble: 64 bits hashed from the block key and `dim`.
+    #[inline]
+    fn pair_hash(&self, dim: u32) -> u64 {
+        mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f))
+    }
+
+    /// [`padded_sobol_2d`] of this sample for the pair `dim`.
+    #[inline]
+    pub fn point_2d(&self, dim: u32) -> [u64; 2] {
+        let h = self.pair_hash(dim);
+        // The shuffled index `i = owen_scramble(k)`, kept bit-reversed as `r` (reversing is the costly
+        // part of a scramble): `owen_scramble(sobol_bits(i, 0)) = reverse(laine_karras(i))`, and Sobol
+        // dimension 1 is read from `r` directly by a table of reversed columns. The final reversals of
+        // both coordinates are one 64-bit reversal: `x` in the high half, `y` low.
+        let r = laine_karras(self.reversed, (h >> 32) as u32);
+        let x = laine_karras(r.reverse_bits(), h as u32);
+        let y = laine_karras(sobol1_reversed(r), (h >> 16) as u32 ^ 0x5bd1_e995);
+        let xy = (((y as u64) << 32) | x as u64).reverse_bits();
+        let low = h.rotate_left(23) ^ self.low;
+        [
+            (xy & 0xffff_ffff_0000_0000) | (low & 0xffff_ffff),
+            (xy << 32) | (low >> 32),
+        ]
+    }
+
+    /// The first coordinate of [`PaddedIndex::point_2d`] alone (a 1D dimension), without the second's
+    /// work.
+    #[inline]
+    pub fn point_1d(&self, dim: u32) -> u64 {
+        let h = self.pair_hash(dim);
+        let r = laine_karras(self.reversed, (h >> 32) as u32);
+        let x = laine_karras(r.reverse_bits(), h as u32).reverse_bits();
+        let low = h.rotate_left(23) ^ self.low;
+        ((x as u64) << 32) | (low & 0xffff_ffff)
+    }
 }
 // ANCHOR_END: padded_sobol
 
 /// The first coordinate of [`padded_sobol_2d`] alone (a 1D dimension), without the second's work.
 #[inline]
 pub fn padded_sobol_1d(pixel_key: u64, dim: u32, k: u64) -> u64 {
-    let pixel_key = block_key(pixel_key, k);
-    let h = mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0xa076_1d64_78bd_642f));
-    let r = laine_karras((k as u32).reverse_bits(), (h >> 32) as u32);
-    let x = laine_karras(r.reverse_bits(), h as u32).reverse_bits();
-    let low = h.rotate_left(23) ^ k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    ((x as u64) << 32) | (low & 0xffff_ffff)
+    PaddedIndex::new(pixel_key, k).point_1d(dim)
 }
 
 // ANCHOR: dimensions
@@ -160,11 +205,46 @@ impl Dimension {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Sampler {
     /// On: padded Owen-scrambled Sobol pairs; off: the sample's generator, in call order.
-    pub low_discrepancy: bool,
+    low_discrepancy: bool,
     /// The pixel's scramble key.
-    pub key: u64,
+    key: u64,
     /// The sample's index `k` in its pixel (64-bit: see the module's notes past 2^32).
-    pub index: u64,
+    index: u64,
+    /// What every pair of this sample shares, made once.
+    padded: PaddedIndex,
+}
+
+impl Sampler {
+    /// Sample `index` of the pixel with scramble key `key` (the padded points' shared part is made
+    /// only if they are used).
+    #[inline]
+    pub fn new(low_discrepancy: bool, key: u64, index: u64) -> Sampler {
+        Sampler {
+            low_discrepancy,
+            key,
+            index,
+            padded: if low_discrepancy {
+                PaddedIndex::new(key, index)
+            } else {
+                PaddedIndex::default()
+            },
+        }
+    }
+
+    /// Whether the dimensions are padded Sobol pairs (else the sample's generator, in call order).
+    pub fn low_discrepancy(&self) -> bool {
+        self.low_discrepancy
+    }
+
+    /// The pixel's scramble key.
+    pub fn key(&self) -> u64 {
+        self.key
+    }
+
+    /// The sample's index in its pixel.
+    pub fn index(&self) -> u64 {
+        self.index
+    }
 }
 
 /// `2^-53`: a 64-bit value's top 53 bits as a uniform number in `[0, 1)` (what `rand` does).
@@ -379,21 +459,17 @@ impl Ctx {
         }
     }
 
-    #[inline(never)]
+    #[inline]
     fn low_discrepancy_2d(&mut self, d: Dimension) -> DVec2 {
         self.stats.random_numbers += 2;
-        let [x, y] = padded_sobol_2d(self.sampler.key, d.pair(), self.sampler.index);
+        let [x, y] = self.sampler.padded.point_2d(d.pair());
         DVec2::new(unit(x), unit(y))
     }
 
-    #[inline(never)]
+    #[inline]
     fn low_discrepancy_1d(&mut self, d: Dimension) -> f64 {
         self.stats.random_numbers += 1;
-        unit(padded_sobol_1d(
-            self.sampler.key,
-            d.pair(),
-            self.sampler.index,
-        ))
+        unit(self.sampler.padded.point_1d(d.pair()))
     }
 }
 
@@ -406,6 +482,7 @@ impl Default for Ctx {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rtl_mc::sequence::{owen_scramble, sobol_bits};
 
     #[test]
     fn pixel_positions_are_stratified_at_every_power_of_two() {
@@ -426,6 +503,31 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The sub-pixel position as first written: two plain scrambles of the Sobol point.
+    fn pixel_position_reference(pixel_key: u64, k: u64) -> (f64, f64) {
+        let pixel_key = block_key(pixel_key, k);
+        let i = k as u32;
+        let x = owen_scramble(sobol_bits(i, 0), pixel_key as u32);
+        let y = owen_scramble(sobol_bits(i, 1), (pixel_key >> 32) as u32);
+        const SCALE: f64 = 1.0 / 4_294_967_296.0;
+        ((x as f64 + 0.5) * SCALE, (y as f64 + 0.5) * SCALE)
+    }
+
+    #[test]
+    fn pixel_positions_agree_with_plain_scrambles() {
+        for i in 0..20_000u64 {
+            let (key, k) = (mix64(i), i * 7919 + ((i % 3) << 32));
+            assert_eq!(
+                pixel_position(key, k),
+                pixel_position_reference(key, k),
+                "{key} {k}"
+            );
+        }
+        // and the comparison sees a wrong variant: the coordinates' scrambles swapped
+        let swapped = |key: u64, k| pixel_position_reference(key.rotate_left(32), k);
+        assert!((1..100).all(|k| pixel_position(42, k) != swapped(42, k)));
     }
 
     #[test]
@@ -483,6 +585,49 @@ mod tests {
                 padded_sobol_2d_reference(key, dim, k)
             );
         }
+    }
+
+    #[test]
+    fn a_samplers_dimensions_are_the_padded_sobol_points() {
+        // The sample's shared part (`PaddedIndex`) made once must give every pair exactly the points of
+        // the plain formula, in every block of 2^32 samples.
+        let dims = [
+            Dimension::Lens,
+            Dimension::Time,
+            Dimension::Light(0),
+            Dimension::Material(5),
+            Dimension::Roulette(11),
+        ];
+        for i in 0..4000u64 {
+            let (key, k) = (mix64(i), i * 7919 + ((i % 3) << 32));
+            let mut ctx = Ctx::new();
+            ctx.sampler = Sampler::new(true, key, k);
+            for d in dims {
+                let [x, y] = padded_sobol_2d_reference(block_key(key, k), d.pair(), k);
+                assert_eq!(
+                    ctx.sample_2d(d),
+                    DVec2::new(unit(x), unit(y)),
+                    "{key} {k} {d:?}"
+                );
+                assert_eq!(ctx.sample_1d(d), unit(x));
+            }
+        }
+    }
+
+    #[test]
+    fn the_sampler_check_sees_an_index_left_unreversed() {
+        // Deliberately wrong: the shared index not bit-reversed. The comparison above must see it.
+        let mut differ = 0;
+        for k in 1..200u64 {
+            let right = PaddedIndex::new(42, k);
+            let wrong = PaddedIndex {
+                reversed: k as u32,
+                ..right
+            };
+            differ += (wrong.point_2d(3) != padded_sobol_2d_reference(42, 3, k)) as u32;
+            assert_eq!(right.point_2d(3), padded_sobol_2d_reference(42, 3, k));
+        }
+        assert!(differ > 190, "{differ}");
     }
 
     #[test]

@@ -305,11 +305,7 @@ fn light_pair(low_discrepancy: bool) -> impl Fn(u64, u64) -> DVec2 {
     move |key, k| {
         let mut ctx = Ctx::new();
         ctx.rng = SampleRng::for_sample(7, key, k);
-        ctx.sampler = Sampler {
-            low_discrepancy,
-            key,
-            index: k,
-        };
+        ctx.sampler = Sampler::new(low_discrepancy, key, k);
         ctx.sample_2d(Dimension::Light(0))
     }
 }
