@@ -167,7 +167,9 @@ impl std::str::FromStr for Strategy {
 #[inline]
 fn ratio(s: f64, p: f64) -> Option<f64> {
     let r = s / p;
-    (p > 0.0 && s > 0.0 && r.is_finite()).then_some(r)
+    // `r <= MAX` is `r.is_finite()` here (`r` is not negative): two comparisons, where LLVM makes a
+    // class test on the bits of `is_finite`.
+    (p > 0.0 && s > 0.0 && r <= f64::MAX).then_some(r)
 }
 
 // ANCHOR: sample_diffuse

@@ -222,11 +222,7 @@ fn render_variant(scene: &Scene, seed: u64, variant: MisVariant) -> Vec<Color> {
             let key = sample_key(seed, pixel, u64::MAX);
             for k in 0..BATCH_SPP {
                 ctx.rng = SampleRng::for_sample(seed, pixel, k);
-                ctx.sampler = Sampler {
-                    low_discrepancy: options.low_discrepancy,
-                    key,
-                    index: k,
-                };
+                ctx.sampler = Sampler::new(options.low_discrepancy, key, k);
                 let ray = r.camera.ray(i, j, key, k, &mut ctx);
                 let v = radiance_mis_variant(
                     scene, &r.lights, ray, MAX_DEPTH, options, variant, &mut ctx,
@@ -401,11 +397,7 @@ fn book2_final_agrees_with_the_estimator_before() {
                 let key = sample_key(seed, pixel, u64::MAX);
                 for k in 0..spp {
                     ctx.rng = SampleRng::for_sample(seed, pixel, k);
-                    ctx.sampler = Sampler {
-                        low_discrepancy: options.low_discrepancy,
-                        key,
-                        index: k,
-                    };
+                    ctx.sampler = Sampler::new(options.low_discrepancy, key, k);
                     let ray = r.camera.ray(i, j, key, k, &mut ctx);
                     let v = radiance_mis_variant(
                         scene,
