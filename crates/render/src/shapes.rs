@@ -58,13 +58,13 @@ impl Sphere {
         a.union(&Aabb::from_points(c1 - r, c1 + r))
     }
 
-    /// Ray-sphere intersection: the roots of `|o + t d - c|^2 = r^2`, computed as in pbrt-v4 and
-    /// Ray Tracing Gems ch. 7 (discriminant from the ray's closest approach, here `|(c - o) x d|^2`,
-    /// the smaller root through Vieta's formula) so that neither root loses precision to cancellation,
-    /// and a miss costs neither a division nor a square root. The hit point is then projected back
-    /// onto the sphere, which bounds its error by the sphere's own magnitude.
-    #[inline]
-    pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
+    /// The two roots `t0 <= t1` of `|o + t d - c|^2 = r^2` along `ray` (`None` if the line misses),
+    /// computed as in pbrt-v4 and Ray Tracing Gems ch. 7: the discriminant from the ray's closest
+    /// approach, here `|(c - o) x d|^2`, and the smaller root through Vieta's formula, so that
+    /// neither root loses precision to cancellation and a miss costs neither a division nor a square
+    /// root.
+    #[inline(always)]
+    pub fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         let center = self.center_at(ray.time);
         let oc = center - ray.origin;
         let a = ray.direction.length_squared();
@@ -83,23 +83,41 @@ impl Sphere {
         if q == 0.0 {
             return None;
         }
-        let (mut t0, mut t1) = (c / q, q / a);
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        let t = if range.surrounds(t0) {
-            t0
+        let (t0, t1) = (c / q, q / a);
+        Some(if t0 > t1 { (t1, t0) } else { (t0, t1) })
+    }
+
+    /// The first of the roots `t0 <= t1` inside the open interval `range`.
+    #[inline(always)]
+    pub fn first_root_in((t0, t1): (f64, f64), range: Interval) -> Option<f64> {
+        if range.surrounds(t0) {
+            Some(t0)
         } else if range.surrounds(t1) {
-            t1
+            Some(t1)
         } else {
-            return None;
-        };
+            None
+        }
+    }
+
+    /// The bound on the error of a hit point (the sphere's own magnitude; see [`Sphere::hit`]).
+    #[inline]
+    pub fn hit_error(&self, time: f64) -> f64 {
+        REL_ERROR * (self.center_at(time).abs().max_element() + self.radius.abs())
+    }
+
+    /// Ray-sphere intersection: the first of [`Sphere::roots`] in `range`. The hit point is then
+    /// projected back onto the sphere, which bounds its error by the sphere's own magnitude.
+    #[inline]
+    pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
+        let t = Self::first_root_in(self.roots(ray)?, range)?;
+        let center = self.center_at(ray.time);
+        let r = self.radius;
         // The outward normal (inward for a negative radius, book 1's hollow sphere), and the hit point
         // projected back onto the sphere.
         let outward = (ray.at(t) - center).normalize() * r.signum();
         let p = center + r * outward;
         let (normal, front_face) = Hit::face(ray, outward);
-        let err = REL_ERROR * (center.abs().max_element() + r.abs());
+        let err = self.hit_error(ray.time);
         Some(Hit {
             t,
             p,
