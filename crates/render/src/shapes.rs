@@ -312,40 +312,57 @@ impl Quad4 {
     #[inline]
     #[target_feature(enable = "avx")]
     pub fn hit_avx(&self, ray: &Ray, range: Interval) -> Option<Quad4Hit> {
+        // SAFETY: this function is compiled with AVX, as `hit_avx_inline` requires.
+        unsafe { self.hit_avx_inline(ray, range) }
+    }
+
+    /// [`Quad4::hit_avx`] for callers compiled with AVX enabled (the traversal's AVX2 path), into
+    /// which it is always inlined: a `#[target_feature]` function cannot be, and the call and the
+    /// returned record in memory cost a fifth of a packet test.
+    ///
+    /// # Safety
+    /// Only where the processor has AVX, and only from a function compiled with AVX enabled
+    /// (elsewhere its intrinsics would be calls).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub unsafe fn hit_avx_inline(&self, ray: &Ray, range: Interval) -> Option<Quad4Hit> {
         use crate::lanes::avx::{dot, load, load3, splat3, store};
         use std::arch::x86_64::*;
-        let o = splat3(ray.origin.to_array());
-        let dir = splat3(ray.direction.to_array());
-        let n = load3(&self.normal);
-        let q = load3(&self.q);
-        let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
-        // planar = ray.at(t) - q
-        let at = |a: usize| _mm256_sub_pd(_mm256_add_pd(o[a], _mm256_mul_pd(t, dir[a])), q[a]);
-        let planar = [at(0), at(1), at(2)];
-        let alpha = dot(planar, load3(&self.du));
-        let beta = dot(planar, load3(&self.dv));
-        let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
-        let inside = _mm256_and_pd(
-            _mm256_and_pd(
-                _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_set1_pd(range.min), t),
-                _mm256_cmp_pd::<_CMP_LT_OQ>(t, _mm256_set1_pd(range.max)),
-            ),
-            _mm256_and_pd(
+        // SAFETY: the caller runs on a processor with AVX, in a function compiled with it.
+        unsafe {
+            let o = splat3(ray.origin.to_array());
+            let dir = splat3(ray.direction.to_array());
+            let n = load3(&self.normal);
+            let q = load3(&self.q);
+            let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
+            // planar = ray.at(t) - q
+            let at = |a: usize| _mm256_sub_pd(_mm256_add_pd(o[a], _mm256_mul_pd(t, dir[a])), q[a]);
+            let planar = [at(0), at(1), at(2)];
+            let alpha = dot(planar, load3(&self.du));
+            let beta = dot(planar, load3(&self.dv));
+            let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
+            let inside = _mm256_and_pd(
                 _mm256_and_pd(
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(zero, alpha),
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(alpha, one),
+                    _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_set1_pd(range.min), t),
+                    _mm256_cmp_pd::<_CMP_LT_OQ>(t, _mm256_set1_pd(range.max)),
                 ),
                 _mm256_and_pd(
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(zero, beta),
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(beta, one),
+                    _mm256_and_pd(
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(zero, alpha),
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(alpha, one),
+                    ),
+                    _mm256_and_pd(
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(zero, beta),
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(beta, one),
+                    ),
                 ),
-            ),
-        );
-        let inside = _mm256_movemask_pd(inside) as u32;
-        if inside == 0 {
-            return None;
+            );
+            let inside = _mm256_movemask_pd(inside) as u32;
+            if inside == 0 {
+                return None;
+            }
+            Self::closest(inside, store(t), store(alpha), store(beta), range.max)
         }
-        Self::closest(inside, store(t), store(alpha), store(beta), range.max)
     }
 
     /// The lane of least `t` below `max` among the lanes set in `inside` (the lowest on a tie).

@@ -451,8 +451,8 @@ fn hit_packet<const AVX: bool>(
 ) -> Option<crate::shapes::Quad4Hit> {
     #[cfg(target_arch = "x86_64")]
     if AVX {
-        // SAFETY: `AVX` is set only by `hit_group_avx2`, run where AVX2 is.
-        return unsafe { packet.hit_avx(ray, range) };
+        // SAFETY: `AVX` is set only by `hit_group_avx2`, compiled with AVX2 and run where it is.
+        return unsafe { packet.hit_avx_inline(ray, range) };
     }
     packet.hit(ray, range)
 }
