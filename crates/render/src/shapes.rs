@@ -5,6 +5,8 @@ use crate::aabb::Aabb;
 use crate::hit::{Hit, REL_ERROR, UvSource};
 use crate::ids::MaterialId;
 use crate::lanes::F64x4;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::avx::RayLanes;
 use crate::ray::{Interval, Ray};
 use crate::vec::{Point3, Vec3};
 
@@ -326,12 +328,25 @@ impl Quad4 {
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
     pub unsafe fn hit_avx_inline(&self, ray: &Ray, range: Interval) -> Option<Quad4Hit> {
-        use crate::lanes::avx::{dot, load, load3, splat3, store};
+        // SAFETY: as this function's.
+        unsafe {
+            let lanes = RayLanes::new(ray.origin.to_array(), ray.direction.to_array());
+            self.hit_avx_lanes(&lanes, range)
+        }
+    }
+
+    /// [`Quad4::hit_avx_inline`] for a ray already broadcast to the lanes.
+    ///
+    /// # Safety
+    /// As [`Quad4::hit_avx_inline`].
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub unsafe fn hit_avx_lanes(&self, ray: &RayLanes, range: Interval) -> Option<Quad4Hit> {
+        use crate::lanes::avx::{dot, load, load3, store};
         use std::arch::x86_64::*;
         // SAFETY: the caller runs on a processor with AVX, in a function compiled with it.
         unsafe {
-            let o = splat3(ray.origin.to_array());
-            let dir = splat3(ray.direction.to_array());
+            let (o, dir) = (ray.origin, ray.direction);
             let n = load3(&self.normal);
             let q = load3(&self.q);
             let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
