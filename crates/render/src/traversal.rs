@@ -13,7 +13,7 @@ use crate::vec::Vec3;
 use std::mem::MaybeUninit;
 
 /// The traversal form of a group: [`Bvh4`] nodes whose leaves are [`LeafItems`], or for a small
-/// group ([`Accel::is_small`]) no tree at all.
+/// group ([`Accel::small`]) no tree at all.
 #[derive(Clone, Debug, Default)]
 pub struct Accel {
     pub tree: Bvh4,
@@ -22,10 +22,10 @@ pub struct Accel {
     pub packets: Vec<Quad4>,
     /// Indices into the group's objects of the objects that are not quads.
     pub others: Vec<u32>,
-    /// A small group's flat form: every quad in `packets`, tested straight through, then each of
-    /// `others`, each behind the box beside it in `other_bounds`, which must be entered before the
-    /// closest hit so far. `tree` and `leaves` are then empty.
-    pub small: bool,
+    /// A small group's flat form ([`Accel::small`]): every quad in `packets`, tested straight
+    /// through, then each of `others`, each behind the box beside it in `other_bounds`, which must be
+    /// entered before the closest hit so far. `tree` and `leaves` are then empty.
+    pub flat: bool,
     /// For a small group: the bounding box of each of `others`.
     pub other_bounds: Vec<Aabb>,
 }
@@ -63,7 +63,7 @@ impl Accel {
         }
     }
 
-    /// The flat form of a small group (see [`Accel::small`]), its quads packed in the objects' order.
+    /// The flat form of a small group (see [`Accel::flat`]), its quads packed in the objects' order.
     pub fn small(objects: &[Object], bounds: &[Aabb]) -> Accel {
         let quads: Vec<(Quad, u32)> = objects
             .iter()
@@ -83,7 +83,7 @@ impl Accel {
             packets: quads.chunks(PACKET).map(Quad4::new).collect(),
             others,
             other_bounds,
-            small: true,
+            flat: true,
             ..Accel::default()
         }
     }
@@ -120,7 +120,7 @@ impl Accel {
 
     /// Is this a small group's flat form?
     pub fn is_small(&self) -> bool {
-        self.small
+        self.flat
     }
 }
 
@@ -189,7 +189,7 @@ impl Scene {
             return self.hit_object(only, ray, range, ctx);
         }
         let accel = &group.accel;
-        if accel.small {
+        if accel.flat {
             return self.hit_small_with::<AVX>(g, ray, range, ctx);
         }
         let nodes = &accel.tree.nodes;
