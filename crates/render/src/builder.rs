@@ -255,6 +255,7 @@ impl SceneBuilder {
         let n = self.groups.len();
         let mut built: Vec<Option<Group>> = (0..n).map(|_| None).collect();
         let mut bounds_of: Vec<Option<Aabb>> = vec![None; n];
+        let mut draws_of = vec![false; n];
         let order = self.build_order()?;
         for &gi in &order {
             let objects = &self.groups[gi];
@@ -280,9 +281,19 @@ impl SceneBuilder {
             let bvh = Bvh::build_with_costs(&bounds, &costs);
             let objects_in_order: Vec<Object> =
                 bvh.order.iter().map(|&i| objects[i as usize]).collect();
+            // Whether a hit in this group may draw random numbers (a medium, here or nested): its
+            // objects are then tested in the tree's order, which the random stream depends on.
+            let draws = objects.iter().any(|o| match o {
+                Object::Medium(_) => true,
+                Object::Instance { group, .. } | Object::Group(group) => draws_of[group.0 as usize],
+                _ => false,
+            });
+            draws_of[gi] = draws;
+            let bounds_in_order: Vec<Aabb> =
+                bvh.order.iter().map(|&i| bounds[i as usize]).collect();
             bounds_of[gi] = Some(bvh.bounds());
             built[gi] = Some(Group {
-                accel: Accel::new(&objects_in_order, &bvh),
+                accel: Accel::new(&objects_in_order, &bounds_in_order, &bvh, draws),
                 objects: objects_in_order,
             });
         }

@@ -65,6 +65,35 @@ pub mod avx {
         [load(&x[0]), load(&x[1]), load(&x[2])]
     }
 
+    /// A ray's origin and direction broadcast to all four lanes ([`splat3`]), once per traversal
+    /// rather than once per packet.
+    #[derive(Clone, Copy, Debug)]
+    pub struct RayLanes {
+        pub origin: [__m256d; 3],
+        pub direction: [__m256d; 3],
+    }
+
+    impl RayLanes {
+        /// The broadcasts of `origin` and `direction`.
+        ///
+        /// # Safety
+        /// Only where the processor has AVX.
+        #[inline]
+        #[target_feature(enable = "avx")]
+        pub fn new(origin: [f64; 3], direction: [f64; 3]) -> RayLanes {
+            RayLanes {
+                origin: splat3(origin),
+                direction: splat3(direction),
+            }
+        }
+
+        /// All lanes zero: a placeholder where no AVX code will read it (made without AVX).
+        pub fn unused() -> RayLanes {
+            // SAFETY: `__m256d` is plain data, for which all-zero bits are a valid value.
+            unsafe { std::mem::zeroed() }
+        }
+    }
+
     /// A scalar vector broadcast: every lane of register `a` holds coordinate `a`.
     ///
     /// # Safety

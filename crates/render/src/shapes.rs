@@ -5,6 +5,8 @@ use crate::aabb::Aabb;
 use crate::hit::{Hit, REL_ERROR, UvSource};
 use crate::ids::MaterialId;
 use crate::lanes::F64x4;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::avx::RayLanes;
 use crate::ray::{Interval, Ray};
 use crate::vec::{Point3, Vec3};
 
@@ -58,13 +60,13 @@ impl Sphere {
         a.union(&Aabb::from_points(c1 - r, c1 + r))
     }
 
-    /// Ray-sphere intersection: the roots of `|o + t d - c|^2 = r^2`, computed as in pbrt-v4 and
-    /// Ray Tracing Gems ch. 7 (discriminant from the ray's closest approach, here `|(c - o) x d|^2`,
-    /// the smaller root through Vieta's formula) so that neither root loses precision to cancellation,
-    /// and a miss costs neither a division nor a square root. The hit point is then projected back
-    /// onto the sphere, which bounds its error by the sphere's own magnitude.
-    #[inline]
-    pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
+    /// The two roots `t0 <= t1` of `|o + t d - c|^2 = r^2` along `ray` (`None` if the line misses),
+    /// computed as in pbrt-v4 and Ray Tracing Gems ch. 7: the discriminant from the ray's closest
+    /// approach, here `|(c - o) x d|^2`, and the smaller root through Vieta's formula, so that
+    /// neither root loses precision to cancellation and a miss costs neither a division nor a square
+    /// root.
+    #[inline(always)]
+    pub fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         let center = self.center_at(ray.time);
         let oc = center - ray.origin;
         let a = ray.direction.length_squared();
@@ -83,23 +85,41 @@ impl Sphere {
         if q == 0.0 {
             return None;
         }
-        let (mut t0, mut t1) = (c / q, q / a);
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        let t = if range.surrounds(t0) {
-            t0
+        let (t0, t1) = (c / q, q / a);
+        Some(if t0 > t1 { (t1, t0) } else { (t0, t1) })
+    }
+
+    /// The first of the roots `t0 <= t1` inside the open interval `range`.
+    #[inline(always)]
+    pub fn first_root_in((t0, t1): (f64, f64), range: Interval) -> Option<f64> {
+        if range.surrounds(t0) {
+            Some(t0)
         } else if range.surrounds(t1) {
-            t1
+            Some(t1)
         } else {
-            return None;
-        };
+            None
+        }
+    }
+
+    /// The bound on the error of a hit point (the sphere's own magnitude; see [`Sphere::hit`]).
+    #[inline]
+    pub fn hit_error(&self, time: f64) -> f64 {
+        REL_ERROR * (self.center_at(time).abs().max_element() + self.radius.abs())
+    }
+
+    /// Ray-sphere intersection: the first of [`Sphere::roots`] in `range`. The hit point is then
+    /// projected back onto the sphere, which bounds its error by the sphere's own magnitude.
+    #[inline]
+    pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
+        let t = Self::first_root_in(self.roots(ray)?, range)?;
+        let center = self.center_at(ray.time);
+        let r = self.radius;
         // The outward normal (inward for a negative radius, book 1's hollow sphere), and the hit point
         // projected back onto the sphere.
         let outward = (ray.at(t) - center).normalize() * r.signum();
         let p = center + r * outward;
         let (normal, front_face) = Hit::face(ray, outward);
-        let err = REL_ERROR * (center.abs().max_element() + r.abs());
+        let err = self.hit_error(ray.time);
         Some(Hit {
             t,
             p,
@@ -294,40 +314,70 @@ impl Quad4 {
     #[inline]
     #[target_feature(enable = "avx")]
     pub fn hit_avx(&self, ray: &Ray, range: Interval) -> Option<Quad4Hit> {
-        use crate::lanes::avx::{dot, load, load3, splat3, store};
-        use std::arch::x86_64::*;
-        let o = splat3(ray.origin.to_array());
-        let dir = splat3(ray.direction.to_array());
-        let n = load3(&self.normal);
-        let q = load3(&self.q);
-        let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
-        // planar = ray.at(t) - q
-        let at = |a: usize| _mm256_sub_pd(_mm256_add_pd(o[a], _mm256_mul_pd(t, dir[a])), q[a]);
-        let planar = [at(0), at(1), at(2)];
-        let alpha = dot(planar, load3(&self.du));
-        let beta = dot(planar, load3(&self.dv));
-        let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
-        let inside = _mm256_and_pd(
-            _mm256_and_pd(
-                _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_set1_pd(range.min), t),
-                _mm256_cmp_pd::<_CMP_LT_OQ>(t, _mm256_set1_pd(range.max)),
-            ),
-            _mm256_and_pd(
-                _mm256_and_pd(
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(zero, alpha),
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(alpha, one),
-                ),
-                _mm256_and_pd(
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(zero, beta),
-                    _mm256_cmp_pd::<_CMP_LE_OQ>(beta, one),
-                ),
-            ),
-        );
-        let inside = _mm256_movemask_pd(inside) as u32;
-        if inside == 0 {
-            return None;
+        // SAFETY: this function is compiled with AVX, as `hit_avx_inline` requires.
+        unsafe { self.hit_avx_inline(ray, range) }
+    }
+
+    /// [`Quad4::hit_avx`] for callers compiled with AVX enabled (the traversal's AVX2 path), into
+    /// which it is always inlined: a `#[target_feature]` function cannot be, and the call and the
+    /// returned record in memory cost a fifth of a packet test.
+    ///
+    /// # Safety
+    /// Only where the processor has AVX, and only from a function compiled with AVX enabled
+    /// (elsewhere its intrinsics would be calls).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub unsafe fn hit_avx_inline(&self, ray: &Ray, range: Interval) -> Option<Quad4Hit> {
+        // SAFETY: as this function's.
+        unsafe {
+            let lanes = RayLanes::new(ray.origin.to_array(), ray.direction.to_array());
+            self.hit_avx_lanes(&lanes, range)
         }
-        Self::closest(inside, store(t), store(alpha), store(beta), range.max)
+    }
+
+    /// [`Quad4::hit_avx_inline`] for a ray already broadcast to the lanes.
+    ///
+    /// # Safety
+    /// As [`Quad4::hit_avx_inline`].
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub unsafe fn hit_avx_lanes(&self, ray: &RayLanes, range: Interval) -> Option<Quad4Hit> {
+        use crate::lanes::avx::{dot, load, load3, store};
+        use std::arch::x86_64::*;
+        // SAFETY: the caller runs on a processor with AVX, in a function compiled with it.
+        unsafe {
+            let (o, dir) = (ray.origin, ray.direction);
+            let n = load3(&self.normal);
+            let q = load3(&self.q);
+            let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
+            // planar = ray.at(t) - q
+            let at = |a: usize| _mm256_sub_pd(_mm256_add_pd(o[a], _mm256_mul_pd(t, dir[a])), q[a]);
+            let planar = [at(0), at(1), at(2)];
+            let alpha = dot(planar, load3(&self.du));
+            let beta = dot(planar, load3(&self.dv));
+            let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
+            let inside = _mm256_and_pd(
+                _mm256_and_pd(
+                    _mm256_cmp_pd::<_CMP_LT_OQ>(_mm256_set1_pd(range.min), t),
+                    _mm256_cmp_pd::<_CMP_LT_OQ>(t, _mm256_set1_pd(range.max)),
+                ),
+                _mm256_and_pd(
+                    _mm256_and_pd(
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(zero, alpha),
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(alpha, one),
+                    ),
+                    _mm256_and_pd(
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(zero, beta),
+                        _mm256_cmp_pd::<_CMP_LE_OQ>(beta, one),
+                    ),
+                ),
+            );
+            let inside = _mm256_movemask_pd(inside) as u32;
+            if inside == 0 {
+                return None;
+            }
+            Self::closest(inside, store(t), store(alpha), store(beta), range.max)
+        }
     }
 
     /// The lane of least `t` below `max` among the lanes set in `inside` (the lowest on a tie).

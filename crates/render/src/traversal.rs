@@ -2,16 +2,18 @@
 //! whose leaves hold quads in packets of four ([`Accel`]), and the closest-hit traversal over them,
 //! through instances (the ray moved into the group's frame) and constant media.
 
-use crate::bvh::{Bvh, Bvh4, EMPTY, LEAF};
+use crate::aabb::Aabb;
+use crate::bvh::{Bvh, Bvh4, EMPTY, LEAF, PACKET};
 use crate::hit::{Hit, REL_ERROR};
 use crate::ray::{Interval, Ray};
 use crate::sampler::Ctx;
 use crate::scene::{ConstantMedium, GroupId, Object, Scene, Transform};
-use crate::shapes::{Quad, Quad4};
+use crate::shapes::{Quad, Quad4, Sphere};
 use crate::vec::Vec3;
 use std::mem::MaybeUninit;
 
-/// The traversal form of a group: [`Bvh4`] nodes whose leaves are [`LeafItems`].
+/// The traversal form of a group: [`Bvh4`] nodes whose leaves are [`LeafItems`], or for a small
+/// group ([`Accel::small`]) no tree at all.
 #[derive(Clone, Debug, Default)]
 pub struct Accel {
     pub tree: Bvh4,
@@ -20,7 +22,20 @@ pub struct Accel {
     pub packets: Vec<Quad4>,
     /// Indices into the group's objects of the objects that are not quads.
     pub others: Vec<u32>,
+    /// A small group's flat form ([`Accel::small`]): every quad in `packets`, tested straight
+    /// through, then each of `others`, each behind the box beside it in `other_bounds`, which must be
+    /// entered before the closest hit so far. `tree` and `leaves` are then empty.
+    pub flat: bool,
+    /// For a small group: the bounding box of each of `others`.
+    pub other_bounds: Vec<Aabb>,
 }
+
+/// The largest group traversed in the flat form: its quads in at most two packets and at most two
+/// other objects. A tree over so few objects costs more in box tests and stack work than it culls:
+/// every ray inside the Cornell room meets the boxes of most of its walls.
+pub const SMALL_QUADS: usize = 2 * PACKET;
+/// See [`SMALL_QUADS`].
+pub const SMALL_OTHERS: usize = 2;
 
 /// A leaf's quads (`packets[packets.0 .. packets.0 + packets.1]`) and other objects (likewise in
 /// `others`).
@@ -31,8 +46,50 @@ pub struct LeafItems {
 }
 
 impl Accel {
-    /// The traversal form of `objects` (in leaf order of `bvh`).
-    pub fn new(objects: &[Object], bvh: &Bvh) -> Accel {
+    /// The traversal form of `objects` (in leaf order of `bvh`, `bounds[i]` the box of `objects[i]`):
+    /// the flat form if the group is small, the 4-wide tree otherwise. `draws` says whether a hit in
+    /// the group may draw random numbers (it holds a medium, directly or nested): such a group keeps
+    /// the tree, whose order of tests the random stream, and so the image, depends on.
+    pub fn new(objects: &[Object], bounds: &[Aabb], bvh: &Bvh, draws: bool) -> Accel {
+        assert_eq!(objects.len(), bounds.len());
+        let quads = objects
+            .iter()
+            .filter(|o| matches!(o, Object::Quad(_)))
+            .count();
+        if !draws && quads <= SMALL_QUADS && objects.len() - quads <= SMALL_OTHERS {
+            Self::small(objects, bounds)
+        } else {
+            Self::tree(objects, bvh)
+        }
+    }
+
+    /// The flat form of a small group (see [`Accel::flat`]), its quads packed in the objects' order.
+    pub fn small(objects: &[Object], bounds: &[Aabb]) -> Accel {
+        let quads: Vec<(Quad, u32)> = objects
+            .iter()
+            .enumerate()
+            .filter_map(|(i, o)| match o {
+                Object::Quad(q) => Some((*q, i as u32)),
+                _ => None,
+            })
+            .collect();
+        let (others, other_bounds) = objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| !matches!(o, Object::Quad(_)))
+            .map(|(i, _)| (i as u32, bounds[i]))
+            .unzip();
+        Accel {
+            packets: quads.chunks(PACKET).map(Quad4::new).collect(),
+            others,
+            other_bounds,
+            flat: true,
+            ..Accel::default()
+        }
+    }
+
+    /// The 4-wide tree form of `objects` (in leaf order of `bvh`).
+    pub fn tree(objects: &[Object], bvh: &Bvh) -> Accel {
         let tree = Bvh4::from_binary(bvh);
         let mut accel = Accel::default();
         for leaf in &tree.leaves {
@@ -45,9 +102,7 @@ impl Accel {
                 })
                 .collect();
             let p0 = accel.packets.len() as u32;
-            accel
-                .packets
-                .extend(quads.chunks(crate::bvh::PACKET).map(Quad4::new));
+            accel.packets.extend(quads.chunks(PACKET).map(Quad4::new));
             let o0 = accel.others.len() as u32;
             accel.others.extend(
                 range
@@ -61,6 +116,11 @@ impl Accel {
         }
         accel.tree = tree;
         accel
+    }
+
+    /// Is this a small group's flat form?
+    pub fn is_small(&self) -> bool {
+        self.flat
     }
 }
 
@@ -129,6 +189,9 @@ impl Scene {
             return self.hit_object(only, ray, range, ctx);
         }
         let accel = &group.accel;
+        if accel.flat {
+            return self.hit_small_with::<AVX>(g, ray, range, ctx);
+        }
         let nodes = &accel.tree.nodes;
         if nodes.is_empty() {
             return None;
@@ -185,16 +248,8 @@ impl Scene {
                     let (p0, np) = leaf.packets;
                     for pi in p0..p0 + np {
                         let packet = &accel.packets[pi as usize];
-                        let range = Interval::new(range.min, closest);
-                        #[cfg(target_arch = "x86_64")]
-                        let h = if AVX {
-                            // SAFETY: `AVX` is set only by `hit_group_avx2`, run where AVX2 is.
-                            unsafe { packet.hit_avx(ray, range) }
-                        } else {
-                            packet.hit(ray, range)
-                        };
-                        #[cfg(not(target_arch = "x86_64"))]
-                        let h = packet.hit(ray, range);
+                        let h =
+                            hit_packet_splat::<AVX>(packet, ray, Interval::new(range.min, closest));
                         if let Some(h) = h {
                             closest = h.t;
                             best_quad = Some((pi, h.lane, h.alpha, h.beta));
@@ -222,14 +277,52 @@ impl Scene {
             (next, next_near) = unsafe { (stack[sp].assume_init(), stack_near[sp].assume_init()) };
             debug_assert!(next != EMPTY);
         }
-        if let Some((pi, lane, alpha, beta)) = best_quad {
-            let index = accel.packets[pi as usize].index[lane];
-            let Object::Quad(q) = &group.objects[index as usize] else {
-                unreachable!("a packet lane names a quad")
-            };
-            return Some(q.hit_at(ray, closest, alpha, beta));
+        quad_record(group, best_quad, ray, closest).or(best_other)
+    }
+
+    /// The closest hit in the small group `g` ([`Accel::small`]): its quad packets one after the
+    /// other, so that the nearest wall bounds the rest, then its other objects, each culled by its box
+    /// against the closest hit so far. (A sphere too: its own test rejects only the rays whose line
+    /// misses it, not those that meet a wall first, and a third of the Cornell box's rays are aimed
+    /// at its glass sphere.)
+    #[inline(always)]
+    fn hit_small_with<const AVX: bool>(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let group = &self.groups[g.0 as usize];
+        let accel = &group.accel;
+        let mut closest = range.max;
+        let mut best_quad: Option<(u32, usize, f64, f64)> = None;
+        let mut best_other: Option<Hit> = None;
+        let lanes = ray_lanes::<AVX>(ray);
+        for (pi, packet) in accel.packets.iter().enumerate() {
+            if let Some(h) =
+                hit_packet::<AVX>(packet, ray, &lanes, Interval::new(range.min, closest))
+            {
+                closest = h.t;
+                best_quad = Some((pi as u32, h.lane, h.alpha, h.beta));
+            }
         }
-        best_other
+        if accel.others.is_empty() {
+            return quad_record(group, best_quad, ray, closest);
+        }
+        let inv = ray.direction.recip();
+        for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
+            if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
+                continue;
+            }
+            let o = &group.objects[oi as usize];
+            if let Some(h) = self.hit_object(o, ray, Interval::new(range.min, closest), ctx) {
+                closest = h.t;
+                best_other = Some(h);
+                best_quad = None;
+            }
+        }
+        quad_record(group, best_quad, ray, closest).or(best_other)
     }
 
     #[inline]
@@ -281,17 +374,29 @@ impl Scene {
         ctx: &mut Ctx,
     ) -> Option<Hit> {
         ctx.stats.medium_evaluations += 1;
-        let enter = self.hit_group(m.boundary, ray, Interval::UNIVERSE, ctx)?;
         let len = ray.direction.length();
-        let gap = 8.0 * enter.err / len;
-        let exit = self.hit_group(
-            m.boundary,
-            ray,
-            Interval::new(enter.t + gap, f64::INFINITY),
-            ctx,
-        )?;
-        let t0 = enter.t.max(range.min).max(0.0);
-        let t1 = exit.t.min(range.max);
+        let (enter, exit) =
+            if let [Object::Sphere(s)] = &self.groups[m.boundary.0 as usize].objects[..] {
+                // A sphere's boundary (book 2's fog and subsurface sphere): both crossings from one
+                // solution of the quadratic, chosen exactly as the two queries below would choose them.
+                let roots = s.roots(ray)?;
+                let enter = Sphere::first_root_in(roots, Interval::UNIVERSE)?;
+                let gap = 8.0 * s.hit_error(ray.time) / len;
+                let exit = Sphere::first_root_in(roots, Interval::new(enter + gap, f64::INFINITY))?;
+                (enter, exit)
+            } else {
+                let enter = self.hit_group(m.boundary, ray, Interval::UNIVERSE, ctx)?;
+                let gap = 8.0 * enter.err / len;
+                let exit = self.hit_group(
+                    m.boundary,
+                    ray,
+                    Interval::new(enter.t + gap, f64::INFINITY),
+                    ctx,
+                )?;
+                (enter.t, exit.t)
+            };
+        let t0 = enter.max(range.min).max(0.0);
+        let t1 = exit.min(range.max);
         if t0 >= t1 || t0.is_nan() || t1.is_nan() {
             return None;
         }
@@ -339,4 +444,78 @@ impl Scene {
         }
         best
     }
+}
+
+/// The ray broadcast to the lanes of the AVX packet test, if `AVX` (only ever set where the processor
+/// has it); a placeholder otherwise.
+#[cfg(target_arch = "x86_64")]
+type Lanes = crate::lanes::avx::RayLanes;
+#[cfg(not(target_arch = "x86_64"))]
+type Lanes = ();
+
+/// The ray broadcast if `AVX`. (In the small groups' form only: held across the tree's loop, the six
+/// registers it takes are spilled and cost more than broadcasting per packet, +2% in book 2's final
+/// scene.)
+#[inline(always)]
+fn ray_lanes<const AVX: bool>(ray: &Ray) -> Lanes {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if AVX {
+            // SAFETY: `AVX` is set only by the AVX2 paths, compiled with AVX2 and run where it is.
+            return unsafe { Lanes::new(ray.origin.to_array(), ray.direction.to_array()) };
+        }
+        Lanes::unused()
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = ray;
+}
+
+/// [`hit_packet`], broadcasting the ray itself.
+#[inline(always)]
+fn hit_packet_splat<const AVX: bool>(
+    packet: &Quad4,
+    ray: &Ray,
+    range: Interval,
+) -> Option<crate::shapes::Quad4Hit> {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        // SAFETY: `AVX` is set only by `hit_group_avx2`, compiled with AVX2 and run where it is.
+        return unsafe { packet.hit_avx_inline(ray, range) };
+    }
+    packet.hit(ray, range)
+}
+
+/// The closest hit in a packet with `t` in `range`, in AVX instructions if `AVX` (only ever set where
+/// the processor has them; `lanes` is then `ray` broadcast), lane by lane otherwise.
+#[inline(always)]
+fn hit_packet<const AVX: bool>(
+    packet: &Quad4,
+    ray: &Ray,
+    lanes: &Lanes,
+    range: Interval,
+) -> Option<crate::shapes::Quad4Hit> {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        // SAFETY: `AVX` is set only by `hit_group_avx2`, compiled with AVX2 and run where it is.
+        return unsafe { packet.hit_avx_lanes(lanes, range) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = lanes;
+    packet.hit(ray, range)
+}
+
+/// The record of the closest hit if it is a quad's: `(packet, lane, alpha, beta)` at parameter `t`.
+#[inline(always)]
+fn quad_record(
+    group: &crate::scene::Group,
+    best: Option<(u32, usize, f64, f64)>,
+    ray: &Ray,
+    t: f64,
+) -> Option<Hit> {
+    let (pi, lane, alpha, beta) = best?;
+    let index = group.accel.packets[pi as usize].index[lane];
+    let Object::Quad(q) = &group.objects[index as usize] else {
+        unreachable!("a packet lane names a quad")
+    };
+    Some(q.hit_at(ray, t, alpha, beta))
 }
