@@ -673,7 +673,8 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
 ///
 /// The books' fuzzy metal is no specular bounce here: its directions have a density in closed form
 /// ([`FuzzyMetalPdf`]), so it takes light samples and its emission hits are weighted like a diffuse
-/// vertex's (a metal of fuzz 0 stays a mirror).
+/// vertex's (a metal of fuzz below [`MIN_FUZZ`](crate::metal_pdf::MIN_FUZZ), 0 included, stays a
+/// mirror).
 ///
 /// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
 /// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
@@ -753,7 +754,8 @@ pub fn radiance_mis_variant(
         }
         let fuzzy_metal = match material {
             Material::Metal { albedo, fuzz }
-                if *fuzz > 0.0 && variant != MisVariant::MetalAsSpecular =>
+                if *fuzz >= crate::metal_pdf::MIN_FUZZ
+                    && variant != MisVariant::MetalAsSpecular =>
             {
                 let lobe = FuzzyMetalPdf::new(ray.direction, hit.normal, *fuzz);
                 Some((
