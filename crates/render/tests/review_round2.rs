@@ -107,3 +107,194 @@ fn refused_shares() {
         eprintln!("fuzz {fuzz:e}: {} refused", refused_share(fuzz, 4_000_000));
     }
 }
+
+// ---- The flat small-group traversal on hostile rays -------------------------------------------
+
+use rtl_render::hit::Hit;
+use rtl_render::ray::{Interval, Ray};
+use rtl_render::sampler::Ctx;
+use rtl_render::scene::{GroupId, Object, Transform};
+
+type Record = (u64, [u64; 3], [u64; 3], bool, u32);
+
+fn record(h: Option<Hit>) -> Option<Record> {
+    h.map(|h| {
+        (
+            h.t.to_bits(),
+            h.p.to_array().map(f64::to_bits),
+            h.normal.to_array().map(f64::to_bits),
+            h.front_face,
+            h.material.0,
+        )
+    })
+}
+
+/// Axis-aligned rays whose origins lie on the objects' planes, box faces and edges, with direction
+/// components exactly 0 (the slab test's 0 * inf), and a few oblique ones.
+fn hostile_rays() -> Vec<Ray> {
+    let coords = [-2.0, -1.0, 0.0, 0.5, 1.0, 2.0];
+    let dirs = [
+        Vec3::X,
+        -Vec3::X,
+        Vec3::Y,
+        -Vec3::Y,
+        Vec3::Z,
+        -Vec3::Z,
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(0.0, -1.0, 1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(-0.3, 0.2, -1.0),
+    ];
+    let mut rays = Vec::new();
+    for &x in &coords {
+        for &y in &coords {
+            for &z in &coords {
+                for &d in &dirs {
+                    rays.push(Ray::new(Point3::new(x, y, z), d, 0.0));
+                    rays.push(Ray::new(Point3::new(x, y, z) - 5.0 * d, d, 0.0));
+                }
+            }
+        }
+    }
+    rays
+}
+
+/// How many of the hostile rays group `g`'s traversal (AVX2 and portable) answers otherwise than
+/// testing its objects one by one: `(wrong, ties, hits)`, where a tie is a different object hit at
+/// the bit-identical distance (coincident surfaces, or a shared edge or corner).
+fn traversal_mismatches(scene: &Scene, g: GroupId) -> (usize, usize, usize) {
+    let mut ctx = Ctx::new();
+    let (mut wrong, mut ties, mut hits) = (0, 0, 0);
+    for ray in hostile_rays() {
+        let slow = record(scene.hit_brute_force(g, &ray, Interval::FORWARD, &mut ctx));
+        let fast = record(scene.hit_group(g, &ray, Interval::FORWARD, &mut ctx));
+        let portable = record(scene.hit_group_portable(g, &ray, Interval::FORWARD, &mut ctx));
+        let t = |r: &Option<Record>| r.map(|r| r.0);
+        if fast != slow || portable != slow {
+            if t(&fast) == t(&slow) && t(&portable) == t(&slow) {
+                ties += 1;
+            } else {
+                wrong += 1;
+            }
+        }
+        hits += slow.is_some() as usize;
+    }
+    (wrong, ties, hits)
+}
+
+/// `quads` axis-aligned unit quads (some coincident, with different materials: ties), and `others`
+/// objects: a unit box instance (rays start inside its box), a sphere touching a quad.
+fn tie_scene(quads: usize, others: usize) -> (Scene, GroupId) {
+    let mut b = SceneBuilder::new();
+    let m: Vec<_> = (0..3)
+        .map(|i| b.material(Material::lambertian(Color::splat(0.2 + 0.3 * i as f64))))
+        .collect();
+    let g = b.group();
+    let planes = [
+        (Point3::ZERO, Vec3::X, Vec3::Y),
+        (Point3::ZERO, Vec3::X, Vec3::Y), // coincident with the first
+        (Point3::ZERO, Vec3::Y, Vec3::Z),
+        (Point3::ZERO, Vec3::Z, Vec3::X),
+        (Point3::new(0.0, 0.0, 1.0), Vec3::X, Vec3::Y),
+        (Point3::new(1.0, 0.0, 0.0), Vec3::Y, Vec3::Z),
+        (Point3::new(-1.0, -1.0, 0.5), Vec3::X * 2.0, Vec3::Y * 2.0),
+        (Point3::new(0.0, 1.0, 0.0), Vec3::Z, Vec3::X),
+        (Point3::new(0.0, 1.0, 0.0), Vec3::Z, Vec3::X), // coincident
+    ];
+    for (i, &(q, u, v)) in planes.iter().cycle().take(quads).enumerate() {
+        b.quad(g, q, u, v, m[i % 3]).unwrap();
+    }
+    for k in 0..others {
+        match k % 3 {
+            0 => {
+                let inner = b.box_group(Point3::ZERO, Point3::ONE, m[k % 3]).unwrap();
+                b.instance(g, inner, Transform::rotate_y(90.0));
+            }
+            1 => b.sphere(g, Point3::new(0.5, 0.5, 1.5), 0.5, m[1]).unwrap(),
+            _ => b.sphere(g, Point3::new(0.5, 0.5, -0.5), 0.5, m[2]).unwrap(),
+        }
+    }
+    b.add(Object::Group(g));
+    (b.build().unwrap(), g)
+}
+
+#[test]
+fn flat_groups_agree_with_brute_force_on_ties_planes_and_zero_direction_components() {
+    for (quads, others, small) in [
+        (1, 0, true),
+        (2, 0, true),
+        (8, 0, true),
+        (8, 2, true),
+        (9, 0, false),
+        (8, 3, false),
+        (0, 2, true),
+    ] {
+        let (scene, g) = tie_scene(quads, others);
+        let accel = &scene.groups[g.0 as usize].accel;
+        assert_eq!(accel.is_small(), small, "{quads} quads, {others} others");
+        let (wrong, ties, hits) = traversal_mismatches(&scene, g);
+        assert_eq!(wrong, 0, "{quads} quads, {others} others");
+        eprintln!("{quads} quads, {others} others: {hits} hits, {ties} ties resolved otherwise");
+        assert!(hits > 200, "{hits}");
+    }
+}
+
+// ---- A sphere medium crossed from one solve, on hostile rays --------------------------------
+
+use rtl_render::material::Albedo;
+
+/// A medium (density 0.3) in a sphere of radius `r` about the origin: its boundary the sphere itself
+/// (one solve) if `direct`, else the sphere one group deeper (two boundary queries).
+fn sphere_fog(direct: bool, r: f64) -> Scene {
+    let mut b = SceneBuilder::new();
+    let m = b.material(Material::lambertian(Color::ONE));
+    let fog = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::ONE),
+    });
+    let sphere = b.group();
+    b.sphere(sphere, Point3::ZERO, r, m).unwrap();
+    let boundary = if direct {
+        sphere
+    } else {
+        let outer = b.group();
+        b.add_to(outer, Object::Group(sphere));
+        outer
+    };
+    b.medium(b.world(), boundary, 0.3, fog).unwrap();
+    b.build().unwrap()
+}
+
+#[test]
+fn a_sphere_medium_in_one_solve_agrees_on_rays_through_its_centre_tangent_and_from_its_boundary() {
+    let r = 2.0;
+    let mut rays = Vec::new();
+    for d in [
+        Vec3::X,
+        -Vec3::Y,
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(0.0, 3.0, -4.0),
+    ] {
+        let n = d.normalize();
+        // through the centre, from outside and from the centre itself
+        rays.push(Ray::new(-5.0 * d, d, 0.0));
+        rays.push(Ray::new(Point3::ZERO, d, 0.0));
+        // from the boundary, inwards and outwards, and tangent to it
+        rays.push(Ray::new(r * n, -d, 0.0));
+        rays.push(Ray::new(r * n, d, 0.0));
+        let side = n.any_orthonormal_vector();
+        rays.push(Ray::new(r * side - 5.0 * d, d, 0.0));
+        rays.push(Ray::new(r * side, d, 0.0));
+    }
+    let (one, two) = (sphere_fog(true, r), sphere_fog(false, r));
+    let (mut ca, mut cb) = (Ctx::new(), Ctx::new());
+    let mut scattered = 0;
+    for ray in &rays {
+        for _ in 0..200 {
+            let (ha, hb) = (record(one.hit(ray, &mut ca)), record(two.hit(ray, &mut cb)));
+            assert_eq!(ha, hb, "{ray:?}");
+            assert_eq!(ca.uniform().to_bits(), cb.uniform().to_bits(), "{ray:?}");
+            scattered += ha.is_some() as usize;
+        }
+    }
+    assert!(scattered > 1000, "{scattered}");
+}
