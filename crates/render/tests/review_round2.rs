@@ -298,3 +298,195 @@ fn a_sphere_medium_in_one_solve_agrees_on_rays_through_its_centre_tangent_and_fr
     }
     assert!(scattered > 1000, "{scattered}");
 }
+
+// ---- `mis` against `cosine` where the new estimator's bookkeeping is stressed ----------------
+
+use rtl_render::integrator::{MisVariant, radiance_mis_variant};
+use rtl_render::render::Renderer;
+use rtl_render::sampler::{SampleRng, Sampler, sample_key};
+
+mod batch_means;
+use batch_means::{mean_var, welch_p};
+
+const WIDTH: usize = 24;
+const BATCHES: u64 = 32;
+const BATCH_SPP: u64 = 64;
+const GRID: usize = 4;
+const MAX_DEPTH: u32 = 50;
+
+/// A floor under a glowing ball (radius 0.3) wrapped in `layers` concentric media (radii 0.5 +
+/// 0.25 k, density 1.2 / layers each, albedo 0.9): a ray to the ball crosses `layers` stretches, more
+/// than `MediaCrossed::CAPACITY` (8) when `layers > 8`, which sends the path to book 2's scattering
+/// with its own light sample. A two-sided quad light stands beside it in the media, a glass quad (an
+/// open dielectric: a path through it never counts as out again) in front, and a rotated box of
+/// smoke (a boundary that is no sphere) at the side.
+fn layered_media(layers: usize) -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let haze = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.9)),
+    });
+    let glow = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(4.0)),
+        two_sided: true,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    let centre = Point3::new(0.0, 1.5, 0.0);
+    b.sphere(w, centre, 0.3, glow).unwrap();
+    for k in 0..layers {
+        let boundary = b.group();
+        b.sphere(boundary, centre, 0.5 + 0.25 * k as f64, white)
+            .unwrap();
+        b.medium(w, boundary, 1.2 / layers as f64, haze).unwrap();
+    }
+    b.quad(
+        w,
+        Point3::new(1.2, 0.3, -0.5),
+        Vec3::new(0.0, 0.8, 0.0),
+        Vec3::new(0.3, 0.0, 1.0),
+        glow,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-2.0, 0.0, 2.0),
+        Vec3::new(1.8, 0.0, 0.0),
+        Vec3::new(0.0, 1.6, 0.0),
+        glass,
+    )
+    .unwrap();
+    let smoke = b
+        .box_group(Point3::ZERO, Point3::new(1.0, 1.2, 1.0), white)
+        .unwrap();
+    let placed = b.group();
+    b.instance(
+        placed,
+        smoke,
+        Transform::rotate_y(30.0).then(Transform::translate(Vec3::new(-2.6, 0.0, -0.5))),
+    );
+    b.medium(w, placed, 0.8, haze).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 1.5, 5.0),
+        lookat: Point3::new(-0.3, 1.1, 0.0),
+        vfov: 45.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::splat(0.05));
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+fn render_variant(scene: &Scene, seed: u64, variant: MisVariant) -> Vec<Color> {
+    let options = MisOptions::DEFAULT;
+    let r = Renderer::new(scene, settings(WIDTH, seed, Strategy::Mis(options)));
+    let (w, h) = (r.camera.width, r.camera.height);
+    let mut ctx = Ctx::new();
+    let mut img = vec![Color::ZERO; w * h];
+    for j in 0..h {
+        for i in 0..w {
+            let pixel = (j * w + i) as u64;
+            let key = sample_key(seed, pixel, u64::MAX);
+            for k in 0..BATCH_SPP {
+                ctx.rng = SampleRng::for_sample(seed, pixel, k);
+                ctx.sampler = Sampler::new(options.low_discrepancy, key, k);
+                let ray = r.camera.ray(i, j, key, k, &mut ctx);
+                let v = radiance_mis_variant(
+                    scene, &r.lights, ray, MAX_DEPTH, options, variant, &mut ctx,
+                );
+                assert!(v.is_finite());
+                img[j * w + i] += v / BATCH_SPP as f64;
+            }
+        }
+    }
+    img
+}
+
+fn region_means(image: impl Fn(u64) -> Vec<Color>) -> Vec<Vec<f64>> {
+    let cell = WIDTH / GRID;
+    let mut out = vec![Vec::new(); GRID * GRID];
+    for b in 0..BATCHES {
+        let img = image(7000 + b);
+        let h = img.len() / WIDTH;
+        for (r, o) in out.iter_mut().enumerate() {
+            let (ci, cj) = (r % GRID, r / GRID);
+            let (rows, cols) = (
+                cj * h / GRID..(cj + 1) * h / GRID,
+                ci * cell..(ci + 1) * cell,
+            );
+            let n = (rows.len() * cols.len()) as f64;
+            let mut sum = 0.0;
+            for j in rows {
+                for i in cols.clone() {
+                    sum += img[j * WIDTH + i].x;
+                }
+            }
+            o.push(sum / n);
+        }
+    }
+    out
+}
+
+/// The regions whose means differ at a family-wise false-failure rate of 1e-6 (Bonferroni).
+fn disagreements(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<String> {
+    let alpha = 1e-6 / (GRID * GRID) as f64;
+    a.iter()
+        .zip(b)
+        .enumerate()
+        .filter_map(|(r, (x, y))| {
+            let p = welch_p(x, y);
+            (p < alpha).then(|| {
+                format!(
+                    "region {r}: {:.5} vs {:.5}, p = {p:.2e}",
+                    mean_var(x).0,
+                    mean_var(y).0
+                )
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn mis_agrees_with_cosine_through_many_media_an_open_dielectric_and_a_box_of_smoke() {
+    for layers in [2, 10] {
+        let scene = layered_media(layers);
+        // A ray from the camera towards the glow crosses `layers` stretches (the overflow path for 10).
+        let mut ctx = Ctx::new();
+        ctx.media = rtl_render::sampler::MediumMode::Record;
+        ctx.crossed.clear();
+        let from = Point3::new(0.0, 1.5, 5.0);
+        scene.hit(
+            &Ray::new(from, Point3::new(0.0, 1.5, 0.0) - from, 0.0),
+            &mut ctx,
+        );
+        assert_eq!(ctx.crossed.overflow, layers > 8, "{layers} layers");
+        let cosine = region_means(|seed| {
+            let (acc, stats) = render(&scene, settings(WIDTH, seed, Strategy::Cosine), BATCH_SPP);
+            assert_eq!(stats.non_finite, 0);
+            acc.image()
+        });
+        let mis = region_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+        let d = disagreements(&cosine, &mis);
+        assert!(
+            d.is_empty(),
+            "{layers} layers, mis vs cosine:\n{}",
+            d.join("\n")
+        );
+        // The check has the power to see a wrong segment estimator in this scene.
+        let wrong = region_means(|seed| {
+            render_variant(&scene, seed, MisVariant::WrongSegmentTransmittance)
+        });
+        assert!(
+            !disagreements(&cosine, &wrong).is_empty(),
+            "{layers} layers: the missing transmittance went unnoticed"
+        );
+    }
+}
