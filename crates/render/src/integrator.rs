@@ -400,9 +400,43 @@ impl Equiangular {
             mass: 0.0,
         }
     }
+    /// `x = (t - delta) / h = tan(theta)`.
     #[inline]
-    fn theta(&self, t: f64) -> f64 {
-        ((t - self.delta) / self.h).atan()
+    fn x(&self, t: f64) -> f64 {
+        (t - self.delta) / self.h
+    }
+    /// `theta`'s range over `t0..t1` (`t0 <= t1`). On one side of the foot as
+    /// `atan((x1 - x0) / (1 + x0 x1))` with `x1 - x0 = (t1 - t0) / h`: the difference of the two
+    /// angles cancels to rounding when they are alike (an emitter far from a short stretch: at 1e20
+    /// units away the stretch's angle is below the angles' rounding, and read as 0).
+    #[inline]
+    fn angle(&self, t0: f64, t1: f64) -> f64 {
+        let (x0, x1) = (self.x(t0), self.x(t1));
+        if x0 * x1 >= 0.0 {
+            ((t1 - t0) / self.h / (1.0 + x0 * x1)).atan()
+        } else {
+            x1.atan() - x0.atan()
+        }
+    }
+    /// The `t` in `t0..t1` whose angle from `t0` is `phi` (in `0..=angle(t0, t1)`). On one side of
+    /// the foot by the tangent's addition formula, as an offset from `t0`:
+    /// `t - t0 = h tan(phi) (1 + x0^2) / (1 - x0 tan(phi))` (for the same reason as [`Self::angle`]).
+    #[inline]
+    fn at_angle(&self, t0: f64, t1: f64, phi: f64) -> f64 {
+        let (x0, x1) = (self.x(t0), self.x(t1));
+        let t = if x0 * x1 >= 0.0 {
+            let tau = phi.tan();
+            let den = 1.0 - x0 * tau;
+            // (positive for phi within the range; rounding at the pole ends at t1)
+            if den > 0.0 {
+                t0 + self.h * tau * (1.0 + x0 * x0) / den
+            } else {
+                t1
+            }
+        } else {
+            self.delta + self.h * (x0.atan() + phi).tan()
+        };
+        t.clamp(t0, t1)
     }
     #[inline]
     fn q(&self, t: f64) -> f64 {
@@ -515,7 +549,10 @@ fn segment_light(
         *e = Equiangular::about(ray, c);
         e.mass = crossed
             .stretches()
-            .map(|((t0, t1, _), _)| (e.theta(t1.min(t_surface)) - e.theta(t0)).max(0.0))
+            .map(|((t0, t1, _), _)| {
+                let t1 = t1.min(t_surface);
+                if t1 > t0 { e.angle(t0, t1) } else { 0.0 }
+            })
             .sum();
     }
     let centres = &centres[..n];
@@ -527,20 +564,20 @@ fn segment_light(
     let mut pick = ctx.uniform() * e.mass;
     let mut chosen = None;
     for ((t0, t1, density), m) in crossed.stretches() {
-        let (a, b) = (e.theta(t0), e.theta(t1.min(t_surface)));
-        if b > a {
-            chosen = Some((a, b, t0, t1.min(t_surface), density, m));
-            if pick < b - a {
+        let t1 = t1.min(t_surface);
+        let range = if t1 > t0 { e.angle(t0, t1) } else { 0.0 };
+        if range > 0.0 {
+            chosen = Some((range, t0, t1, density, m));
+            if pick < range {
                 break;
             }
-            pick -= b - a;
+            pick -= range;
         }
     }
-    let Some((a, b, t0, t1, density, m)) = chosen else {
+    let Some((range, t0, t1, density, m)) = chosen else {
         return Color::ZERO;
     };
-    let theta = a + (pick / (b - a)).clamp(0.0, 1.0) * (b - a);
-    let t = (e.delta + e.h * theta.tan()).clamp(t0, t1);
+    let t = e.at_angle(t0, t1, pick.clamp(0.0, range));
     let q = centres.iter().map(|e| e.q(t)).sum::<f64>() / n as f64;
     let hit = Hit {
         t,
@@ -863,3 +900,55 @@ pub fn radiance_mis_variant(
     l
 }
 // ANCHOR_END: radiance_mis
+
+#[cfg(test)]
+mod tests {
+    use super::Equiangular;
+
+    /// `angle` is the difference of the angles, and `at_angle` its inverse, for a point near the
+    /// stretch and for one 1e20 away (where the plain difference `atan(x1) - atan(x0)` of two angles
+    /// near pi/4 is all rounding). (Not for `h` near the floor of 1e-9: there the ulp of `t` itself
+    /// is a sizeable angle.)
+    #[test]
+    fn equiangular_angles_and_their_inverse_hold_near_and_far() {
+        for (delta, h) in [
+            (0.5, 2.0),
+            (-3.0, 0.1),
+            (1e20, 1e20),
+            (-1e20, 1e18),
+            (4.0, 1e-4),
+        ] {
+            let e = Equiangular {
+                delta,
+                h,
+                mass: 1.0,
+            };
+            for (t0, t1) in [(0.0, 1.0), (2.0, 9.0), (3.9, 4.1)] {
+                let range = e.angle(t0, t1);
+                let plain = e.x(t1).atan() - e.x(t0).atan();
+                assert!(range >= 0.0);
+                if h < 1e10 {
+                    assert!((range - plain).abs() <= 1e-12 * plain.abs().max(1e-300) + 1e-15);
+                }
+                for f in [0.1, 0.5, 0.9] {
+                    let t = e.at_angle(t0, t1, f * range);
+                    assert!((t0..=t1).contains(&t));
+                    let back = e.angle(t0, t);
+                    assert!(
+                        (back - f * range).abs() <= 1e-9 * range,
+                        "{delta} {h} {t0}..{t1}: {back} vs {}",
+                        f * range
+                    );
+                }
+            }
+        }
+        // The plain difference loses the far stretch: it is what the density was built from before.
+        let far = Equiangular {
+            delta: 1e20,
+            h: 1e20,
+            mass: 1.0,
+        };
+        let plain = far.x(1.0).atan() - far.x(0.0).atan();
+        assert!((plain - far.angle(0.0, 1.0)).abs() > 0.5 * far.angle(0.0, 1.0));
+    }
+}

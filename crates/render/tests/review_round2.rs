@@ -490,3 +490,63 @@ fn mis_agrees_with_cosine_through_many_media_an_open_dielectric_and_a_box_of_smo
         );
     }
 }
+
+/// A floor under a small lamp in a fog (radius 20, density 0.05), and a dim sun of radius `d / 100`
+/// at distance `d` overhead: the first emitter, so the segment's equiangular density is mixed from
+/// both centres.
+fn fog_under_a_far_sun(d: f64) -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let haze = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.9)),
+    });
+    let sun = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(0.001)),
+        two_sided: false,
+    });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(6.0)),
+        two_sided: false,
+    });
+    b.sphere(w, Point3::new(0.0, d, 0.0), d / 100.0, sun)
+        .unwrap();
+    b.sphere(w, Point3::new(0.0, 3.0, 0.0), 0.2, lamp).unwrap();
+    b.quad(
+        w,
+        Point3::new(-5.0, 0.0, 5.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -10.0),
+        white,
+    )
+    .unwrap();
+    let boundary = b.group();
+    b.sphere(boundary, Point3::ZERO, 20.0, white).unwrap();
+    b.medium(w, boundary, 0.05, haze).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 1.0, 10.0),
+        lookat: Point3::new(0.0, 1.0, 0.0),
+        vfov: 40.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+#[test]
+fn segment_light_samples_agree_under_a_far_emitter() {
+    // At 1e20 the equiangular angles about the sun's centre differed by less than their rounding:
+    // the segment's density was read as empty (no light sample at all, for the lamp either) or its
+    // points were drawn otherwise than its density says. Against the light sample taken where the
+    // path scatters (no equiangular density).
+    for d in [1e8, 1e20] {
+        let scene = fog_under_a_far_sun(d);
+        let before = region_means(|seed| {
+            render_variant(&scene, seed, MisVariant::LightSampleWhereScattered)
+        });
+        let now = region_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+        let dis = disagreements(&before, &now);
+        assert!(dis.is_empty(), "sun at {d:e}:\n{}", dis.join("\n"));
+    }
+}
