@@ -246,13 +246,22 @@ use rtl_render::material::Albedo;
 /// A medium (density 0.3) in a sphere of radius `r` about the origin: its boundary the sphere itself
 /// (one solve) if `direct`, else the sphere one group deeper (two boundary queries).
 fn sphere_fog(direct: bool, r: f64) -> Scene {
+    sphere_fog_moving(direct, r, Vec3::ZERO)
+}
+
+/// [`sphere_fog`] with the sphere moving by `motion` over the shutter.
+fn sphere_fog_moving(direct: bool, r: f64, motion: Vec3) -> Scene {
     let mut b = SceneBuilder::new();
     let m = b.material(Material::lambertian(Color::ONE));
     let fog = b.material(Material::Isotropic {
         albedo: Albedo::Constant(Color::ONE),
     });
     let sphere = b.group();
-    b.sphere(sphere, Point3::ZERO, r, m).unwrap();
+    if motion == Vec3::ZERO {
+        b.sphere(sphere, Point3::ZERO, r, m).unwrap();
+    } else {
+        b.moving_sphere(sphere, Point3::ZERO, motion, r, m).unwrap();
+    }
     let boundary = if direct {
         sphere
     } else {
@@ -549,4 +558,36 @@ fn segment_light_samples_agree_under_a_far_emitter() {
         let dis = disagreements(&before, &now);
         assert!(dis.is_empty(), "sun at {d:e}:\n{}", dis.join("\n"));
     }
+}
+
+#[test]
+fn a_moving_sphere_medium_in_one_solve_agrees_with_the_two_queries() {
+    let motion = Vec3::new(0.7, 0.2, 0.0);
+    let (one, two) = (
+        sphere_fog_moving(true, 2.0, motion),
+        sphere_fog_moving(false, 2.0, motion),
+    );
+    let (mut ca, mut cb) = (Ctx::new(), Ctx::new());
+    let mut scattered = 0;
+    for k in 0..2000 {
+        let time = (k % 11) as f64 / 10.0;
+        let d = Vec3::new(
+            0.3 * (k as f64 * 0.37).sin(),
+            0.3 * (k as f64 * 0.71).cos(),
+            -1.0,
+        );
+        let ray = Ray::new(
+            Point3::new(0.3, -0.2, 6.0) + (k % 7) as f64 * 0.05 * Vec3::X,
+            d,
+            time,
+        );
+        let (ha, hb) = (
+            record(one.hit(&ray, &mut ca)),
+            record(two.hit(&ray, &mut cb)),
+        );
+        assert_eq!(ha, hb, "{ray:?}");
+        assert_eq!(ca.uniform().to_bits(), cb.uniform().to_bits(), "{ray:?}");
+        scattered += ha.is_some() as usize;
+    }
+    assert!(scattered > 200, "{scattered}");
 }
