@@ -370,6 +370,13 @@ fn light_sample(
 /// constants 0.222, 0.212, 0.211 at 734-760k, 655-662k, 622-654k samples/s per core: 1 is soonest
 /// to a given noise, by a little.
 pub const SEGMENT_SAMPLE_RATE: f64 = 1.0;
+/// The largest optical depth of a segment that takes its light sample at an equiangular point. The
+/// equiangular density ignores the transmittance: in a medium much denser than the segment is long
+/// the light is scattered from a skin of depth `1 / sigma` where the segment enters, which it almost
+/// never draws a point in (and at density 1e30 cannot: the ulp of `t` is wider than the skin). Such a
+/// segment's scattering point takes its own light sample instead, as before segment sampling. At
+/// `tau` 8 the transmittance ends at 3e-4: the equiangular points are still where the light is.
+pub const SEGMENT_MAX_OPTICAL_DEPTH: f64 = 8.0;
 /// The emitters whose centres the equiangular density of a segment is mixed from (the first ones
 /// of the scene; any density that covers the segment is unbiased, these make it a good one).
 const EQUIANGULAR_CENTRES: usize = 4;
@@ -460,9 +467,10 @@ impl Equiangular {
 /// direction meets keeps its power-heuristic weight, which with the segment's weight sums to 1 at
 /// every point and direction, so the two estimate complementary parts of the same integral.
 ///
-/// Returns the vertex, whether it takes a light sample itself (a surface, or a medium point when more
-/// media were crossed than can be recorded and the ray was traced again with book 2's scattering),
-/// and the segment's in-scattered light.
+/// Returns the vertex, whether it takes a light sample itself (a surface; a medium point when more
+/// media were crossed than can be recorded and the ray was traced again with book 2's scattering, or
+/// when the segment is deeper than [`SEGMENT_MAX_OPTICAL_DEPTH`]), and the segment's in-scattered
+/// light.
 #[inline]
 fn trace_through_media(
     scene: &Scene,
@@ -482,8 +490,12 @@ fn trace_through_media(
     }
     let crossed = ctx.crossed;
     let t_surface = surface.as_ref().map_or(f64::INFINITY, |h| h.t);
-    let in_scattered = if sample_segment {
-        segment_light(scene, lights, ray, &crossed, t_surface, variant, ctx)
+    let tau = crossed.optical_depth(t_surface);
+    // (NaN counts as dense: the point then samples the lights itself)
+    let dense = (tau > SEGMENT_MAX_OPTICAL_DEPTH || tau.is_nan())
+        && variant != MisVariant::SegmentsAtAnyDepth;
+    let in_scattered = if sample_segment && !dense {
+        segment_light(scene, lights, ray, &crossed, t_surface, tau, variant, ctx)
     } else {
         Color::ZERO
     };
@@ -513,25 +525,27 @@ fn trace_through_media(
                 material: crate::ids::MaterialId(m),
                 uv_source: crate::hit::UvSource::Uv(0.0, 0.0),
             }),
-            false,
+            dense,
             in_scattered,
         ),
     }
 }
 
-/// One equiangular point on the media stretches of `ray` before `t_surface` and its light sample,
-/// weighted `sigma T(t) / (P q(t))` (`P` the probability the segment is sampled at all).
+/// One equiangular point on the media stretches of `ray` before `t_surface` (of optical depth `tau`)
+/// and its light sample, weighted `sigma T(t) / (P q(t))` (`P` the probability the segment is sampled
+/// at all).
 #[inline]
+#[allow(clippy::too_many_arguments)] // the segment's parts, each used once
 fn segment_light(
     scene: &Scene,
     lights: &Lights,
     ray: &Ray,
     crossed: &MediaCrossed,
     t_surface: f64,
+    tau: f64,
     variant: MisVariant,
     ctx: &mut Ctx,
 ) -> Color {
-    let tau = crossed.optical_depth(t_surface);
     if lights.emitters.is_empty() || tau.is_nan() || tau <= 0.0 {
         return Color::ZERO;
     }
@@ -638,6 +652,9 @@ pub enum MisVariant {
     LightSampleWhereScattered,
     /// Wrong: the segment's light sample without the transmittance from the segment's start.
     WrongSegmentTransmittance,
+    /// Wrong in practice: segments of any optical depth take their light sample at an equiangular
+    /// point (above [`SEGMENT_MAX_OPTICAL_DEPTH`] it almost never lands where the light is).
+    SegmentsAtAnyDepth,
     /// The estimator before the fuzzy metal's density: the metal is a specular bounce, sampled only by
     /// its own directions (correct, noisier; for comparison).
     MetalAsSpecular,
