@@ -370,6 +370,13 @@ fn light_sample(
 /// constants 0.222, 0.212, 0.211 at 734-760k, 655-662k, 622-654k samples/s per core: 1 is soonest
 /// to a given noise, by a little.
 pub const SEGMENT_SAMPLE_RATE: f64 = 1.0;
+/// The largest optical depth of a segment that takes its light sample at an equiangular point. The
+/// equiangular density ignores the transmittance: in a medium much denser than the segment is long
+/// the light is scattered from a skin of depth `1 / sigma` where the segment enters, which it almost
+/// never draws a point in (and at density 1e30 cannot: the ulp of `t` is wider than the skin). Such a
+/// segment's scattering point takes its own light sample instead, as before segment sampling. At
+/// `tau` 8 the transmittance ends at 3e-4: the equiangular points are still where the light is.
+pub const SEGMENT_MAX_OPTICAL_DEPTH: f64 = 8.0;
 /// The emitters whose centres the equiangular density of a segment is mixed from (the first ones
 /// of the scene; any density that covers the segment is unbiased, these make it a good one).
 const EQUIANGULAR_CENTRES: usize = 4;
@@ -400,9 +407,43 @@ impl Equiangular {
             mass: 0.0,
         }
     }
+    /// `x = (t - delta) / h = tan(theta)`.
     #[inline]
-    fn theta(&self, t: f64) -> f64 {
-        ((t - self.delta) / self.h).atan()
+    fn x(&self, t: f64) -> f64 {
+        (t - self.delta) / self.h
+    }
+    /// `theta`'s range over `t0..t1` (`t0 <= t1`). On one side of the foot as
+    /// `atan((x1 - x0) / (1 + x0 x1))` with `x1 - x0 = (t1 - t0) / h`: the difference of the two
+    /// angles cancels to rounding when they are alike (an emitter far from a short stretch: at 1e20
+    /// units away the stretch's angle is below the angles' rounding, and read as 0).
+    #[inline]
+    fn angle(&self, t0: f64, t1: f64) -> f64 {
+        let (x0, x1) = (self.x(t0), self.x(t1));
+        if x0 * x1 >= 0.0 {
+            ((t1 - t0) / self.h / (1.0 + x0 * x1)).atan()
+        } else {
+            x1.atan() - x0.atan()
+        }
+    }
+    /// The `t` in `t0..t1` whose angle from `t0` is `phi` (in `0..=angle(t0, t1)`). On one side of
+    /// the foot by the tangent's addition formula, as an offset from `t0`:
+    /// `t - t0 = h tan(phi) (1 + x0^2) / (1 - x0 tan(phi))` (for the same reason as [`Self::angle`]).
+    #[inline]
+    fn at_angle(&self, t0: f64, t1: f64, phi: f64) -> f64 {
+        let (x0, x1) = (self.x(t0), self.x(t1));
+        let t = if x0 * x1 >= 0.0 {
+            let tau = phi.tan();
+            let den = 1.0 - x0 * tau;
+            // (positive for phi within the range; rounding at the pole ends at t1)
+            if den > 0.0 {
+                t0 + self.h * tau * (1.0 + x0 * x0) / den
+            } else {
+                t1
+            }
+        } else {
+            self.delta + self.h * (x0.atan() + phi).tan()
+        };
+        t.clamp(t0, t1)
     }
     #[inline]
     fn q(&self, t: f64) -> f64 {
@@ -426,9 +467,10 @@ impl Equiangular {
 /// direction meets keeps its power-heuristic weight, which with the segment's weight sums to 1 at
 /// every point and direction, so the two estimate complementary parts of the same integral.
 ///
-/// Returns the vertex, whether it takes a light sample itself (a surface, or a medium point when more
-/// media were crossed than can be recorded and the ray was traced again with book 2's scattering),
-/// and the segment's in-scattered light.
+/// Returns the vertex, whether it takes a light sample itself (a surface; a medium point when more
+/// media were crossed than can be recorded and the ray was traced again with book 2's scattering, or
+/// when the segment is deeper than [`SEGMENT_MAX_OPTICAL_DEPTH`]), and the segment's in-scattered
+/// light.
 #[inline]
 fn trace_through_media(
     scene: &Scene,
@@ -448,8 +490,12 @@ fn trace_through_media(
     }
     let crossed = ctx.crossed;
     let t_surface = surface.as_ref().map_or(f64::INFINITY, |h| h.t);
-    let in_scattered = if sample_segment {
-        segment_light(scene, lights, ray, &crossed, t_surface, variant, ctx)
+    let tau = crossed.optical_depth(t_surface);
+    // (NaN counts as dense: the point then samples the lights itself)
+    let dense = (tau > SEGMENT_MAX_OPTICAL_DEPTH || tau.is_nan())
+        && variant != MisVariant::SegmentsAtAnyDepth;
+    let in_scattered = if sample_segment && !dense {
+        segment_light(scene, lights, ray, &crossed, t_surface, tau, variant, ctx)
     } else {
         Color::ZERO
     };
@@ -479,25 +525,27 @@ fn trace_through_media(
                 material: crate::ids::MaterialId(m),
                 uv_source: crate::hit::UvSource::Uv(0.0, 0.0),
             }),
-            false,
+            dense,
             in_scattered,
         ),
     }
 }
 
-/// One equiangular point on the media stretches of `ray` before `t_surface` and its light sample,
-/// weighted `sigma T(t) / (P q(t))` (`P` the probability the segment is sampled at all).
+/// One equiangular point on the media stretches of `ray` before `t_surface` (of optical depth `tau`)
+/// and its light sample, weighted `sigma T(t) / (P q(t))` (`P` the probability the segment is sampled
+/// at all).
 #[inline]
+#[allow(clippy::too_many_arguments)] // the segment's parts, each used once
 fn segment_light(
     scene: &Scene,
     lights: &Lights,
     ray: &Ray,
     crossed: &MediaCrossed,
     t_surface: f64,
+    tau: f64,
     variant: MisVariant,
     ctx: &mut Ctx,
 ) -> Color {
-    let tau = crossed.optical_depth(t_surface);
     if lights.emitters.is_empty() || tau.is_nan() || tau <= 0.0 {
         return Color::ZERO;
     }
@@ -515,7 +563,10 @@ fn segment_light(
         *e = Equiangular::about(ray, c);
         e.mass = crossed
             .stretches()
-            .map(|((t0, t1, _), _)| (e.theta(t1.min(t_surface)) - e.theta(t0)).max(0.0))
+            .map(|((t0, t1, _), _)| {
+                let t1 = t1.min(t_surface);
+                if t1 > t0 { e.angle(t0, t1) } else { 0.0 }
+            })
             .sum();
     }
     let centres = &centres[..n];
@@ -527,20 +578,20 @@ fn segment_light(
     let mut pick = ctx.uniform() * e.mass;
     let mut chosen = None;
     for ((t0, t1, density), m) in crossed.stretches() {
-        let (a, b) = (e.theta(t0), e.theta(t1.min(t_surface)));
-        if b > a {
-            chosen = Some((a, b, t0, t1.min(t_surface), density, m));
-            if pick < b - a {
+        let t1 = t1.min(t_surface);
+        let range = if t1 > t0 { e.angle(t0, t1) } else { 0.0 };
+        if range > 0.0 {
+            chosen = Some((range, t0, t1, density, m));
+            if pick < range {
                 break;
             }
-            pick -= b - a;
+            pick -= range;
         }
     }
-    let Some((a, b, t0, t1, density, m)) = chosen else {
+    let Some((range, t0, t1, density, m)) = chosen else {
         return Color::ZERO;
     };
-    let theta = a + (pick / (b - a)).clamp(0.0, 1.0) * (b - a);
-    let t = (e.delta + e.h * theta.tan()).clamp(t0, t1);
+    let t = e.at_angle(t0, t1, pick.clamp(0.0, range));
     let q = centres.iter().map(|e| e.q(t)).sum::<f64>() / n as f64;
     let hit = Hit {
         t,
@@ -601,6 +652,9 @@ pub enum MisVariant {
     LightSampleWhereScattered,
     /// Wrong: the segment's light sample without the transmittance from the segment's start.
     WrongSegmentTransmittance,
+    /// Wrong in practice: segments of any optical depth take their light sample at an equiangular
+    /// point (above [`SEGMENT_MAX_OPTICAL_DEPTH`] it almost never lands where the light is).
+    SegmentsAtAnyDepth,
     /// The estimator before the fuzzy metal's density: the metal is a specular bounce, sampled only by
     /// its own directions (correct, noisier; for comparison).
     MetalAsSpecular,
@@ -673,7 +727,8 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
 ///
 /// The books' fuzzy metal is no specular bounce here: its directions have a density in closed form
 /// ([`FuzzyMetalPdf`]), so it takes light samples and its emission hits are weighted like a diffuse
-/// vertex's (a metal of fuzz 0 stays a mirror).
+/// vertex's (a metal of fuzz below [`MIN_FUZZ`](crate::metal_pdf::MIN_FUZZ), 0 included, stays a
+/// mirror).
 ///
 /// Numbers per bounce `b`: the light choice and direction from [`Dimension::Light`]`(b)`, the
 /// material's from [`Dimension::Material`]`(b)`, roulette from [`Dimension::Roulette`]`(b)`.
@@ -753,7 +808,8 @@ pub fn radiance_mis_variant(
         }
         let fuzzy_metal = match material {
             Material::Metal { albedo, fuzz }
-                if *fuzz > 0.0 && variant != MisVariant::MetalAsSpecular =>
+                if *fuzz >= crate::metal_pdf::MIN_FUZZ
+                    && variant != MisVariant::MetalAsSpecular =>
             {
                 let lobe = FuzzyMetalPdf::new(ray.direction, hit.normal, *fuzz);
                 Some((
@@ -861,3 +917,55 @@ pub fn radiance_mis_variant(
     l
 }
 // ANCHOR_END: radiance_mis
+
+#[cfg(test)]
+mod tests {
+    use super::Equiangular;
+
+    /// `angle` is the difference of the angles, and `at_angle` its inverse, for a point near the
+    /// stretch and for one 1e20 away (where the plain difference `atan(x1) - atan(x0)` of two angles
+    /// near pi/4 is all rounding). (Not for `h` near the floor of 1e-9: there the ulp of `t` itself
+    /// is a sizeable angle.)
+    #[test]
+    fn equiangular_angles_and_their_inverse_hold_near_and_far() {
+        for (delta, h) in [
+            (0.5, 2.0),
+            (-3.0, 0.1),
+            (1e20, 1e20),
+            (-1e20, 1e18),
+            (4.0, 1e-4),
+        ] {
+            let e = Equiangular {
+                delta,
+                h,
+                mass: 1.0,
+            };
+            for (t0, t1) in [(0.0, 1.0), (2.0, 9.0), (3.9, 4.1)] {
+                let range = e.angle(t0, t1);
+                let plain = e.x(t1).atan() - e.x(t0).atan();
+                assert!(range >= 0.0);
+                if h < 1e10 {
+                    assert!((range - plain).abs() <= 1e-12 * plain.abs().max(1e-300) + 1e-15);
+                }
+                for f in [0.1, 0.5, 0.9] {
+                    let t = e.at_angle(t0, t1, f * range);
+                    assert!((t0..=t1).contains(&t));
+                    let back = e.angle(t0, t);
+                    assert!(
+                        (back - f * range).abs() <= 1e-9 * range,
+                        "{delta} {h} {t0}..{t1}: {back} vs {}",
+                        f * range
+                    );
+                }
+            }
+        }
+        // The plain difference loses the far stretch: it is what the density was built from before.
+        let far = Equiangular {
+            delta: 1e20,
+            h: 1e20,
+            mass: 1.0,
+        };
+        let plain = far.x(1.0).atan() - far.x(0.0).atan();
+        assert!((plain - far.angle(0.0, 1.0)).abs() > 0.5 * far.angle(0.0, 1.0));
+    }
+}
