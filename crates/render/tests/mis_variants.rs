@@ -23,6 +23,7 @@ use rtl_render::scene::{Background, Scene, SceneBuilder};
 use rtl_render::vec::{Point3, Vec3};
 
 mod batch_means;
+mod variant_batches;
 use batch_means::{mean_var, welch_p};
 
 const WIDTH: usize = 24;
@@ -199,82 +200,20 @@ pub fn fuzzy_metals() -> Scene {
 }
 
 fn settings(seed: u64, strategy: Strategy) -> RenderSettings {
-    RenderSettings {
-        width: WIDTH,
-        max_depth: MAX_DEPTH,
-        seed,
-        strategy,
-        mixture_weight: BOOK_MIXTURE_WEIGHT,
-    }
+    variant_batches::settings(WIDTH, MAX_DEPTH, seed, strategy)
 }
 
-/// The image of `spp` samples a pixel by `mis` as `variant` computes it (the renderer's sample loop:
-/// the same generator, sampler and camera ray for `(seed, pixel, k)`).
 fn render_variant(scene: &Scene, seed: u64, variant: MisVariant) -> Vec<Color> {
-    let options = MisOptions::DEFAULT;
-    let r = Renderer::new(scene, settings(seed, Strategy::Mis(options)));
-    let (w, h) = (r.camera.width, r.camera.height);
-    let mut ctx = Ctx::new();
-    let mut img = vec![Color::ZERO; w * h];
-    for j in 0..h {
-        for i in 0..w {
-            let pixel = (j * w + i) as u64;
-            let key = sample_key(seed, pixel, u64::MAX);
-            for k in 0..BATCH_SPP {
-                ctx.rng = SampleRng::for_sample(seed, pixel, k);
-                ctx.sampler = Sampler::new(options.low_discrepancy, key, k);
-                let ray = r.camera.ray(i, j, key, k, &mut ctx);
-                let v = radiance_mis_variant(
-                    scene, &r.lights, ray, MAX_DEPTH, options, variant, &mut ctx,
-                );
-                assert!(v.is_finite());
-                img[j * w + i] += v / BATCH_SPP as f64;
-            }
-        }
-    }
-    img
+    variant_batches::render_variant(scene, WIDTH, MAX_DEPTH, BATCH_SPP, seed, variant)
 }
 
-/// Per region, its mean radiance (channel 0; the scene is grey) in each of `BATCHES` renders.
+/// Per region, its mean radiance in each of `BATCHES` renders.
 fn batch_means(image: impl Fn(u64) -> Vec<Color>) -> Vec<Vec<f64>> {
-    let cell = WIDTH / GRID;
-    let mut out = vec![Vec::new(); GRID * GRID];
-    for b in 0..BATCHES {
-        let img = image(3000 + b);
-        for (r, o) in out.iter_mut().enumerate() {
-            let (ci, cj) = (r % GRID, r / GRID);
-            let mut sum = 0.0;
-            for j in cj * cell..(cj + 1) * cell {
-                for i in ci * cell..(ci + 1) * cell {
-                    sum += img[j * WIDTH + i].x;
-                }
-            }
-            o.push(sum / (cell * cell) as f64);
-        }
-    }
-    out
+    variant_batches::region_means(WIDTH, GRID, BATCHES, 3000, image)
 }
 
-/// The regions whose means differ at a family-wise false-failure rate of 1e-6 (Bonferroni over the
-/// regions).
 fn disagreements(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<String> {
-    let alpha = 1e-6 / (GRID * GRID) as f64;
-    a.iter()
-        .zip(b)
-        .enumerate()
-        .filter_map(|(r, (x, y))| {
-            let p = welch_p(x, y);
-            (p < alpha).then(|| {
-                format!(
-                    "region ({}, {}): {:.5} vs {:.5}, p = {p:.2e}",
-                    r % GRID,
-                    r / GRID,
-                    mean_var(x).0,
-                    mean_var(y).0
-                )
-            })
-        })
-        .collect()
+    variant_batches::disagreements(a, b, GRID)
 }
 
 fn cosine_means(scene: &Scene) -> Vec<Vec<f64>> {

@@ -310,12 +310,10 @@ fn a_sphere_medium_in_one_solve_agrees_on_rays_through_its_centre_tangent_and_fr
 
 // ---- `mis` against `cosine` where the new estimator's bookkeeping is stressed ----------------
 
-use rtl_render::integrator::{MisVariant, radiance_mis_variant};
-use rtl_render::render::Renderer;
-use rtl_render::sampler::{SampleRng, Sampler, sample_key};
+use rtl_render::integrator::MisVariant;
 
 mod batch_means;
-use batch_means::{mean_var, welch_p};
+mod variant_batches;
 
 const WIDTH: usize = 24;
 const BATCHES: u64 = 32;
@@ -395,72 +393,15 @@ fn layered_media(layers: usize) -> Scene {
 }
 
 fn render_variant(scene: &Scene, seed: u64, variant: MisVariant) -> Vec<Color> {
-    let options = MisOptions::DEFAULT;
-    let r = Renderer::new(scene, settings(WIDTH, seed, Strategy::Mis(options)));
-    let (w, h) = (r.camera.width, r.camera.height);
-    let mut ctx = Ctx::new();
-    let mut img = vec![Color::ZERO; w * h];
-    for j in 0..h {
-        for i in 0..w {
-            let pixel = (j * w + i) as u64;
-            let key = sample_key(seed, pixel, u64::MAX);
-            for k in 0..BATCH_SPP {
-                ctx.rng = SampleRng::for_sample(seed, pixel, k);
-                ctx.sampler = Sampler::new(options.low_discrepancy, key, k);
-                let ray = r.camera.ray(i, j, key, k, &mut ctx);
-                let v = radiance_mis_variant(
-                    scene, &r.lights, ray, MAX_DEPTH, options, variant, &mut ctx,
-                );
-                assert!(v.is_finite());
-                img[j * w + i] += v / BATCH_SPP as f64;
-            }
-        }
-    }
-    img
+    variant_batches::render_variant(scene, WIDTH, MAX_DEPTH, BATCH_SPP, seed, variant)
 }
 
 fn region_means(image: impl Fn(u64) -> Vec<Color>) -> Vec<Vec<f64>> {
-    let cell = WIDTH / GRID;
-    let mut out = vec![Vec::new(); GRID * GRID];
-    for b in 0..BATCHES {
-        let img = image(7000 + b);
-        let h = img.len() / WIDTH;
-        for (r, o) in out.iter_mut().enumerate() {
-            let (ci, cj) = (r % GRID, r / GRID);
-            let (rows, cols) = (
-                cj * h / GRID..(cj + 1) * h / GRID,
-                ci * cell..(ci + 1) * cell,
-            );
-            let n = (rows.len() * cols.len()) as f64;
-            let mut sum = 0.0;
-            for j in rows {
-                for i in cols.clone() {
-                    sum += img[j * WIDTH + i].x;
-                }
-            }
-            o.push(sum / n);
-        }
-    }
-    out
+    variant_batches::region_means(WIDTH, GRID, BATCHES, 7000, image)
 }
 
-/// The regions whose means differ at a family-wise false-failure rate of 1e-6 (Bonferroni).
 fn disagreements(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<String> {
-    let alpha = 1e-6 / (GRID * GRID) as f64;
-    a.iter()
-        .zip(b)
-        .enumerate()
-        .filter_map(|(r, (x, y))| {
-            let p = welch_p(x, y);
-            (p < alpha).then(|| {
-                format!(
-                    "region {r}: {:.5} vs {:.5}, p = {p:.2e}",
-                    mean_var(x).0,
-                    mean_var(y).0
-                )
-            })
-        })
-        .collect()
+    variant_batches::disagreements(a, b, GRID)
 }
 
 #[test]
