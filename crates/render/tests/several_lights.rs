@@ -4,6 +4,7 @@
 //! what goes wrong with several: a light drawn from behind, whose direction then meets the front of
 //! another emitter, weighted by a density that does not describe how it was drawn (issue 12).
 
+use rtl_pdf::ShapeSampler as _;
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, Strategy};
@@ -120,6 +121,13 @@ pub fn three_kinds_of_emitters() -> Scene {
 /// (constant density 0.6, albedo 0.8) with an emitting ball inside it that no list names: next-event
 /// estimation must find the ball by itself and weight shadow rays by the smoke's transmittance.
 pub fn medium_and_lights() -> Scene {
+    medium_and_lights_with(false)
+}
+
+/// [`medium_and_lights`], and if `lamp_facing_up`, a second one-sided lamp between the smoke and the
+/// ceiling light, facing up: every point of the smoke sees it from behind (where it offers no
+/// direction and has density 0), and it shades part of the ceiling light.
+fn medium_and_lights_with(lamp_facing_up: bool) -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let white = b.material(Material::lambertian(Color::splat(0.7)));
@@ -152,6 +160,17 @@ pub fn medium_and_lights() -> Scene {
         )
         .unwrap();
     b.targets.push(ImportanceTarget::Quad(lamp));
+    if lamp_facing_up {
+        // u x v points up (+y): its front faces the ceiling light's back.
+        b.quad(
+            w,
+            Point3::new(-0.5, 3.0, -0.5),
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            ceiling,
+        )
+        .unwrap();
+    }
     let boundary = b
         .box_group(
             Point3::new(-1.5, 0.5, -1.5),
@@ -291,6 +310,33 @@ fn a_medium_with_lights_cosine_mixture_and_mis_agree() {
                 russian_roulette: false,
                 ..MisOptions::default()
             }),
+        ],
+    );
+}
+
+#[test]
+fn a_medium_under_a_lamp_seen_from_behind_cosine_and_mis_agree() {
+    // The smoke's light samples (at points on each ray's segment through it, and at surface points)
+    // draw among three emitters, one of which every point of the smoke sees from behind.
+    let scene = medium_and_lights_with(true);
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(lights.emitters.len(), 3);
+    let inside = Point3::new(0.0, 1.5, 0.5);
+    let behind = lights
+        .emitters
+        .iter()
+        .filter(|t| t.sample(inside, glam::DVec2::new(0.3, 0.6)).is_none())
+        .count();
+    assert_eq!(
+        behind, 1,
+        "one lamp is seen from behind and offers no direction"
+    );
+    agree(
+        &scene,
+        &[
+            Strategy::Cosine,
+            Strategy::Mixture,
+            Strategy::Mis(MisOptions::default()),
         ],
     );
 }
