@@ -58,8 +58,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub replot: bool,
     /// A small, fast look: 48x48, a 1024-spp reference, up to 16 spp: about 10 s on 2 cores. The full
-    /// study takes about a minute (47 s measured) on 2 quiet cores with the reference cached (6 under a load average of 9),
-    /// plus about 4 to render the 8192-spp reference once.
+    /// study takes about a minute (47 s measured) on 2 quiet cores with the reference cached (6 minutes
+    /// under a load average of 9), plus about 4 minutes to render the 8192-spp reference once.
     #[arg(long)]
     pub quick: bool,
 }
