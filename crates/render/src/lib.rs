@@ -25,6 +25,7 @@ pub mod builder;
 pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
+pub mod flatten;
 pub mod hit;
 pub mod ids;
 pub mod integrator;

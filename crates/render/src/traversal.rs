@@ -30,10 +30,11 @@ pub struct Accel {
     pub other_bounds: Vec<Aabb>,
 }
 
-/// The largest group traversed in the flat form: its quads in at most two packets and at most two
+/// The largest group traversed in the flat form: its quads in at most three packets (the Cornell
+/// room's six walls and its box's six faces, flattened into it by [`crate::flatten`]) and at most two
 /// other objects. A tree over so few objects costs more in box tests and stack work than it culls:
 /// every ray inside the Cornell room meets the boxes of most of its walls.
-pub const SMALL_QUADS: usize = 2 * PACKET;
+pub const SMALL_QUADS: usize = 3 * PACKET;
 /// See [`SMALL_QUADS`].
 pub const SMALL_OTHERS: usize = 2;
 
