@@ -4,6 +4,7 @@
 use crate::aabb::Aabb;
 use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
+use crate::flatten::flatten_instances;
 use crate::ids::{GroupId, MaterialId, TextureId};
 use crate::material::{Albedo, Material};
 use crate::scene::{
@@ -51,6 +52,10 @@ pub struct SceneBuilder {
     pub background: Background,
     pub max_depth: u32,
     pub targets: Vec<ImportanceTarget>,
+    /// Whether small groups' rigid instances of quads are flattened into them at build time
+    /// ([`crate::flatten`]); on by default. Off builds the scene as placed, instance by instance (the
+    /// reference the flattened form is tested against).
+    pub flatten: bool,
 }
 
 impl Default for SceneBuilder {
@@ -69,6 +74,7 @@ impl SceneBuilder {
             background: Background::Solid(Color::ZERO),
             max_depth: 50,
             targets: Vec::new(),
+            flatten: true,
         }
     }
 
@@ -258,7 +264,24 @@ impl SceneBuilder {
         let mut draws_of = vec![false; n];
         let order = self.build_order()?;
         for &gi in &order {
-            let objects = &self.groups[gi];
+            // Whether a hit in this group may draw random numbers (a medium, here or nested): its
+            // objects are then tested in the tree's order, which the random stream depends on.
+            let draws = self.groups[gi].iter().any(|o| match o {
+                Object::Medium(_) => true,
+                Object::Instance { group, .. } | Object::Group(group) => {
+                    draws_of.get(group.0 as usize).copied().unwrap_or(false)
+                }
+                _ => false,
+            });
+            draws_of[gi] = draws;
+            // A small group's rigid instances of quads, flattened into it (see `crate::flatten`).
+            let flattened;
+            let objects = if draws || !self.flatten {
+                &self.groups[gi]
+            } else {
+                flattened = flatten_instances(&self.groups[gi], &self.groups, &self.materials);
+                &flattened
+            };
             let mut bounds = Vec::with_capacity(objects.len());
             for o in objects {
                 let b = match o {
@@ -281,14 +304,6 @@ impl SceneBuilder {
             let bvh = Bvh::build_with_costs(&bounds, &costs);
             let objects_in_order: Vec<Object> =
                 bvh.order.iter().map(|&i| objects[i as usize]).collect();
-            // Whether a hit in this group may draw random numbers (a medium, here or nested): its
-            // objects are then tested in the tree's order, which the random stream depends on.
-            let draws = objects.iter().any(|o| match o {
-                Object::Medium(_) => true,
-                Object::Instance { group, .. } | Object::Group(group) => draws_of[group.0 as usize],
-                _ => false,
-            });
-            draws_of[gi] = draws;
             let bounds_in_order: Vec<Aabb> =
                 bvh.order.iter().map(|&i| bounds[i as usize]).collect();
             bounds_of[gi] = Some(bvh.bounds());

@@ -2,7 +2,8 @@
 //! importance sampling of "The Rest of Your Life" stands on.
 //!
 //! One concept a module, in the books' order: vectors ([`vec`](mod@vec)) and rays ([`ray`]); bounding boxes
-//! ([`aabb`]) and the BVH ([`bvh`]), with four-lane packets ([`lanes`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
+//! ([`aabb`]) and the BVH ([`bvh`]), with four-lane packets ([`lanes`]) and rigid instances flattened into
+//! world space ([`flatten`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);
 //! the integrator and its sampling strategies ([`integrator`]);
@@ -25,6 +26,7 @@ pub mod builder;
 pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
+pub mod flatten;
 pub mod hit;
 pub mod ids;
 pub mod integrator;

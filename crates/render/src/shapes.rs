@@ -111,7 +111,20 @@ impl Sphere {
     /// projected back onto the sphere, which bounds its error by the sphere's own magnitude.
     #[inline]
     pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
-        let t = Self::first_root_in(self.roots(ray)?, range)?;
+        let t = self.hit_t(ray, range)?;
+        Some(self.hit_at(ray, t))
+    }
+
+    /// The parameter of [`Sphere::hit`]'s hit, without its record: the traversal builds the record
+    /// ([`Sphere::hit_at`]) only for the closest hit.
+    #[inline(always)]
+    pub fn hit_t(&self, ray: &Ray, range: Interval) -> Option<f64> {
+        Self::first_root_in(self.roots(ray)?, range)
+    }
+
+    /// The record of [`Sphere::hit`]'s hit at parameter `t` (found by [`Sphere::hit_t`]).
+    #[inline]
+    pub fn hit_at(&self, ray: &Ray, t: f64) -> Hit {
         let center = self.center_at(ray.time);
         let r = self.radius;
         // The outward normal (inward for a negative radius, book 1's hollow sphere), and the hit point
@@ -120,7 +133,7 @@ impl Sphere {
         let p = center + r * outward;
         let (normal, front_face) = Hit::face(ray, outward);
         let err = self.hit_error(ray.time);
-        Some(Hit {
+        Hit {
             t,
             p,
             normal,
@@ -128,7 +141,7 @@ impl Sphere {
             err,
             material: self.material,
             uv_source: UvSource::Sphere(outward),
-        })
+        }
     }
 }
 

@@ -30,10 +30,11 @@ pub struct Accel {
     pub other_bounds: Vec<Aabb>,
 }
 
-/// The largest group traversed in the flat form: its quads in at most two packets and at most two
+/// The largest group traversed in the flat form: its quads in at most three packets (the Cornell
+/// room's six walls and its box's six faces, flattened into it by [`crate::flatten`]) and at most two
 /// other objects. A tree over so few objects costs more in box tests and stack work than it culls:
 /// every ray inside the Cornell room meets the boxes of most of its walls.
-pub const SMALL_QUADS: usize = 2 * PACKET;
+pub const SMALL_QUADS: usize = 3 * PACKET;
 /// See [`SMALL_QUADS`].
 pub const SMALL_OTHERS: usize = 2;
 
@@ -133,7 +134,8 @@ impl Scene {
 
     /// The closest hit in group `g` with `t` in the open interval `range`: iterative traversal of the
     /// 4-wide BVH, nearest child first, skipping any child whose box the ray enters beyond the closest
-    /// hit so far. Quads are tested four at a time and only the closest hit's record is built.
+    /// hit so far. Quads are tested four at a time, and only the closest hit's record is built if it
+    /// is a quad's or a sphere's.
     ///
     /// On x86-64 processors with AVX2 (detected at run time) the same code is compiled for 4-wide
     /// vectors and the quad packets use [`Quad4::hit_avx`]; rounding is identical (no fused
@@ -205,6 +207,8 @@ impl Scene {
         // The closest hit so far: a quad (packet, lane, alpha, beta) whose record is not built yet,
         // or another object's record.
         let mut best_quad: Option<(u32, usize, f64, f64)> = None;
+        // Or a sphere's, its record not built yet either.
+        let mut best_sphere: Option<&Sphere> = None;
         let mut best_other: Option<Hit> = None;
         // Stacked children and their entry parameters. Left uninitialised (clearing them costs as much
         // as a box test): only the entries below `sp` are ever read, and each was written when pushed.
@@ -254,17 +258,29 @@ impl Scene {
                             closest = h.t;
                             best_quad = Some((pi, h.lane, h.alpha, h.beta));
                             best_other = None;
+                            best_sphere = None;
                         }
                     }
                     let (o0, no) = leaf.others;
                     for &oi in &accel.others[o0 as usize..(o0 + no) as usize] {
-                        let o = &group.objects[oi as usize];
-                        if let Some(h) =
-                            self.hit_object(o, ray, Interval::new(range.min, closest), ctx)
-                        {
-                            closest = h.t;
-                            best_other = Some(h);
-                            best_quad = None;
+                        let within = Interval::new(range.min, closest);
+                        match &group.objects[oi as usize] {
+                            Object::Sphere(s) => {
+                                if let Some(t) = s.hit_t(ray, within) {
+                                    closest = t;
+                                    best_sphere = Some(s);
+                                    best_other = None;
+                                    best_quad = None;
+                                }
+                            }
+                            o => {
+                                if let Some(h) = self.hit_object(o, ray, within, ctx) {
+                                    closest = h.t;
+                                    best_other = Some(h);
+                                    best_sphere = None;
+                                    best_quad = None;
+                                }
+                            }
                         }
                     }
                 }
@@ -277,6 +293,9 @@ impl Scene {
             (next, next_near) = unsafe { (stack[sp].assume_init(), stack_near[sp].assume_init()) };
             debug_assert!(next != EMPTY);
         }
+        if let Some(s) = best_sphere {
+            return Some(s.hit_at(ray, closest));
+        }
         quad_record(group, best_quad, ray, closest).or(best_other)
     }
 
@@ -284,7 +303,7 @@ impl Scene {
     /// other, so that the nearest wall bounds the rest, then its other objects, each culled by its box
     /// against the closest hit so far. (A sphere too: its own test rejects only the rays whose line
     /// misses it, not those that meet a wall first, and a third of the Cornell box's rays are aimed
-    /// at its glass sphere.)
+    /// at its glass sphere.) As for quads, a sphere's record is built only if its hit is the closest.
     #[inline(always)]
     fn hit_small_with<const AVX: bool>(
         &self,
@@ -310,17 +329,35 @@ impl Scene {
         if accel.others.is_empty() {
             return quad_record(group, best_quad, ray, closest);
         }
+        // The closest hit if it is a sphere's, its record not built yet.
+        let mut best_sphere: Option<&Sphere> = None;
         let inv = ray.direction.recip();
         for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
             if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
                 continue;
             }
-            let o = &group.objects[oi as usize];
-            if let Some(h) = self.hit_object(o, ray, Interval::new(range.min, closest), ctx) {
-                closest = h.t;
-                best_other = Some(h);
-                best_quad = None;
+            let within = Interval::new(range.min, closest);
+            match &group.objects[oi as usize] {
+                Object::Sphere(s) => {
+                    if let Some(t) = s.hit_t(ray, within) {
+                        closest = t;
+                        best_sphere = Some(s);
+                        best_other = None;
+                        best_quad = None;
+                    }
+                }
+                o => {
+                    if let Some(h) = self.hit_object(o, ray, within, ctx) {
+                        closest = h.t;
+                        best_other = Some(h);
+                        best_sphere = None;
+                        best_quad = None;
+                    }
+                }
             }
+        }
+        if let Some(s) = best_sphere {
+            return Some(s.hit_at(ray, closest));
         }
         quad_record(group, best_quad, ray, closest).or(best_other)
     }

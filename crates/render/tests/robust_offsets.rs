@@ -124,9 +124,12 @@ fn rays_leaving_a_quad_never_rehit_it() {
 fn offsets_hold_through_instances() {
     // A rotated, translated unit box far from the origin, at every scale: rays leaving any face on the
     // outside never re-hit the (convex) box.
+    // Placed as an instance, and flattened into world space (`rtl_render::flatten`): each flattened
+    // quad's error bound must hold in world space.
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(13);
-    for s in SCALES {
+    for (s, flatten) in SCALES.into_iter().flat_map(|s| [(s, false), (s, true)]) {
         let mut b = SceneBuilder::new();
+        b.flatten = flatten;
         let m = b.material(rtl_render::material::Material::lambertian(Vec3::ONE));
         let inner = b
             .box_group(Point3::ZERO, Point3::new(1.0, 2.0, 0.5) * s, m)
@@ -137,6 +140,11 @@ fn offsets_hold_through_instances() {
             Transform::rotate_y(33.0).then(Transform::translate(Vec3::new(40.0, -7.0, 12.0) * s)),
         );
         let scene = b.build().unwrap();
+        let placed = scene.groups[0]
+            .objects
+            .iter()
+            .any(|o| matches!(o, rtl_render::scene::Object::Instance { .. }));
+        assert_eq!(placed, !flatten);
         let mut ctx = Ctx::new();
         let centre = Transform::rotate_y(33.0).point(Point3::new(0.5, 1.0, 0.25) * s)
             + Vec3::new(40.0, -7.0, 12.0) * s;

@@ -40,15 +40,17 @@ fn record(h: Option<Hit>) -> Option<Record> {
     })
 }
 
-/// A small random group `g` (up to eight quads and up to two other objects: spheres, a rotated box
-/// instance, a nested group) in a scene whose world holds it.
-fn small_scene(rng: &mut Xoshiro256PlusPlus) -> (Scene, GroupId) {
+/// A small random group `g` (up to twelve quads and up to two other objects: spheres, a rotated box
+/// instance, a nested group) in a scene whose world holds it; its box instance flattened into it if
+/// `flatten` and it fits ([`rtl_render::flatten`]).
+fn small_scene(rng: &mut Xoshiro256PlusPlus, flatten: bool) -> (Scene, GroupId) {
     let mut b = SceneBuilder::new();
+    b.flatten = flatten;
     let mats: Vec<_> = (0..3)
         .map(|i| b.material(Material::lambertian(Color::splat(0.2 + 0.3 * i as f64))))
         .collect();
     let g = b.group();
-    for _ in 0..rng.random_range(0..=8) {
+    for _ in 0..rng.random_range(0..=12) {
         let m = mats[rng.random_range(0..3)];
         let (u, v) = (
             unit(rng) * rng.random_range(0.5..6.0),
@@ -117,9 +119,15 @@ fn mismatches(scene: &Scene, g: GroupId, rays: &[Ray]) -> (usize, usize) {
 #[test]
 fn small_groups_find_the_brute_force_hits_bit_for_bit() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(16);
-    let (mut hits, mut instances) = (0, 0);
-    for _ in 0..200 {
-        let (scene, g) = small_scene(&mut rng);
+    let (mut hits, mut instances, mut flattened) = (0, 0, 0);
+    for i in 0..200 {
+        let (scene, g) = small_scene(&mut rng, i % 2 == 0);
+        flattened += (scene.groups[g.0 as usize]
+            .objects
+            .iter()
+            .filter(|o| matches!(o, Object::Quad(_)))
+            .count()
+            > 8) as usize;
         let accel = &scene.groups[g.0 as usize].accel;
         assert!(accel.is_small() || scene.groups[g.0 as usize].objects.len() == 1);
         instances += scene.groups[g.0 as usize]
@@ -132,8 +140,8 @@ fn small_groups_find_the_brute_force_hits_bit_for_bit() {
         hits += h;
     }
     assert!(
-        hits > 4_000 && instances > 30,
-        "{hits} hits, {instances} scenes with instances"
+        hits > 4_000 && instances > 30 && flattened > 30,
+        "{hits} hits, {instances} scenes with instances, {flattened} with a third packet"
     );
 }
 
@@ -141,6 +149,8 @@ fn small_groups_find_the_brute_force_hits_bit_for_bit() {
 fn the_small_group_check_catches_a_box_that_culls_too_much() {
     // The rotated box's culling box moved off it: rays that hit the box are skipped.
     let mut b = SceneBuilder::new();
+    // The instance as placed, behind its culling box.
+    b.flatten = false;
     let m = b.material(Material::lambertian(Color::ONE));
     let g = b.group();
     b.quad(
