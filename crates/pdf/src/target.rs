@@ -181,6 +181,9 @@ pub struct QuadTarget {
     /// unit normal `u x v / |u x v|`
     normal: DVec3,
     area: f64,
+    /// `1 / area`, the density per unit area of a uniform point (infinite for a degenerate quad, which
+    /// nothing hits)
+    inv_area: f64,
     /// `v x w` and `w x u` with `w = n / (n . n)`, `n = u x v`: the plane coordinates of a hit `q + p`
     /// are `(p . (v x w), p . (w x u))`
     vw: DVec3,
@@ -206,6 +209,7 @@ impl QuadTarget {
             v,
             normal,
             area,
+            inv_area: 1.0 / area,
             vw: v.cross(w),
             wu: w.cross(u),
             edge_scale: u.abs().max_element() + v.abs().max_element(),
@@ -304,7 +308,7 @@ impl ShapeSampler for QuadTarget {
             return sr.pdf();
         }
         // the hit point at distance t along the unit direction
-        warp::area_to_solid_angle(1.0 / self.area, origin, origin + t * direction, self.normal)
+        warp::area_to_solid_angle(self.inv_area, origin, origin + t * direction, self.normal)
     }
 
     /// A point uniform on the quad (or a direction uniform in its spherical rectangle); the density is
@@ -323,7 +327,7 @@ impl ShapeSampler for QuadTarget {
         let direction = positive_finite(rcp).then(|| to * rcp)?;
         DirectionSample::new(
             direction,
-            warp::area_to_solid_angle(1.0 / self.area, origin, p, self.normal),
+            warp::area_to_solid_angle(self.inv_area, origin, p, self.normal),
         )
     }
 }

@@ -252,15 +252,17 @@ fn radiance_one_sample(
     for depth in 0..max_depth {
         ctx.stats.rays += 1;
         ctx.bounce = depth;
-        let Some(hit) = scene.hit(&ray, ctx) else {
+        // Borrowed where `scene.hit` left it: moving the record out copied its 112 bytes each vertex.
+        let found = scene.hit(&ray, ctx);
+        let Some(hit) = &found else {
             l += throughput * scene.background.value(&ray);
             break;
         };
         let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
-            l += throughput * material.emitted(&hit, &scene.textures, ctx);
+            l += throughput * material.emitted(hit, &scene.textures, ctx);
         }
-        match material.scatter(&ray, &hit, &scene.textures, ctx) {
+        match material.scatter(&ray, hit, &scene.textures, ctx) {
             None => break,
             Some(Scatter::Specular {
                 attenuation,
