@@ -790,13 +790,14 @@ pub fn radiance_mis_variant(
             } else {
                 (scene.hit(&ray, ctx), true)
             };
-        let Some(hit) = found else {
+        // Borrowed, not moved (see `radiance_one_sample`).
+        let Some(hit) = &found else {
             l += throughput * scene.background.value(&ray);
             break;
         };
         let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
-            let emitted = material.emitted(&hit, &scene.textures, ctx);
+            let emitted = material.emitted(hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
                 let weight = match previous {
                     None => 1.0,
@@ -827,7 +828,7 @@ pub fn radiance_mis_variant(
         };
         let (attenuation, pdf) = match fuzzy_metal {
             Some(metal) => metal,
-            None => match material.scatter(&ray, &hit, &scene.textures, ctx) {
+            None => match material.scatter(&ray, hit, &scene.textures, ctx) {
                 None => break,
                 Some(Scatter::Specular {
                     attenuation,
@@ -865,7 +866,7 @@ pub fn radiance_mis_variant(
             && let Some((emitted, weight)) = light_sample(
                 scene,
                 lights,
-                &hit,
+                hit,
                 ray.time,
                 &pdf,
                 towards_others.as_ref(),
