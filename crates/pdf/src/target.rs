@@ -191,6 +191,8 @@ pub struct QuadTarget {
     /// `max |u_i| + max |v_i|`, the quad's part of the in-plane tolerance of [`QuadTarget::height`]
     edge_scale: f64,
     sampling: QuadSampling,
+    /// The rectangle's frame when it samples by spherical rectangles (made once, not per origin).
+    frame: Option<warp::RectangleFrame>,
 }
 
 impl QuadTarget {
@@ -214,6 +216,7 @@ impl QuadTarget {
             wu: w.cross(u),
             edge_scale: u.abs().max_element() + v.abs().max_element(),
             sampling: QuadSampling::Area,
+            frame: None,
         }
     }
 
@@ -223,7 +226,12 @@ impl QuadTarget {
     /// [[`MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE`], [`MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE`]]; `pdf_value`
     /// always makes the same choice as `random`.
     pub fn with_spherical_rectangles(mut self, on: bool) -> QuadTarget {
-        self.sampling = if on && self.is_rectangle() {
+        self.frame = if on && self.is_rectangle() {
+            warp::RectangleFrame::new(self.q, self.u, self.v)
+        } else {
+            None
+        };
+        self.sampling = if self.frame.is_some() {
             QuadSampling::SphericalRectangle
         } else {
             QuadSampling::Area
@@ -268,10 +276,7 @@ impl QuadTarget {
     /// The spherical rectangle seen from `origin`, if this quad samples by them from there.
     #[inline]
     fn spherical_rectangle(&self, origin: DVec3) -> Option<warp::SphericalRectangle> {
-        if self.sampling != QuadSampling::SphericalRectangle {
-            return None;
-        }
-        let sr = warp::SphericalRectangle::new(origin, self.q, self.u, self.v)?;
+        let sr = warp::SphericalRectangle::from_frame(origin, self.frame.as_ref()?)?;
         let s = sr.solid_angle();
         (MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE..=MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE)
             .contains(&s)
