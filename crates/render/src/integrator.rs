@@ -350,18 +350,20 @@ fn light_sample(
     let towards_lights = HittablePdf::new(hit.p, &lights.emitters)?;
     let ls = towards_lights.sample(u)?;
     let s_over_p = ratio(pdf.pdf(ls.direction), ls.pdf)?;
-    let (lh, transmittance) = trace_shadow(scene, &hit.spawn(ls.direction, time), ctx)?;
+    // Borrowed where `trace_shadow` left it, not moved (see `radiance_one_sample`).
+    let shadow = trace_shadow(scene, &hit.spawn(ls.direction, time), ctx);
+    let (lh, transmittance) = shadow.as_ref()?;
     let m: &Material = &scene.materials[lh.material.index()];
-    if !m.is_emitter() || transmittance <= 0.0 {
+    if !m.is_emitter() || *transmittance <= 0.0 {
         return None;
     }
-    let emitted = m.emitted(&lh, &scene.textures, ctx);
+    let emitted = m.emitted(lh, &scene.textures, ctx);
     let p_material = match towards_others {
         Some(t) => MixturePdf::new(*t, *pdf).pdf(ls.direction),
         None => pdf.pdf(ls.direction),
     };
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
-    Some((emitted, w * s_over_p * transmittance))
+    Some((emitted, w * s_over_p * *transmittance))
 }
 
 // ANCHOR: segment_sampling
