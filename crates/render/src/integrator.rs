@@ -262,23 +262,24 @@ fn radiance_one_sample(
         if material.is_emitter() {
             l += throughput * material.emitted(hit, &scene.textures, ctx);
         }
-        match material.scatter(&ray, hit, &scene.textures, ctx) {
+        // (matched in place, like the hit)
+        match &material.scatter(&ray, hit, &scene.textures, ctx) {
             None => break,
             Some(Scatter::Specular {
                 attenuation,
                 direction,
             }) => {
-                throughput *= attenuation;
-                ray = hit.spawn(direction, ray.time);
+                throughput *= *attenuation;
+                ray = hit.spawn(*direction, ray.time);
             }
             Some(Scatter::Diffuse { attenuation, pdf }) => {
                 let u = ctx.sample_2d(Dimension::Material(depth));
                 let Some((direction, weight)) =
-                    sample_diffuse(strategy, mixture_weight, &pdf, hit.p, hit.normal, lights, u)
+                    sample_diffuse(strategy, mixture_weight, pdf, hit.p, hit.normal, lights, u)
                 else {
                     break; // p = 0 or s = 0: the sample keeps the emission it has
                 };
-                throughput *= attenuation * weight;
+                throughput *= *attenuation * weight;
                 ray = hit.spawn(direction, ray.time);
             }
         }
