@@ -430,6 +430,40 @@ fn mixture_value_is_the_weighted_sum_for_any_weight() {
     }
 }
 
+/// `pdf_given_b` with the second part's own density is `pdf`, bit for bit, for any weight (0 and 1
+/// included) and directions above, below and along the cosine lobe's horizon; given a wrong density
+/// for `b` it differs (so the comparison can fail).
+#[test]
+fn mixture_pdf_given_the_second_density_is_the_same_number() {
+    let mut r = rng(107);
+    let n = DVec3::new(0.2, 0.9, -0.4).normalize();
+    let lights = [SphereTarget::new(DVec3::new(0.0, 3.0, 0.0), 1.0)];
+    let towards = HittablePdf::new(DVec3::ZERO, &lights).unwrap();
+    let mut differed = 0;
+    for weight in [0.0, 0.25, 0.5, 0.9, 1.0] {
+        let m = MixturePdf::with_weight(towards, CosinePdf::new(n), weight).unwrap();
+        for i in 0..2000 {
+            let d = if i % 10 == 0 {
+                // along the horizon of the cosine lobe
+                Onb::new(n).transform(DVec3::new(1.0, 0.0, 0.0))
+            } else {
+                warp::sample_uniform_sphere(DVec2::new(r.random(), r.random()))
+            };
+            let b = CosinePdf::new(n).pdf(d);
+            assert_eq!(
+                m.pdf_given_b(d, b).to_bits(),
+                m.pdf(d).to_bits(),
+                "w {weight}, {d}"
+            );
+            differed += (m.pdf_given_b(d, b * 1.5 + 0.01) != m.pdf(d)) as usize;
+        }
+    }
+    assert!(
+        differed > 4000,
+        "a wrong density for b went unnoticed: {differed}"
+    );
+}
+
 #[test]
 fn mixture_of_a_part_with_weight_zero_never_evaluates_it() {
     // a part whose value is NaN must not poison a mixture that never samples it

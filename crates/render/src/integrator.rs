@@ -350,7 +350,8 @@ fn light_sample(
 ) -> Option<(Color, f64)> {
     let towards_lights = HittablePdf::new(hit.p, &lights.emitters)?;
     let ls = towards_lights.sample(u)?;
-    let s_over_p = ratio(pdf.pdf(ls.direction), ls.pdf)?;
+    let s = pdf.pdf(ls.direction);
+    let s_over_p = ratio(s, ls.pdf)?;
     // Borrowed where `trace_shadow` left it, not moved (see `radiance_one_sample`).
     let shadow = trace_shadow(scene, &hit.spawn(ls.direction, time), ctx);
     let (lh, transmittance) = shadow.as_ref()?;
@@ -359,9 +360,10 @@ fn light_sample(
         return None;
     }
     let emitted = m.emitted(lh, &scene.textures, ctx);
+    // The material's density of the direction is `s`, made above: not evaluated again.
     let p_material = match towards_others {
-        Some(t) => MixturePdf::new(*t, *pdf).pdf(ls.direction),
-        None => pdf.pdf(ls.direction),
+        Some(t) => MixturePdf::new(*t, *pdf).pdf_given_b(ls.direction, s),
+        None => s,
     };
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
     Some((emitted, w * s_over_p * *transmittance))
