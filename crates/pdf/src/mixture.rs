@@ -71,6 +71,21 @@ impl<A: Pdf, B: Pdf> MixturePdf<A, B> {
     pub fn parts(&self) -> (&A, &B) {
         (&self.a, &self.b)
     }
+
+    /// [`Pdf::pdf`] of `direction` where the second part's density of it is known already
+    /// (`b_pdf`, e.g. a material's density that weighed a light sample): only `a` is evaluated, and
+    /// the sum is made as `pdf` makes it, so the number is the same.
+    #[inline]
+    pub fn pdf_given_b(&self, direction: DVec3, b_pdf: f64) -> f64 {
+        let wa = self.weight_a;
+        let va = if wa > 0.0 {
+            wa * self.a.pdf(direction)
+        } else {
+            0.0
+        };
+        let vb = if wa < 1.0 { (1.0 - wa) * b_pdf } else { 0.0 };
+        va + vb
+    }
 }
 
 impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {

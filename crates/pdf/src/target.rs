@@ -181,6 +181,9 @@ pub struct QuadTarget {
     /// unit normal `u x v / |u x v|`
     normal: DVec3,
     area: f64,
+    /// `1 / area`, the density per unit area of a uniform point (infinite for a degenerate quad, which
+    /// nothing hits)
+    inv_area: f64,
     /// `v x w` and `w x u` with `w = n / (n . n)`, `n = u x v`: the plane coordinates of a hit `q + p`
     /// are `(p . (v x w), p . (w x u))`
     vw: DVec3,
@@ -188,6 +191,8 @@ pub struct QuadTarget {
     /// `max |u_i| + max |v_i|`, the quad's part of the in-plane tolerance of [`QuadTarget::height`]
     edge_scale: f64,
     sampling: QuadSampling,
+    /// The rectangle's frame when it samples by spherical rectangles (made once, not per origin).
+    frame: Option<warp::RectangleFrame>,
 }
 
 impl QuadTarget {
@@ -206,10 +211,12 @@ impl QuadTarget {
             v,
             normal,
             area,
+            inv_area: 1.0 / area,
             vw: v.cross(w),
             wu: w.cross(u),
             edge_scale: u.abs().max_element() + v.abs().max_element(),
             sampling: QuadSampling::Area,
+            frame: None,
         }
     }
 
@@ -219,7 +226,12 @@ impl QuadTarget {
     /// [[`MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE`], [`MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE`]]; `pdf_value`
     /// always makes the same choice as `random`.
     pub fn with_spherical_rectangles(mut self, on: bool) -> QuadTarget {
-        self.sampling = if on && self.is_rectangle() {
+        self.frame = if on && self.is_rectangle() {
+            warp::RectangleFrame::new(self.q, self.u, self.v)
+        } else {
+            None
+        };
+        self.sampling = if self.frame.is_some() {
             QuadSampling::SphericalRectangle
         } else {
             QuadSampling::Area
@@ -264,10 +276,7 @@ impl QuadTarget {
     /// The spherical rectangle seen from `origin`, if this quad samples by them from there.
     #[inline]
     fn spherical_rectangle(&self, origin: DVec3) -> Option<warp::SphericalRectangle> {
-        if self.sampling != QuadSampling::SphericalRectangle {
-            return None;
-        }
-        let sr = warp::SphericalRectangle::new(origin, self.q, self.u, self.v)?;
+        let sr = warp::SphericalRectangle::from_frame(origin, self.frame.as_ref()?)?;
         let s = sr.solid_angle();
         (MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE..=MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE)
             .contains(&s)
@@ -304,7 +313,7 @@ impl ShapeSampler for QuadTarget {
             return sr.pdf();
         }
         // the hit point at distance t along the unit direction
-        warp::area_to_solid_angle(1.0 / self.area, origin, origin + t * direction, self.normal)
+        warp::area_to_solid_angle(self.inv_area, origin, origin + t * direction, self.normal)
     }
 
     /// A point uniform on the quad (or a direction uniform in its spherical rectangle); the density is
@@ -323,7 +332,7 @@ impl ShapeSampler for QuadTarget {
         let direction = positive_finite(rcp).then(|| to * rcp)?;
         DirectionSample::new(
             direction,
-            warp::area_to_solid_angle(1.0 / self.area, origin, p, self.normal),
+            warp::area_to_solid_angle(self.inv_area, origin, p, self.normal),
         )
     }
 }

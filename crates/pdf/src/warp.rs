@@ -353,18 +353,60 @@ fn rectangle_angles(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64) -> (f64, f64, f
     ((g0 + g1 - k).max(0.0), k, n0.z, n2.z)
 }
 
-impl SphericalRectangle {
-    /// The spherical rectangle of `q + s ex + t ey` seen from `origin`. `None` when `origin` lies in the
-    /// rectangle's plane or an edge has zero length (no solid angle); `ex` and `ey` must be
+/// What a rectangle `q + s ex + t ey` contributes to its [`SphericalRectangle`]s whatever the origin:
+/// its corner, unit edge directions `x`, `y`, normal `z = x x y` and edge lengths. Made once per
+/// rectangle (a light), so that each shading point only does the part that depends on it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectangleFrame {
+    q: DVec3,
+    x: DVec3,
+    y: DVec3,
+    z: DVec3,
+    exl: f64,
+    eyl: f64,
+}
+
+impl RectangleFrame {
+    /// The frame of `q + s ex + t ey`; `None` when an edge has zero length. `ex` and `ey` must be
     /// orthogonal.
-    pub fn new(origin: DVec3, q: DVec3, ex: DVec3, ey: DVec3) -> Option<SphericalRectangle> {
+    pub fn new(q: DVec3, ex: DVec3, ey: DVec3) -> Option<RectangleFrame> {
         let (exl, eyl) = (ex.length(), ey.length());
         if !(exl > 0.0 && eyl > 0.0) {
             return None;
         }
         let x = ex / exl;
         let y = ey / eyl;
-        let mut z = x.cross(y);
+        Some(RectangleFrame {
+            q,
+            x,
+            y,
+            z: x.cross(y),
+            exl,
+            eyl,
+        })
+    }
+}
+
+impl SphericalRectangle {
+    /// The spherical rectangle of `q + s ex + t ey` seen from `origin`. `None` when `origin` lies in the
+    /// rectangle's plane or an edge has zero length (no solid angle); `ex` and `ey` must be
+    /// orthogonal.
+    pub fn new(origin: DVec3, q: DVec3, ex: DVec3, ey: DVec3) -> Option<SphericalRectangle> {
+        SphericalRectangle::from_frame(origin, &RectangleFrame::new(q, ex, ey)?)
+    }
+
+    /// [`SphericalRectangle::new`] of a rectangle whose frame is made already: the same numbers.
+    #[inline]
+    pub fn from_frame(origin: DVec3, frame: &RectangleFrame) -> Option<SphericalRectangle> {
+        let RectangleFrame {
+            q,
+            x,
+            y,
+            z,
+            exl,
+            eyl,
+        } = *frame;
+        let mut z = z;
         let d = q - origin;
         let mut z0 = d.dot(z);
         if z0 > 0.0 {

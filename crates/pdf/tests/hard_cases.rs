@@ -298,6 +298,61 @@ fn quad_light_spherical_rectangles_only_for_rectangles() {
     );
 }
 
+/// The quad target makes its rectangle's frame once (`RectangleFrame`) and only the part that depends
+/// on the origin per call: its samples and densities are bit for bit those of a spherical rectangle
+/// set up from scratch at each origin, from grazing to far, for an axis-aligned and a tilted
+/// rectangle (whose frame is not the axes).
+#[test]
+fn quad_light_spherical_rectangle_frame_made_once_gives_the_same_numbers() {
+    use rtl_pdf::warp::SphericalRectangle;
+    let tilted_u = DVec3::new(1.0, 0.5, 0.25);
+    let tilted_v = tilted_u.cross(DVec3::new(0.3, -1.0, 0.7)).normalize() * 0.7;
+    let cases = [
+        (DVec3::new(-0.5, -0.5, 0.0), DVec3::X, DVec3::Y),
+        (DVec3::new(2.0, -1.0, 3.0), tilted_u, tilted_v),
+    ];
+    let mut r = rng(106);
+    let mut compared = 0;
+    for (q, u, v) in cases {
+        let target = QuadTarget::new(q, u, v).with_spherical_rectangles(true);
+        assert_eq!(target.sampling(), rtl_pdf::QuadSampling::SphericalRectangle);
+        let n = u.cross(v).normalize();
+        for i in 0..4000 {
+            // heights from grazing (1e-6) to far (1e3), offsets across and beyond the rectangle
+            let height =
+                10f64.powf(r.random_range(-6.0..3.0)) * if i % 2 == 0 { 1.0 } else { -1.0 };
+            let origin =
+                q + r.random_range(-2.0..3.0) * u + r.random_range(-2.0..3.0) * v + height * n;
+            let uu = DVec2::new(r.random(), r.random());
+            let fresh = SphericalRectangle::new(origin, q, u, v).filter(|sr| {
+                (rtl_pdf::MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE
+                    ..=rtl_pdf::MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE)
+                    .contains(&sr.solid_angle())
+            });
+            let Some(sr) = fresh else { continue };
+            let s = target
+                .sample(origin, uu)
+                .expect("a direction towards the rectangle");
+            let d = sr.sample_direction(uu);
+            assert_eq!(
+                s.direction.to_array().map(f64::to_bits),
+                d.to_array().map(f64::to_bits)
+            );
+            assert_eq!(s.pdf.to_bits(), sr.pdf().to_bits(), "at {origin}");
+            assert_eq!(
+                target.pdf(origin, d).to_bits(),
+                sr.pdf().to_bits(),
+                "at {origin}"
+            );
+            compared += 1;
+        }
+    }
+    assert!(
+        compared > 2000,
+        "only {compared} origins used spherical rectangles"
+    );
+}
+
 #[test]
 fn quad_light_degenerate_quad_is_never_hit() {
     let q = QuadTarget::new(DVec3::ZERO, DVec3::X, DVec3::X * 2.0);
@@ -373,6 +428,40 @@ fn mixture_value_is_the_weighted_sum_for_any_weight() {
             Err(MixtureError::BadWeight(_))
         ));
     }
+}
+
+/// `pdf_given_b` with the second part's own density is `pdf`, bit for bit, for any weight (0 and 1
+/// included) and directions above, below and along the cosine lobe's horizon; given a wrong density
+/// for `b` it differs (so the comparison can fail).
+#[test]
+fn mixture_pdf_given_the_second_density_is_the_same_number() {
+    let mut r = rng(107);
+    let n = DVec3::new(0.2, 0.9, -0.4).normalize();
+    let lights = [SphereTarget::new(DVec3::new(0.0, 3.0, 0.0), 1.0)];
+    let towards = HittablePdf::new(DVec3::ZERO, &lights).unwrap();
+    let mut differed = 0;
+    for weight in [0.0, 0.25, 0.5, 0.9, 1.0] {
+        let m = MixturePdf::with_weight(towards, CosinePdf::new(n), weight).unwrap();
+        for i in 0..2000 {
+            let d = if i % 10 == 0 {
+                // along the horizon of the cosine lobe
+                Onb::new(n).transform(DVec3::new(1.0, 0.0, 0.0))
+            } else {
+                warp::sample_uniform_sphere(DVec2::new(r.random(), r.random()))
+            };
+            let b = CosinePdf::new(n).pdf(d);
+            assert_eq!(
+                m.pdf_given_b(d, b).to_bits(),
+                m.pdf(d).to_bits(),
+                "w {weight}, {d}"
+            );
+            differed += (m.pdf_given_b(d, b * 1.5 + 0.01) != m.pdf(d)) as usize;
+        }
+    }
+    assert!(
+        differed > 4000,
+        "a wrong density for b went unnoticed: {differed}"
+    );
 }
 
 #[test]

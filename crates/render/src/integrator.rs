@@ -252,31 +252,34 @@ fn radiance_one_sample(
     for depth in 0..max_depth {
         ctx.stats.rays += 1;
         ctx.bounce = depth;
-        let Some(hit) = scene.hit(&ray, ctx) else {
+        // Borrowed where `scene.hit` left it: moving the record out copied its 112 bytes each vertex.
+        let found = scene.hit(&ray, ctx);
+        let Some(hit) = &found else {
             l += throughput * scene.background.value(&ray);
             break;
         };
         let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
-            l += throughput * material.emitted(&hit, &scene.textures, ctx);
+            l += throughput * material.emitted(hit, &scene.textures, ctx);
         }
-        match material.scatter(&ray, &hit, &scene.textures, ctx) {
+        // (matched in place, like the hit)
+        match &material.scatter(&ray, hit, &scene.textures, ctx) {
             None => break,
             Some(Scatter::Specular {
                 attenuation,
                 direction,
             }) => {
-                throughput *= attenuation;
-                ray = hit.spawn(direction, ray.time);
+                throughput *= *attenuation;
+                ray = hit.spawn(*direction, ray.time);
             }
             Some(Scatter::Diffuse { attenuation, pdf }) => {
                 let u = ctx.sample_2d(Dimension::Material(depth));
                 let Some((direction, weight)) =
-                    sample_diffuse(strategy, mixture_weight, &pdf, hit.p, hit.normal, lights, u)
+                    sample_diffuse(strategy, mixture_weight, pdf, hit.p, hit.normal, lights, u)
                 else {
                     break; // p = 0 or s = 0: the sample keeps the emission it has
                 };
-                throughput *= attenuation * weight;
+                throughput *= *attenuation * weight;
                 ray = hit.spawn(direction, ray.time);
             }
         }
@@ -347,19 +350,23 @@ fn light_sample(
 ) -> Option<(Color, f64)> {
     let towards_lights = HittablePdf::new(hit.p, &lights.emitters)?;
     let ls = towards_lights.sample(u)?;
-    let s_over_p = ratio(pdf.pdf(ls.direction), ls.pdf)?;
-    let (lh, transmittance) = trace_shadow(scene, &hit.spawn(ls.direction, time), ctx)?;
+    let s = pdf.pdf(ls.direction);
+    let s_over_p = ratio(s, ls.pdf)?;
+    // Borrowed where `trace_shadow` left it, not moved (see `radiance_one_sample`).
+    let shadow = trace_shadow(scene, &hit.spawn(ls.direction, time), ctx);
+    let (lh, transmittance) = shadow.as_ref()?;
     let m: &Material = &scene.materials[lh.material.index()];
-    if !m.is_emitter() || transmittance <= 0.0 {
+    if !m.is_emitter() || *transmittance <= 0.0 {
         return None;
     }
-    let emitted = m.emitted(&lh, &scene.textures, ctx);
+    let emitted = m.emitted(lh, &scene.textures, ctx);
+    // The material's density of the direction is `s`, made above: not evaluated again.
     let p_material = match towards_others {
-        Some(t) => MixturePdf::new(*t, *pdf).pdf(ls.direction),
-        None => pdf.pdf(ls.direction),
+        Some(t) => MixturePdf::new(*t, *pdf).pdf_given_b(ls.direction, s),
+        None => s,
     };
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
-    Some((emitted, w * s_over_p * transmittance))
+    Some((emitted, w * s_over_p * *transmittance))
 }
 
 // ANCHOR: segment_sampling
@@ -788,13 +795,14 @@ pub fn radiance_mis_variant(
             } else {
                 (scene.hit(&ray, ctx), true)
             };
-        let Some(hit) = found else {
+        // Borrowed, not moved (see `radiance_one_sample`).
+        let Some(hit) = &found else {
             l += throughput * scene.background.value(&ray);
             break;
         };
         let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
-            let emitted = material.emitted(&hit, &scene.textures, ctx);
+            let emitted = material.emitted(hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
                 let weight = match previous {
                     None => 1.0,
@@ -825,7 +833,7 @@ pub fn radiance_mis_variant(
         };
         let (attenuation, pdf) = match fuzzy_metal {
             Some(metal) => metal,
-            None => match material.scatter(&ray, &hit, &scene.textures, ctx) {
+            None => match material.scatter(&ray, hit, &scene.textures, ctx) {
                 None => break,
                 Some(Scatter::Specular {
                     attenuation,
@@ -863,7 +871,7 @@ pub fn radiance_mis_variant(
             && let Some((emitted, weight)) = light_sample(
                 scene,
                 lights,
-                &hit,
+                hit,
                 ray.time,
                 &pdf,
                 towards_others.as_ref(),

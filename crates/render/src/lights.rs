@@ -20,7 +20,11 @@ use rtl_pdf::{DirectionSample, QuadTarget, ShapeSampler, SphereTarget};
 
 // ANCHOR: light_target
 /// A shape to sample directions towards: static dispatch over the two kinds the book needs.
+///
+/// The quad is the larger variant (its spherical-rectangle frame is kept with it); the targets are a
+/// short list walked per vertex, where boxing the quad would add a pointer chase.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 pub enum LightTarget {
     /// A parallelogram; if `one_sided`, no direction from behind its front face (density 0 there).
     Quad { quad: QuadTarget, one_sided: bool },
