@@ -204,12 +204,7 @@ impl Scene {
         // From the reciprocal, so that a direction component of -0 counts as negative.
         let neg = [inv[0] < 0.0, inv[1] < 0.0, inv[2] < 0.0];
         let mut closest = range.max;
-        // The closest hit so far: a quad (packet, lane, alpha, beta) whose record is not built yet,
-        // or another object's record.
-        let mut best_quad: Option<(u32, usize, f64, f64)> = None;
-        // Or a sphere's, its record not built yet either.
-        let mut best_sphere: Option<&Sphere> = None;
-        let mut best_other: Option<Hit> = None;
+        let mut best = Closest::Nothing;
         // Stacked children and their entry parameters. Left uninitialised (clearing them costs as much
         // as a box test): only the entries below `sp` are ever read, and each was written when pushed.
         let mut stack = [MaybeUninit::<u32>::uninit(); 64];
@@ -256,31 +251,16 @@ impl Scene {
                             hit_packet_splat::<AVX>(packet, ray, Interval::new(range.min, closest));
                         if let Some(h) = h {
                             closest = h.t;
-                            best_quad = Some((pi, h.lane, h.alpha, h.beta));
-                            best_other = None;
-                            best_sphere = None;
+                            best = Closest::quad(pi, &h);
                         }
                     }
                     let (o0, no) = leaf.others;
                     for &oi in &accel.others[o0 as usize..(o0 + no) as usize] {
+                        let o = &group.objects[oi as usize];
                         let within = Interval::new(range.min, closest);
-                        match &group.objects[oi as usize] {
-                            Object::Sphere(s) => {
-                                if let Some(t) = s.hit_t(ray, within) {
-                                    closest = t;
-                                    best_sphere = Some(s);
-                                    best_other = None;
-                                    best_quad = None;
-                                }
-                            }
-                            o => {
-                                if let Some(h) = self.hit_object(o, ray, within, ctx) {
-                                    closest = h.t;
-                                    best_other = Some(h);
-                                    best_sphere = None;
-                                    best_quad = None;
-                                }
-                            }
+                        if let Some((t, c)) = self.hit_other(o, ray, within, ctx) {
+                            closest = t;
+                            best = c;
                         }
                     }
                 }
@@ -293,10 +273,7 @@ impl Scene {
             (next, next_near) = unsafe { (stack[sp].assume_init(), stack_near[sp].assume_init()) };
             debug_assert!(next != EMPTY);
         }
-        if let Some(s) = best_sphere {
-            return Some(s.hit_at(ray, closest));
-        }
-        quad_record(group, best_quad, ray, closest).or(best_other)
+        best.record(group, ray, closest)
     }
 
     /// The closest hit in the small group `g` ([`Accel::small`]): its quad packets one after the
@@ -315,51 +292,51 @@ impl Scene {
         let group = &self.groups[g.0 as usize];
         let accel = &group.accel;
         let mut closest = range.max;
-        let mut best_quad: Option<(u32, usize, f64, f64)> = None;
-        let mut best_other: Option<Hit> = None;
+        let mut best = Closest::Nothing;
         let lanes = ray_lanes::<AVX>(ray);
         for (pi, packet) in accel.packets.iter().enumerate() {
             if let Some(h) =
                 hit_packet::<AVX>(packet, ray, &lanes, Interval::new(range.min, closest))
             {
                 closest = h.t;
-                best_quad = Some((pi as u32, h.lane, h.alpha, h.beta));
+                best = Closest::quad(pi as u32, &h);
             }
         }
         if accel.others.is_empty() {
-            return quad_record(group, best_quad, ray, closest);
+            return best.record(group, ray, closest);
         }
-        // The closest hit if it is a sphere's, its record not built yet.
-        let mut best_sphere: Option<&Sphere> = None;
         let inv = ray.direction.recip();
         for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
             if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
                 continue;
             }
+            let o = &group.objects[oi as usize];
             let within = Interval::new(range.min, closest);
-            match &group.objects[oi as usize] {
-                Object::Sphere(s) => {
-                    if let Some(t) = s.hit_t(ray, within) {
-                        closest = t;
-                        best_sphere = Some(s);
-                        best_other = None;
-                        best_quad = None;
-                    }
-                }
-                o => {
-                    if let Some(h) = self.hit_object(o, ray, within, ctx) {
-                        closest = h.t;
-                        best_other = Some(h);
-                        best_sphere = None;
-                        best_quad = None;
-                    }
-                }
+            if let Some((t, c)) = self.hit_other(o, ray, within, ctx) {
+                closest = t;
+                best = c;
             }
         }
-        if let Some(s) = best_sphere {
-            return Some(s.hit_at(ray, closest));
+        best.record(group, ray, closest)
+    }
+
+    /// A hit on `o`, an object of a leaf or small group that is not in a quad packet, as the closest
+    /// candidate so far: a sphere's only as its parameter (its record is built if it stays the
+    /// closest), any other object's with its record.
+    #[inline(always)]
+    fn hit_other<'a>(
+        &self,
+        o: &'a Object,
+        ray: &Ray,
+        within: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<(f64, Closest<'a>)> {
+        match o {
+            Object::Sphere(s) => s.hit_t(ray, within).map(|t| (t, Closest::Sphere(s))),
+            o => self
+                .hit_object(o, ray, within, ctx)
+                .map(|h| (h.t, Closest::Other(h))),
         }
-        quad_record(group, best_quad, ray, closest).or(best_other)
     }
 
     #[inline]
@@ -541,18 +518,52 @@ fn hit_packet<const AVX: bool>(
     packet.hit(ray, range)
 }
 
-/// The record of the closest hit if it is a quad's: `(packet, lane, alpha, beta)` at parameter `t`.
-#[inline(always)]
-fn quad_record(
-    group: &crate::scene::Group,
-    best: Option<(u32, usize, f64, f64)>,
-    ray: &Ray,
-    t: f64,
-) -> Option<Hit> {
-    let (pi, lane, alpha, beta) = best?;
-    let index = group.accel.packets[pi as usize].index[lane];
-    let Object::Quad(q) = &group.objects[index as usize] else {
-        unreachable!("a packet lane names a quad")
-    };
-    Some(q.hit_at(ray, t, alpha, beta))
+/// The closest hit found so far in a group, its record built only at the end where it can be
+/// ([`Closest::record`]).
+enum Closest<'a> {
+    Nothing,
+    /// Lane `lane` of packet `packet`, at plane coordinates `(alpha, beta)`.
+    Quad {
+        packet: u32,
+        lane: usize,
+        alpha: f64,
+        beta: f64,
+    },
+    Sphere(&'a Sphere),
+    /// Any other object, with its record.
+    Other(Hit),
+}
+
+impl Closest<'_> {
+    #[inline(always)]
+    fn quad(packet: u32, h: &crate::shapes::Quad4Hit) -> Self {
+        Closest::Quad {
+            packet,
+            lane: h.lane,
+            alpha: h.alpha,
+            beta: h.beta,
+        }
+    }
+
+    /// The record of this hit of `group` at parameter `t` along `ray`.
+    #[inline(always)]
+    fn record(self, group: &crate::scene::Group, ray: &Ray, t: f64) -> Option<Hit> {
+        match self {
+            Closest::Nothing => None,
+            Closest::Quad {
+                packet,
+                lane,
+                alpha,
+                beta,
+            } => {
+                let index = group.accel.packets[packet as usize].index[lane];
+                let Object::Quad(q) = &group.objects[index as usize] else {
+                    unreachable!("a packet lane names a quad")
+                };
+                Some(q.hit_at(ray, t, alpha, beta))
+            }
+            Closest::Sphere(s) => Some(s.hit_at(ray, t)),
+            Closest::Other(h) => Some(h),
+        }
+    }
 }
