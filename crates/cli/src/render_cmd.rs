@@ -197,6 +197,13 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             "(plain colours only: no texture lookups)"
         )
     );
+    if f.flattened_instances > 0 {
+        println!(
+            "  instances           : {} placed in world space at build time (rigid, of non-emitting \
+             quads: tested in their parent's quad packets, no ray moved into their frame)",
+            f.flattened_instances
+        );
+    }
     println!(
         "  emitters            : {}",
         if f.emitters == 0 {

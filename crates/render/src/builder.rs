@@ -262,6 +262,7 @@ impl SceneBuilder {
         let mut built: Vec<Option<Group>> = (0..n).map(|_| None).collect();
         let mut bounds_of: Vec<Option<Aabb>> = vec![None; n];
         let mut draws_of = vec![false; n];
+        let mut flattened_instances = 0;
         let order = self.build_order()?;
         for &gi in &order {
             // Whether a hit in this group may draw random numbers (a medium, here or nested): its
@@ -280,6 +281,13 @@ impl SceneBuilder {
                 &self.groups[gi]
             } else {
                 flattened = flatten_instances(&self.groups[gi], &self.groups, &self.materials);
+                let instances = |objects: &[Object]| {
+                    objects
+                        .iter()
+                        .filter(|o| matches!(o, Object::Instance { .. }))
+                        .count()
+                };
+                flattened_instances += instances(&self.groups[gi]) - instances(&flattened);
                 &flattened
             };
             let mut bounds = Vec::with_capacity(objects.len());
@@ -336,6 +344,7 @@ impl SceneBuilder {
         let mut features = Features {
             defocus: self.camera.defocus_angle > 0.0,
             targets: self.targets.len(),
+            flattened_instances,
             textures: self
                 .textures
                 .iter()

@@ -114,6 +114,9 @@ pub struct Features {
     pub one_sided_emitters: bool,
     /// Number of importance targets.
     pub targets: usize,
+    /// Number of rigid instances placed in world space at build time ([`crate::flatten`]): their
+    /// quads are tested in their parent's packets, no ray is moved into their frame.
+    pub flattened_instances: usize,
 }
 
 /// A scene ready to render.
