@@ -15,10 +15,9 @@
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
-use rtl_render::integrator::{MisOptions, MisVariant, Strategy, radiance_mis_variant};
+use rtl_render::integrator::{MisOptions, MisVariant, Strategy};
 use rtl_render::material::{Albedo, Material};
-use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, Renderer, render};
-use rtl_render::sampler::{Ctx, SampleRng, Sampler, sample_key};
+use rtl_render::render::{RenderSettings, render};
 use rtl_render::scene::{Background, Scene, SceneBuilder};
 use rtl_render::vec::{Point3, Vec3};
 
@@ -315,54 +314,10 @@ fn book2_final_agrees_with_the_estimator_before() {
         (rtl_render::scenes::find("book2-final").unwrap().build)(&Default::default()).unwrap();
     let scene = &built.scene;
     let (width, spp, batches) = (32, 64, 16);
-    let options = MisOptions::DEFAULT;
-    let run = |seed: u64, variant: MisVariant| {
-        let r = Renderer::new(
-            scene,
-            RenderSettings {
-                width,
-                max_depth: scene.max_depth,
-                seed,
-                strategy: Strategy::Mis(options),
-                mixture_weight: BOOK_MIXTURE_WEIGHT,
-            },
-        );
-        let (w, h) = (r.camera.width, r.camera.height);
-        let mut ctx = Ctx::new();
-        let mut regions = vec![0.0; GRID * GRID];
-        for j in 0..h {
-            for i in 0..w {
-                let pixel = (j * w + i) as u64;
-                let key = sample_key(seed, pixel, u64::MAX);
-                for k in 0..spp {
-                    ctx.rng = SampleRng::for_sample(seed, pixel, k);
-                    ctx.sampler = Sampler::new(options.low_discrepancy, key, k);
-                    let ray = r.camera.ray(i, j, key, k, &mut ctx);
-                    let v = radiance_mis_variant(
-                        scene,
-                        &r.lights,
-                        ray,
-                        scene.max_depth,
-                        options,
-                        variant,
-                        &mut ctx,
-                    );
-                    let v = if v.is_finite() { v } else { Color::ZERO };
-                    regions[(j * GRID / h) * GRID + i * GRID / w] +=
-                        (v.x + v.y + v.z) / 3.0 / (spp * (w * h / (GRID * GRID)) as u64) as f64;
-                }
-            }
-        }
-        regions
-    };
     let means = |variant| {
-        let mut out = vec![Vec::new(); GRID * GRID];
-        for b in 0..batches {
-            for (o, v) in out.iter_mut().zip(run(5000 + b, variant)) {
-                o.push(v);
-            }
-        }
-        out
+        variant_batches::region_means(width, GRID, batches, 5000, |seed| {
+            variant_batches::render_variant(scene, width, scene.max_depth, spp, seed, variant)
+        })
     };
     let before = means(MisVariant::LightSampleWhereScattered);
     let now = means(MisVariant::Book);

@@ -59,8 +59,8 @@ pub fn render_variant(
     img
 }
 
-/// Per region of a `grid` x `grid` division of images `width` wide, its mean radiance (channel 0:
-/// the test scenes are grey) in each of `batches` images, `image(first_seed + b)` for batch `b`.
+/// Per region of a `grid` x `grid` division of images `width` wide, its mean radiance (the mean of
+/// the three channels) in each of `batches` images, `image(first_seed + b)` for batch `b`.
 pub fn region_means(
     width: usize,
     grid: usize,
@@ -83,7 +83,7 @@ pub fn region_means(
             let mut sum = 0.0;
             for j in rows {
                 for i in cols.clone() {
-                    sum += img[j * width + i].x;
+                    sum += img[j * width + i].element_sum() / 3.0;
                 }
             }
             o.push(sum / n);
