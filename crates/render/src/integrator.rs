@@ -7,7 +7,7 @@
 //! estimation combined with material sampling by multiple importance sampling.
 
 use crate::hit::Hit;
-use crate::lights::{LightTarget, Lights, MAX_WEIGHED_EMITTERS};
+use crate::lights::{LightTarget, Lights};
 use crate::material::{Material, Scatter, ScatterPdf};
 use crate::metal_pdf::FuzzyMetalPdf;
 use crate::ray::{Interval, Ray};
@@ -350,9 +350,7 @@ fn light_sample(
     u: glam::DVec2,
     ctx: &mut Ctx,
 ) -> Option<(Color, f64)> {
-    let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
-    let towards_lights = lights.towards_emitters(hit.p, &mut pmf)?;
-    let ls = towards_lights.sample(u)?;
+    let ls = lights.sample_emitters(hit.p, u)?;
     let s = pdf.pdf(ls.direction);
     let s_over_p = ratio(s, ls.pdf)?;
     // Borrowed where `trace_shadow` left it, not moved (see `radiance_one_sample`).

@@ -21,7 +21,7 @@ use crate::material::{Albedo, Material};
 use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, Scene, Transform};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
-use rtl_pdf::{DirectionSample, HittablePdf, QuadTarget, ShapeSampler, SphereTarget};
+use rtl_pdf::{DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeSampler, SphereTarget};
 use std::f64::consts::TAU;
 
 // ANCHOR: light_target
@@ -266,14 +266,34 @@ impl Lights {
         HittablePdf::with_pmf(x, &self.emitters, pmf).ok()
     }
 
-    /// The density with which next-event estimation from `x` picks `direction` ([`Lights::towards_emitters`];
-    /// 0 without emitters).
+    /// One direction of next-event estimation from `x` for the uniform numbers `u`, drawn by
+    /// [`Lights::towards_emitters`], with its density; `None` without emitters or where the drawn
+    /// emitter has no direction from `x`.
+    #[inline]
+    pub fn sample_emitters(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
+        if self.weighs_emitters() {
+            self.sample_weighed(x, u)
+        } else {
+            // (no probabilities to keep: the common case of one emitter pays nothing for them)
+            HittablePdf::new(x, &self.emitters)?.sample(u)
+        }
+    }
+
+    /// The density with which next-event estimation from `x` picks `direction`
+    /// ([`Lights::towards_emitters`]; 0 without emitters).
     #[inline]
     pub fn emitters_pdf(&self, x: Point3, direction: Vec3) -> f64 {
-        use rtl_pdf::Pdf;
+        if self.weighs_emitters() {
+            self.pdf_weighed(x, direction)
+        } else {
+            HittablePdf::new(x, &self.emitters).map_or(0.0, |h| h.pdf(direction))
+        }
+    }
+
+    #[inline(never)]
+    fn sample_weighed(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
         let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
-        self.towards_emitters(x, &mut pmf)
-            .map_or(0.0, |h| h.pdf(direction))
+        self.towards_emitters(x, &mut pmf)?.sample(u)
     }
 
     /// One line for `--explain`: what next-event estimation samples, and how it chooses the emitter.
@@ -298,6 +318,13 @@ impl Lights {
                 self.listed_emitters,
             ),
         }
+    }
+
+    #[inline(never)]
+    fn pdf_weighed(&self, x: Point3, direction: Vec3) -> f64 {
+        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+        self.towards_emitters(x, &mut pmf)
+            .map_or(0.0, |h| h.pdf(direction))
     }
 }
 
