@@ -115,6 +115,7 @@ pub const UNIFORM_SHARE: f64 = 0.1;
 /// [`Lights::towards_emitters`] (stack storage: nothing is allocated per vertex).
 pub type EmitterPmf = [f64; MAX_WEIGHED_EMITTERS];
 
+// ANCHOR: emitter_importance
 /// What emitter `target` of radiance `radiance` contributes at `x`, estimated: `L Omega(x)`, its
 /// radiance times the solid angle it subtends from `x` (the irradiance of a constant emitter without
 /// the cosine at `x`, which a medium's or a metal's vertex does not have). `None` where the
@@ -155,6 +156,7 @@ pub fn emitter_importance(target: &LightTarget, radiance: f64, x: Point3) -> Opt
     };
     Some(radiance * omega)
 }
+// ANCHOR_END: emitter_importance
 
 impl Lights {
     /// The scene's targets; `spherical_rectangles` makes rectangular emitters sample their solid angle
@@ -211,6 +213,7 @@ impl Lights {
         (2..=MAX_WEIGHED_EMITTERS).contains(&self.emitters.len())
     }
 
+    // ANCHOR: towards_emitters
     /// Next-event estimation's density of directions from `x`: emitter `i` chosen with probability
     ///
     /// `p_i(x) = (1 - a) w_i(x) / sum_j w_j(x) + a / m(x)`  (`a` = [`UNIFORM_SHARE`]),
@@ -265,6 +268,7 @@ impl Lights {
         }
         HittablePdf::with_pmf(x, &self.emitters, pmf).ok()
     }
+    // ANCHOR_END: towards_emitters
 
     /// One direction of next-event estimation from `x` for the uniform numbers `u`, drawn by
     /// [`Lights::towards_emitters`], with its density; `None` without emitters or where the drawn
