@@ -14,7 +14,7 @@
 //!
 //! Next-event estimation chooses its emitter per shading point ([`Lights::towards_emitters`]): in
 //! proportion to an estimate of what each emitter contributes there, its radiance times the solid
-//! angle it subtends ([`emitter_importance`]; pbrt-v4's light samplers, Conty Estevez and Kulla 2018),
+//! angle it subtends ([`EmitterWeight::at`]; pbrt-v4's light samplers, Conty Estevez and Kulla 2018),
 //! mixed with a uniform share so that no emitter that can contribute is left out.
 
 use crate::material::{Albedo, Material};
@@ -94,9 +94,8 @@ pub struct Lights {
     pub others: Vec<LightTarget>,
     /// How many of `emitters` the book's list names (the rest were found in the scene).
     pub listed_emitters: usize,
-    /// Per emitter of `emitters`, its radiance `L_i` in [`emitter_importance`]: the mean of the three
-    /// channels of a constant emission, 1 for a textured one (not known before it is looked up).
-    pub emitter_radiance: Vec<f64>,
+    /// Per emitter of `emitters`, what its weight in next-event estimation's choice needs.
+    pub emitter_weights: Vec<EmitterWeight>,
 }
 
 /// The most emitters whose choice is weighed per shading point: their probabilities live in a
@@ -116,45 +115,107 @@ pub const UNIFORM_SHARE: f64 = 0.1;
 pub type EmitterPmf = [f64; MAX_WEIGHED_EMITTERS];
 
 // ANCHOR: emitter_importance
-/// What emitter `target` of radiance `radiance` contributes at `x`, estimated: `L Omega(x)`, its
-/// radiance times the solid angle it subtends from `x` (the irradiance of a constant emitter without
-/// the cosine at `x`, which a medium's or a metal's vertex does not have). `None` where the
-/// contribution is exactly 0: behind (or in the plane of) a one-sided quad, where its density is 0.
-///
-/// - Sphere of radius `r` at distance `d`: the cone's `Omega = 2 pi (1 - cos theta_max)` with
-///   `sin^2 theta_max = s = r^2 / d^2`, written `2 pi s / (1 + sqrt(1 - s))` (no cancellation for a
-///   far sphere); `4 pi` from inside.
-/// - Quad of area `A` whose centre is at distance `d` and whose plane is at height `h` from `x`:
-///   `Omega ~ A |h| / d^3` (its area times the cosine at the centre over the squared distance), at
-///   most `2 pi`, the half-space it lies in.
-///
-/// Any weights that are positive wherever the emitter contributes give an unbiased estimator; these
-/// put the shadow rays where the light comes from.
-#[inline]
-pub fn emitter_importance(target: &LightTarget, radiance: f64, x: Point3) -> Option<f64> {
-    let omega = match target {
-        LightTarget::Sphere(s) => {
-            let d2 = (s.center() - x).length_squared();
-            let r2 = s.radius() * s.radius();
-            if r2 >= d2 {
-                2.0 * TAU
-            } else {
-                let s = r2 / d2;
-                TAU * s / (1.0 + (1.0 - s).sqrt())
+/// What an emitter's weight in next-event estimation's choice needs, computed once per scene from its
+/// shape and its radiance `L` (the mean of the three channels of a constant emission; 1 for a
+/// textured one, not known before it is looked up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EmitterWeight {
+    /// A sphere: its centre, radius squared and `L`.
+    Sphere {
+        centre: Point3,
+        r2: f64,
+        radiance: f64,
+    },
+    /// A quad: its corner `q`, centre, unit normal, area, `L`, and whether it is one-sided.
+    Quad {
+        q: Point3,
+        centre: Point3,
+        normal: Vec3,
+        area: f64,
+        radiance: f64,
+        one_sided: bool,
+    },
+}
+
+impl EmitterWeight {
+    /// The weight of emitter `target` of radiance `radiance`.
+    pub fn new(target: &LightTarget, radiance: f64) -> EmitterWeight {
+        match target {
+            LightTarget::Sphere(s) => EmitterWeight::Sphere {
+                centre: s.center(),
+                r2: s.radius() * s.radius(),
+                radiance,
+            },
+            LightTarget::Quad { quad, one_sided } => EmitterWeight::Quad {
+                q: quad.q(),
+                centre: quad.q() + 0.5 * (quad.u() + quad.v()),
+                normal: quad.normal(),
+                area: quad.area(),
+                radiance,
+                one_sided: *one_sided,
+            },
+        }
+    }
+
+    /// The emitter's radiance `L`.
+    pub fn radiance(&self) -> f64 {
+        match self {
+            EmitterWeight::Sphere { radiance, .. } | EmitterWeight::Quad { radiance, .. } => {
+                *radiance
             }
         }
-        LightTarget::Quad { quad, one_sided } => {
-            let h = quad.normal().dot(x - quad.q());
-            if *one_sided && h <= 0.0 {
-                return None;
+    }
+
+    /// What the emitter contributes at `x`, estimated: `L Omega(x)`, its radiance times the solid
+    /// angle it subtends from `x` (the irradiance of a constant emitter without the cosine at `x`,
+    /// which a medium's or a metal's vertex does not have). `None` where the contribution is exactly
+    /// 0: behind (or in the plane of) a one-sided quad, where its density is 0 (the same test as
+    /// [`LightTarget`]'s).
+    ///
+    /// - Sphere of radius `r` at distance `d`: the cone's `Omega = 2 pi (1 - cos theta_max)` with
+    ///   `sin^2 theta_max = s = r^2 / d^2`, written `2 pi s / (1 + sqrt(1 - s))` (no cancellation for
+    ///   a far sphere); `4 pi` from inside.
+    /// - Quad of area `A` whose centre is at distance `d` and whose plane is at height `h` from `x`:
+    ///   `Omega ~ A |h| / d^3` (its area times the cosine at the centre over the squared distance),
+    ///   at most `2 pi`, the half-space it lies in.
+    ///
+    /// Any weights that are positive wherever the emitter contributes give an unbiased estimator;
+    /// these put the shadow rays where the light comes from.
+    #[inline]
+    pub fn at(&self, x: Point3) -> Option<f64> {
+        match *self {
+            EmitterWeight::Sphere {
+                centre,
+                r2,
+                radiance,
+            } => {
+                let d2 = (centre - x).length_squared();
+                let omega = if r2 >= d2 {
+                    2.0 * TAU
+                } else {
+                    let s = r2 / d2;
+                    TAU * s / (1.0 + (1.0 - s).sqrt())
+                };
+                Some(radiance * omega)
             }
-            let to_centre = quad.q() + 0.5 * (quad.u() + quad.v()) - x;
-            let d2 = to_centre.length_squared();
-            // (NaN, from a point at the centre, becomes 2 pi: `min` returns the number)
-            (quad.area() * h.abs() / (d2 * d2.sqrt())).min(TAU)
+            EmitterWeight::Quad {
+                q,
+                centre,
+                normal,
+                area,
+                radiance,
+                one_sided,
+            } => {
+                let h = normal.dot(x - q);
+                if one_sided && h <= 0.0 {
+                    return None;
+                }
+                let d2 = (centre - x).length_squared();
+                // (NaN, from a point at the centre, becomes 2 pi: `min` returns the number)
+                Some(radiance * (area * h.abs() / (d2 * d2.sqrt())).min(TAU))
+            }
         }
-    };
-    Some(radiance * omega)
+    }
 }
 // ANCHOR_END: emitter_importance
 
@@ -201,7 +262,9 @@ impl Lights {
             let listed = scene.targets.iter().any(|t| same_shape(t, &shape));
             lights.listed_emitters += listed as usize;
             lights.emitters.push(target);
-            lights.emitter_radiance.push(radiance);
+            lights
+                .emitter_weights
+                .push(EmitterWeight::new(&target, radiance));
         }
         lights
     }
@@ -218,7 +281,7 @@ impl Lights {
     ///
     /// `p_i(x) = (1 - a) w_i(x) / sum_j w_j(x) + a / m(x)`  (`a` = [`UNIFORM_SHARE`]),
     ///
-    /// `w_i(x)` its [`emitter_importance`] and `m(x)` the number of emitters that can contribute at
+    /// `w_i(x)` its [`EmitterWeight::at`] and `m(x)` the number of emitters that can contribute at
     /// `x` (`p_i = 0` for the others, behind a one-sided quad; `1 / m` each if every `w_i` is 0), then
     /// a direction towards it by its own density `p_i(omega | x)` (solid angle measure): the density
     /// `p(omega | x) = sum_i p_i(x) p_i(omega | x)` with respect to solid angle at `x`. The light
@@ -240,12 +303,8 @@ impl Lights {
         let n = self.emitters.len();
         let pmf = &mut pmf[..n];
         let (mut total, mut open) = (0.0, 0usize);
-        for ((p, target), &radiance) in pmf
-            .iter_mut()
-            .zip(&self.emitters)
-            .zip(&self.emitter_radiance)
-        {
-            *p = match emitter_importance(target, radiance, x) {
+        for (p, weight) in pmf.iter_mut().zip(&self.emitter_weights) {
+            *p = match weight.at(x) {
                 Some(w) => {
                     open += 1;
                     total += w;
@@ -349,7 +408,7 @@ fn same_shape(t: &SceneShape, shape: &LightTarget) -> bool {
 const MAX_NESTING: u32 = 64;
 
 /// The emitting spheres and quads of group `g` placed by `to_world`, with their two-sidedness and
-/// their radiance (see [`Lights::emitter_radiance`]); media boundaries are shapes of no material and
+/// their radiance (see [`EmitterWeight`]); media boundaries are shapes of no material and
 /// are skipped.
 fn collect_emitters(
     scene: &Scene,

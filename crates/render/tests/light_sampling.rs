@@ -468,17 +468,22 @@ fn three_emitters() -> Lights {
         .emitters
         .iter()
         .copied()
-        .zip(lights.emitter_radiance.iter().copied())
+        .zip(lights.emitter_weights.iter().copied())
         .collect();
     both.sort_by_key(|(t, _)| rank(t));
-    (lights.emitters, lights.emitter_radiance) = both.into_iter().unzip();
+    (lights.emitters, lights.emitter_weights) = both.into_iter().unzip();
     lights
 }
 
 #[test]
 fn emitters_are_chosen_by_radiance_times_solid_angle_at_the_point() {
     let lights = three_emitters();
-    assert_eq!(lights.emitter_radiance, [2.0, 2.0, 0.5]);
+    let radiance: Vec<f64> = lights
+        .emitter_weights
+        .iter()
+        .map(|w| w.radiance())
+        .collect();
+    assert_eq!(radiance, [2.0, 2.0, 0.5]);
     assert!(lights.weighs_emitters());
     let pmf_at = |x: Point3| {
         let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
