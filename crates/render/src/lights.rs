@@ -174,7 +174,8 @@ impl EmitterWeight {
     ///
     /// - Sphere of radius `r` at distance `d`: the cone's `Omega = 2 pi (1 - cos theta_max)` with
     ///   `sin^2 theta_max = s = r^2 / d^2`, written `2 pi s / (1 + sqrt(1 - s))` (no cancellation for
-    ///   a far sphere); `4 pi` from inside.
+    ///   a far sphere); `4 pi` from inside (where a one-sided sphere sends nothing: a weight wasted, not
+    ///   a bias).
     /// - Quad of area `A` whose centre is at distance `d` and whose plane is at height `h` from `x`:
     ///   `Omega ~ A |h| / d^3` (its area times the cosine at the centre over the squared distance),
     ///   at most `2 pi`, the half-space it lies in.
@@ -317,13 +318,17 @@ impl Lights {
             return None;
         }
         let floor = 1.0 / open as f64;
-        let (share, scale) = if total > 0.0 && total.is_finite() {
-            (UNIFORM_SHARE * floor, (1.0 - UNIFORM_SHARE) / total)
-        } else {
-            (floor, 0.0)
-        };
+        // (every weight 0, or a sum that is not a number: the uniform choice among the open ones)
+        let weighed = total > 0.0 && total.is_finite();
+        let (share, scale) = (UNIFORM_SHARE * floor, (1.0 - UNIFORM_SHARE) / total);
         for p in pmf.iter_mut() {
-            *p = if *p < 0.0 { 0.0 } else { share + scale * *p };
+            *p = if *p < 0.0 {
+                0.0
+            } else if weighed {
+                share + scale * *p
+            } else {
+                floor
+            };
         }
         HittablePdf::with_pmf(x, &self.emitters, pmf).ok()
     }
@@ -353,10 +358,20 @@ impl Lights {
         }
     }
 
+    /// [`Lights::sample_emitters`] with the probabilities (out of line: the one-emitter path stays
+    /// small).
     #[inline(never)]
     fn sample_weighed(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
         let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
         self.towards_emitters(x, &mut pmf)?.sample(u)
+    }
+
+    /// [`Lights::emitters_pdf`] with the probabilities (out of line, likewise).
+    #[inline(never)]
+    fn pdf_weighed(&self, x: Point3, direction: Vec3) -> f64 {
+        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+        self.towards_emitters(x, &mut pmf)
+            .map_or(0.0, |h| h.pdf(direction))
     }
 
     /// One line for `--explain`: what next-event estimation samples, and how it chooses the emitter.
@@ -381,13 +396,6 @@ impl Lights {
                 self.listed_emitters,
             ),
         }
-    }
-
-    #[inline(never)]
-    fn pdf_weighed(&self, x: Point3, direction: Vec3) -> f64 {
-        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
-        self.towards_emitters(x, &mut pmf)
-            .map_or(0.0, |h| h.pdf(direction))
     }
 }
 

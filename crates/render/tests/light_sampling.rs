@@ -530,6 +530,9 @@ fn emitters_are_chosen_by_radiance_times_solid_angle_at_the_point() {
         );
     }
     assert!(lights.describe_emitters().contains("per shading point"));
+    // A point that is not a number (a ray gone wrong upstream): a distribution all the same, no panic.
+    let nan = pmf_at(Point3::splat(f64::NAN));
+    assert!((nan.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{nan:?}");
 }
 
 #[test]
