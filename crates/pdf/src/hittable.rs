@@ -1,13 +1,14 @@
 //! `HittablePdf`: directions towards one or more shapes, seen from a point (book 3, chapters 9 and 12).
 
-use crate::selection::{Selection, SelectionError, choose_uniform};
+use crate::selection::{Selection, SelectionError, choose_by_pmf, choose_uniform};
 use crate::{DirectionSample, Pdf, ShapeSampler};
 use glam::{DVec2, DVec3};
 
 // ANCHOR: hittable_pdf
 /// Directions from `origin` towards a list of shapes: choose shape `i` with probability `p_i` (uniform,
-/// or from a precomputed [`Selection`], e.g. by power) by `u.x`, then sample towards it with the rest
-/// of `u.x` and `u.y`. The density of a direction is the total over every shape it could have come
+/// from a precomputed [`Selection`], e.g. by power, or from probabilities given for this `origin`
+/// alone, e.g. by each shape's importance seen from there) by `u.x`, then sample towards it with the
+/// rest of `u.x` and `u.y`. The density of a direction is the total over every shape it could have come
 /// from: `pdf(d) = sum_i p_i shape_i.pdf(origin, d)`.
 ///
 /// A shape with no directions from `origin` (a one-sided light seen from behind: `sample` gives
@@ -15,7 +16,8 @@ use glam::{DVec2, DVec3};
 /// density: so `pdf` describes exactly what `sample` draws, a sub-probability density when some shape
 /// cannot be sampled from here.
 ///
-/// Borrows the shapes (and the table), so building one per scattering event allocates nothing.
+/// Borrows the shapes (and the table or the probabilities), so building one per scattering event
+/// allocates nothing.
 ///
 /// ```
 /// use glam::{DVec2, DVec3};
@@ -33,8 +35,18 @@ use glam::{DVec2, DVec3};
 pub struct HittablePdf<'a, T: ShapeSampler> {
     origin: DVec3,
     targets: &'a [T],
-    /// `None`: uniform, `1 / n` each.
-    selection: Option<&'a Selection>,
+    choice: Choosing<'a>,
+}
+
+/// How a [`HittablePdf`] chooses its shape.
+#[derive(Clone, Copy, Debug)]
+enum Choosing<'a> {
+    /// `1 / n` each.
+    Uniform,
+    /// A table built once.
+    Table(&'a Selection),
+    /// Probabilities given per origin, `>= 0` and summing to 1 (chosen by a linear scan).
+    Pmf(&'a [f64]),
 }
 
 impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
@@ -44,7 +56,7 @@ impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
         (!targets.is_empty()).then_some(HittablePdf {
             origin,
             targets,
-            selection: None,
+            choice: Choosing::Uniform,
         })
     }
 
@@ -66,7 +78,40 @@ impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
         Ok(HittablePdf {
             origin,
             targets,
-            selection: Some(selection),
+            choice: Choosing::Table(selection),
+        })
+    }
+
+    /// Shape `i` chosen with probability `pmf[i]`, given for this `origin` (one entry per shape, each
+    /// `>= 0`, summing to 1: the caller normalises; checked in debug builds). Choosing is a linear
+    /// scan of the running sums, for the short lists whose probabilities change from point to point
+    /// (a [`Selection`] tabulates once and searches in `O(log n)`). A shape of probability 0 is never
+    /// chosen; if every entry is 0, `sample` fails and `pdf` is 0.
+    #[inline]
+    pub fn with_pmf(
+        origin: DVec3,
+        targets: &'a [T],
+        pmf: &'a [f64],
+    ) -> Result<HittablePdf<'a, T>, SelectionError> {
+        if targets.is_empty() {
+            return Err(SelectionError::Empty);
+        }
+        if pmf.len() != targets.len() {
+            return Err(SelectionError::LengthMismatch {
+                table: pmf.len(),
+                parts: targets.len(),
+            });
+        }
+        debug_assert!(
+            pmf.iter().all(|p| p.is_finite() && *p >= 0.0)
+                && (pmf.iter().sum::<f64>() - 1.0).abs() < 1e-9
+                || pmf.iter().all(|p| *p == 0.0),
+            "pmf {pmf:?} is no probability distribution"
+        );
+        Ok(HittablePdf {
+            origin,
+            targets,
+            choice: Choosing::Pmf(pmf),
         })
     }
 
@@ -79,9 +124,10 @@ impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
     #[inline]
     #[doc(alias = "probability")]
     pub fn pmf(&self, i: usize) -> f64 {
-        match self.selection {
-            Some(s) => s.pmf(i),
-            None => 1.0 / self.targets.len() as f64,
+        match self.choice {
+            Choosing::Uniform => 1.0 / self.targets.len() as f64,
+            Choosing::Table(s) => s.pmf(i),
+            Choosing::Pmf(p) => p.get(i).copied().unwrap_or(0.0),
         }
     }
 
@@ -113,7 +159,7 @@ impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
         if let [only] = self.targets {
             return only.pdf(self.origin, direction);
         }
-        if self.selection.is_none() {
+        if let Choosing::Uniform = self.choice {
             // Uniform: `(1 / n) sum_i pdf_i`, one division rather than one a shape.
             let sum: f64 = self
                 .targets
@@ -130,18 +176,21 @@ impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
         if let [only] = self.targets {
             return only.sample(self.origin, u);
         }
-        let (i, u0) = match self.selection {
-            Some(s) => {
+        let (i, u0) = match self.choice {
+            Choosing::Uniform => choose_uniform(self.targets.len(), u.x),
+            Choosing::Table(s) => {
                 let c = s.sample(u.x);
                 (c.index, c.u_remapped)
             }
-            None => choose_uniform(self.targets.len(), u.x),
+            Choosing::Pmf(p) => choose_by_pmf(p, u.x)?,
         };
         let s = self.targets[i].sample(self.origin, DVec2::new(u0, u.y))?;
         // The chosen shape's density comes with its sample; only the others are evaluated.
-        let pdf = match self.selection {
-            Some(_) => self.pmf(i) * s.pdf + self.others_pdf(i, s.direction),
-            None => {
+        let pdf = match self.choice {
+            Choosing::Table(_) | Choosing::Pmf(_) => {
+                self.pmf(i) * s.pdf + self.others_pdf(i, s.direction)
+            }
+            Choosing::Uniform => {
                 let mut sum = s.pdf;
                 for (j, t) in self.targets.iter().enumerate() {
                     if j != i {

@@ -49,6 +49,27 @@ pub(crate) fn choose_uniform(n: usize, u: f64) -> (usize, f64) {
     (i, (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON))
 }
 
+/// The part chosen by `u` from probabilities `pmf` (`>= 0`, summing to 1) by a linear scan: the first
+/// `i` of `p_i > 0` with `u < F_{i+1}` (`F` the running sums), and the rest of `u` remapped to
+/// `[0, 1)`. Should rounding leave the sum below `u`, the last part of positive probability; `None`
+/// only if every `p_i` is 0.
+#[inline]
+pub(crate) fn choose_by_pmf(pmf: &[f64], u: f64) -> Option<(usize, f64)> {
+    let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+    let mut lo = 0.0;
+    let mut last = None;
+    for (i, &p) in pmf.iter().enumerate() {
+        if p > 0.0 {
+            if u < lo + p {
+                return Some((i, remap(u, lo, p)));
+            }
+            last = Some((i, lo, p));
+            lo += p;
+        }
+    }
+    last.map(|(i, lo, p)| (i, remap(u, lo, p)))
+}
+
 // ANCHOR: selection
 /// Fixed probabilities `p_i = w_i / sum w` of choosing part `i`, built once (e.g. per scene, from the
 /// lights' powers) and borrowed by the per-sample code, which then allocates nothing.
@@ -177,6 +198,33 @@ mod tests {
         ));
         assert!(Selection::from_weights(&[1.0, f64::INFINITY]).is_err());
         assert!(format!("{}", SelectionError::Empty).contains("empty"));
+    }
+
+    #[test]
+    fn a_pmf_given_per_call_is_chosen_by_its_running_sums() {
+        let pmf = [0.0, 0.25, 0.0, 0.75];
+        assert_eq!(choose_by_pmf(&pmf, 0.0), Some((1, 0.0)));
+        assert_eq!(choose_by_pmf(&pmf, 0.125), Some((1, 0.5)));
+        assert_eq!(choose_by_pmf(&pmf, 0.25), Some((3, 0.0)));
+        assert_eq!(choose_by_pmf(&pmf, 0.625), Some((3, 0.5)));
+        // never a part of probability 0, the rest of u below 1, also at and past the end
+        for u in [1.0 - f64::EPSILON / 2.0, 1.0, 2.0] {
+            let (i, rest) = choose_by_pmf(&pmf, u).unwrap();
+            assert!(i == 3 && rest < 1.0, "u = {u}: {i} {rest}");
+        }
+        // a sum that rounding leaves short of 1 still chooses a part of positive probability
+        let (i, rest) = choose_by_pmf(&[0.5, 0.5 - 1e-12, 0.0], 1.0 - 1e-15).unwrap();
+        assert!(i == 1 && rest < 1.0);
+        assert_eq!(choose_by_pmf(&[0.0, 0.0], 0.5), None);
+        // the same choice as the tabulated selection of the same probabilities
+        let table = Selection::from_weights(&pmf).unwrap();
+        for k in 0..1000 {
+            let u = (k as f64 + 0.5) / 1000.0;
+            let c = table.sample(u);
+            let (i, rest) = choose_by_pmf(&pmf, u).unwrap();
+            assert_eq!(i, c.index, "u = {u}");
+            assert!((rest - c.u_remapped).abs() < 1e-12, "u = {u}");
+        }
     }
 
     #[test]

@@ -22,7 +22,7 @@ const N: usize = 100_000;
 const N_HEAVY: usize = 1_000_000;
 
 /// The number of `accept(` calls in this file (checked by `sidak_count_matches_this_file`).
-const CHI2_TESTS: usize = 30;
+const CHI2_TESTS: usize = 31;
 
 fn alpha() -> f64 {
     sidak_alpha(0.01, CHI2_TESTS)
@@ -669,6 +669,31 @@ fn chi_square_hittable_pdf_quad_spherical_rectangle_far_falls_back_to_area() {
 /// Two disjoint coplanar quads chosen 1:3 (say, by power), binned in a parallelogram holding both;
 /// the support (cells touching either quad) is decided from the geometry.
 fn light_list_two_quads(n: usize, seed: u64) -> Result<Chi2Report, Chi2Failure> {
+    let table = Selection::from_weights(&[1.0, 3.0]).unwrap();
+    two_quads_chosen_by(n, seed, |origin, lights, f| {
+        f(&HittablePdf::with_selection(origin, lights, &table).unwrap())
+    })
+}
+
+/// [`light_list_two_quads`] with the probabilities 1:3 given per call ([`HittablePdf::with_pmf`]).
+fn light_list_two_quads_per_call(n: usize, seed: u64) -> Result<Chi2Report, Chi2Failure> {
+    let pmf = [0.25, 0.75];
+    two_quads_chosen_by(n, seed, |origin, lights, f| {
+        f(&HittablePdf::with_pmf(origin, lights, &pmf).unwrap())
+    })
+}
+
+/// The chi-square test of the list of two quads, with the list built by `build(origin, lights, f)`,
+/// which hands it to `f`.
+fn two_quads_chosen_by(
+    n: usize,
+    seed: u64,
+    build: impl Fn(
+        DVec3,
+        &[QuadTarget],
+        &mut dyn FnMut(&HittablePdf<'_, QuadTarget>) -> Result<Chi2Report, Chi2Failure>,
+    ) -> Result<Chi2Report, Chi2Failure>,
+) -> Result<Chi2Report, Chi2Failure> {
     let lights = [
         QuadTarget::new(
             DVec3::new(-1.9, -0.83, 1.0),
@@ -681,9 +706,7 @@ fn light_list_two_quads(n: usize, seed: u64) -> Result<Chi2Report, Chi2Failure> 
             DVec3::new(0.0, 1.7, 0.0),
         ),
     ];
-    let table = Selection::from_weights(&[1.0, 3.0]).unwrap();
     let origin = DVec3::new(0.1, 0.2, 0.0);
-    let pdf = HittablePdf::with_selection(origin, &lights, &table).unwrap();
     let big_q = DVec3::new(-2.0, -1.0, 1.0);
     let (e1, e2) = (DVec3::new(4.0, 0.0, 0.0), DVec3::new(0.0, 2.5, 0.0));
     let domain = ParallelogramDomain {
@@ -701,18 +724,28 @@ fn light_list_two_quads(n: usize, seed: u64) -> Result<Chi2Report, Chi2Failure> 
         })
     };
     let mut r = rng(seed);
-    ChiSquareTest::new(24, 20).run(
-        &domain,
-        |d| pdf.value(d),
-        in_support,
-        n,
-        || pdf.generate(&mut r),
-    )
+    build(origin, &lights, &mut |pdf| {
+        ChiSquareTest::new(24, 20).run(
+            &domain,
+            |d| pdf.value(d),
+            in_support,
+            n,
+            || pdf.generate(&mut r),
+        )
+    })
 }
 
 #[test]
 fn chi_square_hittable_pdf_light_list_two_quads() {
     accept("light list: two quads 1:3", light_list_two_quads(N, 47));
+}
+
+#[test]
+fn chi_square_hittable_pdf_light_list_two_quads_pmf_per_call() {
+    accept(
+        "light list: two quads 1:3 per call",
+        light_list_two_quads_per_call(N, 48),
+    );
 }
 
 // ---------------------------------------------------------------- heavy variants (1e6 samples)

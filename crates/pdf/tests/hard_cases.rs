@@ -498,6 +498,50 @@ fn light_list_empty_is_a_clear_none_or_error() {
         HittablePdf::with_selection(DVec3::Z, &one, &two).err(),
         Some(SelectionError::LengthMismatch { table: 2, parts: 1 })
     );
+    assert_eq!(
+        HittablePdf::with_pmf(DVec3::ZERO, &none, &[]).err(),
+        Some(SelectionError::Empty)
+    );
+    assert_eq!(
+        HittablePdf::with_pmf(DVec3::Z, &one, &[0.5, 0.5]).err(),
+        Some(SelectionError::LengthMismatch { table: 2, parts: 1 })
+    );
+    // every probability 0 (nothing can contribute from here): no sample, density 0
+    let lights = two_quads();
+    let nothing = HittablePdf::with_pmf(DVec3::new(0.1, 0.2, 0.0), &lights, &[0.0, 0.0]).unwrap();
+    assert!(nothing.sample(DVec2::new(0.3, 0.6)).is_none());
+    assert_eq!(nothing.pdf(DVec3::Z), 0.0);
+}
+
+#[test]
+fn light_list_pmf_per_call_draws_what_the_table_draws() {
+    // the same probabilities given per call and tabulated: the same directions and densities
+    let lights = two_quads();
+    let origin = DVec3::new(0.1, 0.2, 0.0);
+    let table = Selection::from_weights(&[1.0, 3.0]).unwrap();
+    let tabulated = HittablePdf::with_selection(origin, &lights, &table).unwrap();
+    let pmf = [0.25, 0.75];
+    let per_call = HittablePdf::with_pmf(origin, &lights, &pmf).unwrap();
+    let mut r = rng(108);
+    for _ in 0..2000 {
+        let u = DVec2::new(r.random(), r.random());
+        let (a, b) = (tabulated.sample(u).unwrap(), per_call.sample(u).unwrap());
+        assert!((a.direction - b.direction).length() < 1e-12, "u = {u}");
+        assert!((a.pdf - b.pdf).abs() <= 1e-12 * a.pdf);
+        assert!((tabulated.pdf(a.direction) - per_call.pdf(a.direction)).abs() <= 1e-12 * a.pdf);
+    }
+    assert_eq!(
+        (per_call.pmf(0), per_call.pmf(1), per_call.pmf(2)),
+        (0.25, 0.75, 0.0)
+    );
+    // a shape of probability 0 is never chosen, and its directions have only the others' density
+    let only_second = [0.0, 1.0];
+    let second = HittablePdf::with_pmf(origin, &lights, &only_second).unwrap();
+    for _ in 0..500 {
+        let s = second.sample(DVec2::new(r.random(), r.random())).unwrap();
+        assert!(lights[1].pdf_value(origin, s.direction) > 0.0);
+        assert_eq!(lights[0].pdf_value(origin, s.direction), 0.0);
+    }
 }
 
 fn two_quads() -> [QuadTarget; 2] {

@@ -291,10 +291,12 @@ fn radiance_one_sample(
 }
 // ANCHOR_END: radiance
 
-/// The density with which next-event estimation from `origin` picks `direction` (0 without emitters).
+/// The density with which next-event estimation from `origin` picks `direction` (0 without emitters):
+/// the emitter chosen by the same per-point probabilities as the light sample's
+/// ([`Lights::towards_emitters`]).
 #[inline]
-fn light_pdf(origin: Point3, emitters: &[LightTarget], direction: Vec3) -> f64 {
-    HittablePdf::new(origin, emitters).map_or(0.0, |h| h.pdf(direction))
+fn light_pdf(origin: Point3, lights: &Lights, direction: Vec3) -> f64 {
+    lights.emitters_pdf(origin, direction)
 }
 
 // ANCHOR: shadow_ray
@@ -348,8 +350,7 @@ fn light_sample(
     u: glam::DVec2,
     ctx: &mut Ctx,
 ) -> Option<(Color, f64)> {
-    let towards_lights = HittablePdf::new(hit.p, &lights.emitters)?;
-    let ls = towards_lights.sample(u)?;
+    let ls = lights.sample_emitters(hit.p, u)?;
     let s = pdf.pdf(ls.direction);
     let s_over_p = ratio(s, ls.pdf)?;
     // Borrowed where `trace_shadow` left it, not moved (see `radiance_one_sample`).
@@ -670,6 +671,10 @@ pub enum MisVariant {
     WrongMetalDensity,
     /// Wrong: Russian roulette in media without reweighting the survivors.
     WrongRouletteInMedia,
+    /// Wrong: the emission that material sampling meets weighted by the uniform choice's light density,
+    /// while the light sample chooses its emitter by the per-point probabilities (the two weights of a
+    /// direction no longer sum to 1).
+    WrongUniformLightWeight,
 }
 
 /// The density a `mis` vertex samples its direction from and weighs light samples by: a diffuse
@@ -715,7 +720,9 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
 // ANCHOR: radiance_mis
 /// Next-event estimation with multiple importance sampling (Veach 1997, ch. 9; pbrt-v4's path
 /// integrator). At every diffuse vertex two directions are drawn:
-/// - towards the emitters (`p_l`), every emitter of the scene, listed or not: a shadow ray, whose
+/// - towards the emitters (`p_l`), every emitter of the scene, listed or not, each chosen with a
+///   probability that depends on the vertex (its radiance times the solid angle it subtends there,
+///   [`Lights::towards_emitters`]): a shadow ray, whose
 ///   emission, times the transmittance of the media it crosses, counts with weight
 ///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
 /// - from the material's density mixed 50/50 with the non-emitting targets (`p_m`): the path goes on
@@ -807,7 +814,12 @@ pub fn radiance_mis_variant(
                 let weight = match previous {
                     None => 1.0,
                     Some((origin, p_material)) => {
-                        let p_light = light_pdf(origin, &lights.emitters, ray.direction);
+                        let p_light = if variant == MisVariant::WrongUniformLightWeight {
+                            HittablePdf::new(origin, &lights.emitters)
+                                .map_or(0.0, |h| h.pdf(ray.direction))
+                        } else {
+                            light_pdf(origin, lights, ray.direction)
+                        };
                         power_heuristic(1.0, p_material, 1.0, p_light)
                     }
                 };

@@ -11,12 +11,18 @@
 //! converted to solid angle, or, where it pays, uniformly in its spherical rectangle. A one-sided
 //! emitter has no directions from behind, where it emits nothing: there its `sample` fails and its
 //! `pdf` is 0, so what a list of targets draws is what its density describes.
+//!
+//! Next-event estimation chooses its emitter per shading point ([`Lights::towards_emitters`]): in
+//! proportion to an estimate of what each emitter contributes there, its radiance times the solid
+//! angle it subtends ([`EmitterWeight::at`]; pbrt-v4's light samplers, Conty Estevez and Kulla 2018),
+//! mixed with a uniform share so that no emitter that can contribute is left out.
 
-use crate::material::Material;
+use crate::material::{Albedo, Material};
 use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, Scene, Transform};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
-use rtl_pdf::{DirectionSample, QuadTarget, ShapeSampler, SphereTarget};
+use rtl_pdf::{DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeSampler, SphereTarget};
+use std::f64::consts::TAU;
 
 // ANCHOR: light_target
 /// A shape to sample directions towards: static dispatch over the two kinds the book needs.
@@ -88,7 +94,131 @@ pub struct Lights {
     pub others: Vec<LightTarget>,
     /// How many of `emitters` the book's list names (the rest were found in the scene).
     pub listed_emitters: usize,
+    /// Per emitter of `emitters`, what its weight in next-event estimation's choice needs.
+    pub emitter_weights: Vec<EmitterWeight>,
 }
+
+/// The most emitters whose choice is weighed per shading point: their probabilities live in a
+/// fixed-size array on the stack ([`EmitterPmf`]). Scenes with more keep the uniform choice (the
+/// weights would cost `O(n)` per vertex on top of the `O(n)` density; a light tree is what such
+/// scenes need).
+pub const MAX_WEIGHED_EMITTERS: usize = 16;
+
+/// The share of next-event estimation's choice spread uniformly over the emitters that can
+/// contribute at the shading point (a defensive mixture: an estimate of the importance that is too
+/// small costs at most a factor `1 / UNIFORM_SHARE` in that emitter's probability against the
+/// uniform choice).
+pub const UNIFORM_SHARE: f64 = 0.1;
+
+/// The probabilities of choosing each emitter at one shading point, filled by
+/// [`Lights::towards_emitters`] (stack storage: nothing is allocated per vertex).
+pub type EmitterPmf = [f64; MAX_WEIGHED_EMITTERS];
+
+// ANCHOR: emitter_importance
+/// What an emitter's weight in next-event estimation's choice needs, computed once per scene from its
+/// shape and its radiance `L` (the mean of the three channels of a constant emission; 1 for a
+/// textured one, not known before it is looked up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EmitterWeight {
+    /// A sphere: its centre, radius squared and `L`.
+    Sphere {
+        centre: Point3,
+        r2: f64,
+        radiance: f64,
+    },
+    /// A quad: its corner `q`, centre, unit normal, area, `L`, and whether it is one-sided.
+    Quad {
+        q: Point3,
+        centre: Point3,
+        normal: Vec3,
+        area: f64,
+        radiance: f64,
+        one_sided: bool,
+    },
+}
+
+impl EmitterWeight {
+    /// The weight of emitter `target` of radiance `radiance`.
+    pub fn new(target: &LightTarget, radiance: f64) -> EmitterWeight {
+        match target {
+            LightTarget::Sphere(s) => EmitterWeight::Sphere {
+                centre: s.center(),
+                r2: s.radius() * s.radius(),
+                radiance,
+            },
+            LightTarget::Quad { quad, one_sided } => EmitterWeight::Quad {
+                q: quad.q(),
+                centre: quad.q() + 0.5 * (quad.u() + quad.v()),
+                normal: quad.normal(),
+                area: quad.area(),
+                radiance,
+                one_sided: *one_sided,
+            },
+        }
+    }
+
+    /// The emitter's radiance `L`.
+    pub fn radiance(&self) -> f64 {
+        match self {
+            EmitterWeight::Sphere { radiance, .. } | EmitterWeight::Quad { radiance, .. } => {
+                *radiance
+            }
+        }
+    }
+
+    /// What the emitter contributes at `x`, estimated: `L Omega(x)`, its radiance times the solid
+    /// angle it subtends from `x` (the irradiance of a constant emitter without the cosine at `x`,
+    /// which a medium's or a metal's vertex does not have). `None` where the contribution is exactly
+    /// 0: behind (or in the plane of) a one-sided quad, where its density is 0 (the same test as
+    /// [`LightTarget`]'s).
+    ///
+    /// - Sphere of radius `r` at distance `d`: the cone's `Omega = 2 pi (1 - cos theta_max)` with
+    ///   `sin^2 theta_max = s = r^2 / d^2`, written `2 pi s / (1 + sqrt(1 - s))` (no cancellation for
+    ///   a far sphere); `4 pi` from inside (where a one-sided sphere sends nothing: a weight wasted, not
+    ///   a bias).
+    /// - Quad of area `A` whose centre is at distance `d` and whose plane is at height `h` from `x`:
+    ///   `Omega ~ A |h| / d^3` (its area times the cosine at the centre over the squared distance),
+    ///   at most `2 pi`, the half-space it lies in.
+    ///
+    /// Any weights that are positive wherever the emitter contributes give an unbiased estimator;
+    /// these put the shadow rays where the light comes from.
+    #[inline]
+    pub fn at(&self, x: Point3) -> Option<f64> {
+        match *self {
+            EmitterWeight::Sphere {
+                centre,
+                r2,
+                radiance,
+            } => {
+                let d2 = (centre - x).length_squared();
+                let omega = if r2 >= d2 {
+                    2.0 * TAU
+                } else {
+                    let s = r2 / d2;
+                    TAU * s / (1.0 + (1.0 - s).sqrt())
+                };
+                Some(radiance * omega)
+            }
+            EmitterWeight::Quad {
+                q,
+                centre,
+                normal,
+                area,
+                radiance,
+                one_sided,
+            } => {
+                let h = normal.dot(x - q);
+                if one_sided && h <= 0.0 {
+                    return None;
+                }
+                let d2 = (centre - x).length_squared();
+                // (NaN, from a point at the centre, becomes 2 pi: `min` returns the number)
+                Some(radiance * (area * h.abs() / (d2 * d2.sqrt())).min(TAU))
+            }
+        }
+    }
+}
+// ANCHOR_END: emitter_importance
 
 impl Lights {
     /// The scene's targets; `spherical_rectangles` makes rectangular emitters sample their solid angle
@@ -122,7 +252,7 @@ impl Lights {
         // Every emitter placed in the scene, in world space.
         let mut found = Vec::new();
         collect_emitters(scene, GroupId(0), Transform::IDENTITY, 0, &mut found);
-        for (shape, two_sided) in found {
+        for (shape, two_sided, radiance) in found {
             let target = match shape {
                 LightTarget::Quad { quad, .. } => LightTarget::Quad {
                     quad: quad.with_spherical_rectangles(spherical_rectangles),
@@ -133,16 +263,135 @@ impl Lights {
             let listed = scene.targets.iter().any(|t| same_shape(t, &shape));
             lights.listed_emitters += listed as usize;
             lights.emitters.push(target);
+            lights
+                .emitter_weights
+                .push(EmitterWeight::new(&target, radiance));
         }
         lights
     }
 
-    /// One line for `--explain`: what next-event estimation samples.
+    /// Whether next-event estimation weighs its choice of emitter per shading point: two emitters or
+    /// more, at most [`MAX_WEIGHED_EMITTERS`] (one emitter is always chosen; more keep the uniform
+    /// choice).
+    pub fn weighs_emitters(&self) -> bool {
+        (2..=MAX_WEIGHED_EMITTERS).contains(&self.emitters.len())
+    }
+
+    // ANCHOR: towards_emitters
+    /// Next-event estimation's density of directions from `x`: emitter `i` chosen with probability
+    ///
+    /// `p_i(x) = (1 - a) w_i(x) / sum_j w_j(x) + a / m(x)`  (`a` = [`UNIFORM_SHARE`]),
+    ///
+    /// `w_i(x)` its [`EmitterWeight::at`] and `m(x)` the number of emitters that can contribute at
+    /// `x` (`p_i = 0` for the others, behind a one-sided quad; `1 / m` each if every `w_i` is 0), then
+    /// a direction towards it by its own density `p_i(omega | x)` (solid angle measure): the density
+    /// `p(omega | x) = sum_i p_i(x) p_i(omega | x)` with respect to solid angle at `x`. The light
+    /// sample at `x` and the MIS weight of emission met from `x` by material sampling both call this,
+    /// so they use the same probabilities.
+    ///
+    /// `pmf` is where the probabilities are kept (on the caller's stack). One emitter, or more than
+    /// [`MAX_WEIGHED_EMITTERS`]: the uniform choice, as [`HittablePdf::new`] makes it. `None` without
+    /// emitters, or where none can contribute (every sample would fail and the density is 0).
+    #[inline]
+    pub fn towards_emitters<'a>(
+        &'a self,
+        x: Point3,
+        pmf: &'a mut EmitterPmf,
+    ) -> Option<HittablePdf<'a, LightTarget>> {
+        if !self.weighs_emitters() {
+            return HittablePdf::new(x, &self.emitters);
+        }
+        let n = self.emitters.len();
+        let pmf = &mut pmf[..n];
+        let (mut total, mut open) = (0.0, 0usize);
+        for (p, weight) in pmf.iter_mut().zip(&self.emitter_weights) {
+            *p = match weight.at(x) {
+                Some(w) => {
+                    open += 1;
+                    total += w;
+                    w
+                }
+                None => -1.0,
+            };
+        }
+        if open == 0 {
+            return None;
+        }
+        let floor = 1.0 / open as f64;
+        // (every weight 0, or a sum that is not a number: the uniform choice among the open ones)
+        let weighed = total > 0.0 && total.is_finite();
+        let (share, scale) = (UNIFORM_SHARE * floor, (1.0 - UNIFORM_SHARE) / total);
+        for p in pmf.iter_mut() {
+            *p = if *p < 0.0 {
+                0.0
+            } else if weighed {
+                share + scale * *p
+            } else {
+                floor
+            };
+        }
+        HittablePdf::with_pmf(x, &self.emitters, pmf).ok()
+    }
+    // ANCHOR_END: towards_emitters
+
+    /// One direction of next-event estimation from `x` for the uniform numbers `u`, drawn by
+    /// [`Lights::towards_emitters`], with its density; `None` without emitters or where the drawn
+    /// emitter has no direction from `x`.
+    #[inline]
+    pub fn sample_emitters(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
+        if self.weighs_emitters() {
+            self.sample_weighed(x, u)
+        } else {
+            // (no probabilities to keep: the common case of one emitter pays nothing for them)
+            HittablePdf::new(x, &self.emitters)?.sample(u)
+        }
+    }
+
+    /// The density with which next-event estimation from `x` picks `direction`
+    /// ([`Lights::towards_emitters`]; 0 without emitters).
+    #[inline]
+    pub fn emitters_pdf(&self, x: Point3, direction: Vec3) -> f64 {
+        if self.weighs_emitters() {
+            self.pdf_weighed(x, direction)
+        } else {
+            HittablePdf::new(x, &self.emitters).map_or(0.0, |h| h.pdf(direction))
+        }
+    }
+
+    /// [`Lights::sample_emitters`] with the probabilities (out of line: the one-emitter path stays
+    /// small).
+    #[inline(never)]
+    fn sample_weighed(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
+        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+        self.towards_emitters(x, &mut pmf)?.sample(u)
+    }
+
+    /// [`Lights::emitters_pdf`] with the probabilities (out of line, likewise).
+    #[inline(never)]
+    fn pdf_weighed(&self, x: Point3, direction: Vec3) -> f64 {
+        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+        self.towards_emitters(x, &mut pmf)
+            .map_or(0.0, |h| h.pdf(direction))
+    }
+
+    /// One line for `--explain`: what next-event estimation samples, and how it chooses the emitter.
     pub fn describe_emitters(&self) -> String {
-        match self.emitters.len() {
+        let n = self.emitters.len();
+        let choice = if n < 2 {
+            String::new()
+        } else if self.weighs_emitters() {
+            format!(
+                ", each chosen per shading point in proportion to its radiance x the solid angle it \
+                 subtends there ({:.0}% spread uniformly)",
+                100.0 * UNIFORM_SHARE
+            )
+        } else {
+            format!(", chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters)")
+        };
+        match n {
             0 => "none (no emitter in the scene)".into(),
             n => format!(
-                "{n} emitter{} ({} of them in the list of targets)",
+                "{n} emitter{} ({} of them in the list of targets){choice}",
                 if n == 1 { "" } else { "s" },
                 self.listed_emitters,
             ),
@@ -166,14 +415,15 @@ fn same_shape(t: &SceneShape, shape: &LightTarget) -> bool {
 /// Groups nest at most this deep (a guard against a cycle, which the scene builder refuses anyway).
 const MAX_NESTING: u32 = 64;
 
-/// The emitting spheres and quads of group `g` placed by `to_world`, with their two-sidedness; media
-/// boundaries are shapes of no material and are skipped.
+/// The emitting spheres and quads of group `g` placed by `to_world`, with their two-sidedness and
+/// their radiance (see [`EmitterWeight`]); media boundaries are shapes of no material and
+/// are skipped.
 fn collect_emitters(
     scene: &Scene,
     g: GroupId,
     to_world: Transform,
     depth: u32,
-    out: &mut Vec<(LightTarget, bool)>,
+    out: &mut Vec<(LightTarget, bool, f64)>,
 ) {
     let Some(group) = scene.groups.get(g.0 as usize) else {
         return;
@@ -182,19 +432,30 @@ fn collect_emitters(
         return;
     }
     let two_sided = |material: MaterialId| match scene.materials.get(material.index()) {
-        Some(Material::DiffuseLight { two_sided, .. }) => Some(*two_sided),
+        Some(Material::DiffuseLight { two_sided, emit }) => {
+            let radiance = match emit {
+                Albedo::Constant(c) => c.element_sum() / 3.0,
+                Albedo::Texture(_) => 1.0,
+            };
+            let radiance = if radiance.is_finite() && radiance > 0.0 {
+                radiance
+            } else {
+                0.0
+            };
+            Some((*two_sided, radiance))
+        }
         _ => None,
     };
     for o in &group.objects {
         match o {
             Object::Sphere(s) => {
-                if let Some(ts) = two_sided(s.material) {
+                if let Some((ts, radiance)) = two_sided(s.material) {
                     let target = SphereTarget::new(to_world.point(s.center), s.radius);
-                    out.push((LightTarget::Sphere(target), ts));
+                    out.push((LightTarget::Sphere(target), ts, radiance));
                 }
             }
             Object::Quad(q) => {
-                if let Some(ts) = two_sided(q.material) {
+                if let Some((ts, radiance)) = two_sided(q.material) {
                     let quad = QuadTarget::new(
                         to_world.point(q.q),
                         to_world.vector(q.u),
@@ -206,6 +467,7 @@ fn collect_emitters(
                             one_sided: false,
                         },
                         ts,
+                        radiance,
                     ));
                 }
             }

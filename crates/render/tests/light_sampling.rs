@@ -15,7 +15,7 @@ use rtl_pdf::chi2::{Chi2Report, ChiSquareTest, SphereDomain, sidak_alpha};
 use rtl_pdf::{
     DirectionSample, HittablePdf, Onb, Pdf, QuadTarget, Selection, ShapeSampler, SphereTarget,
 };
-use rtl_render::lights::LightTarget;
+use rtl_render::lights::{LightTarget, Lights, MAX_WEIGHED_EMITTERS, UNIFORM_SHARE};
 
 const N: usize = 100_000;
 /// Tests of a correct sampler in this file's run (for the Sidak correction).
@@ -179,8 +179,8 @@ use rtl_render::scene::SceneBuilder;
 use rtl_render::vec::Point3;
 
 /// Two emitting quads (different sizes, both facing down) above a point on a floor; their emitters
-/// as the renderer samples them, by area.
-fn two_emitters() -> Vec<LightTarget> {
+/// as the renderer samples them, by area, each chosen by its importance at the shading point.
+fn two_emitters() -> Lights {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let light = b.material(Material::DiffuseLight {
@@ -210,7 +210,7 @@ fn two_emitters() -> Vec<LightTarget> {
         2,
         "both emitters found without a list"
     );
-    lights.emitters
+    lights
 }
 
 use rtl_render::vec::Vec3;
@@ -267,9 +267,11 @@ fn gauss_legendre_64() -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// One sample of the direct-light estimate `L cos / (pi p)` at `P` for the light point `u`.
-fn estimate(lights: &[LightTarget], u: DVec2) -> f64 {
-    let pdf = HittablePdf::new(P, lights).unwrap();
+/// One sample of the direct-light estimate `L cos / (pi p)` at `P` for the light point `u`, drawn as
+/// the renderer's next-event estimation draws it.
+fn estimate(lights: &Lights, u: DVec2) -> f64 {
+    let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+    let pdf = lights.towards_emitters(P, &mut pmf).unwrap();
     pdf.sample(u).map_or(0.0, |s| {
         s.direction.y.max(0.0) / (std::f64::consts::PI * s.pdf)
     })
@@ -277,8 +279,8 @@ fn estimate(lights: &[LightTarget], u: DVec2) -> f64 {
 
 /// The slope of log RMSE against log N over 64 independent scrambles (or seeds), N = 16 .. 4096,
 /// for the uniform points `point(key, k)`.
-fn slope(lights: &[LightTarget], point: impl Fn(u64, u64) -> DVec2) -> f64 {
-    let truth = exact(lights);
+fn slope(lights: &Lights, point: impl Fn(u64, u64) -> DVec2) -> f64 {
+    let truth = exact(&lights.emitters);
     let sizes = [16u64, 64, 256, 1024, 4096];
     let mut xs = Vec::new();
     let mut ys = Vec::new();
@@ -411,4 +413,218 @@ fn emitters_in_instanced_groups_are_found_in_world_space() {
         );
         assert!(pdf.pdf(s.direction) > 0.0);
     }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Which emitter next-event estimation chooses, per shading point
+
+/// A one-sided quad lamp (radiance 2, 2 x 2 at y = 3, facing down), a two-sided sphere (radiance
+/// (1, 2, 3), mean 2, radius 0.5 at (4, 1, 0)) and a two-sided quad (radiance 0.5, 1 x 1 upright in
+/// the plane x = -3).
+fn three_emitters() -> Lights {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(2.0)),
+        two_sided: false,
+    });
+    let ball = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::new(1.0, 2.0, 3.0)),
+        two_sided: true,
+    });
+    let panel = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(0.5)),
+        two_sided: true,
+    });
+    // u x v = (0, -4, 0): shines down
+    b.quad(
+        w,
+        Point3::new(-1.0, 3.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    b.sphere(w, Point3::new(4.0, 1.0, 0.0), 0.5, ball).unwrap();
+    b.quad(
+        w,
+        Point3::new(-3.0, 0.0, -0.5),
+        Vec3::new(0.0, 1.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+        panel,
+    )
+    .unwrap();
+    let mut lights = Lights::new(&b.build().unwrap(), false);
+    assert_eq!(lights.emitters.len(), 3);
+    // In the order lamp, ball, panel (the scene lists them in its own order).
+    let rank = |t: &LightTarget| match t {
+        LightTarget::Quad {
+            one_sided: true, ..
+        } => 0,
+        LightTarget::Sphere(_) => 1,
+        LightTarget::Quad { .. } => 2,
+    };
+    let mut both: Vec<_> = lights
+        .emitters
+        .iter()
+        .copied()
+        .zip(lights.emitter_weights.iter().copied())
+        .collect();
+    both.sort_by_key(|(t, _)| rank(t));
+    (lights.emitters, lights.emitter_weights) = both.into_iter().unzip();
+    lights
+}
+
+#[test]
+fn emitters_are_chosen_by_radiance_times_solid_angle_at_the_point() {
+    let lights = three_emitters();
+    let radiance: Vec<f64> = lights
+        .emitter_weights
+        .iter()
+        .map(|w| w.radiance())
+        .collect();
+    assert_eq!(radiance, [2.0, 2.0, 0.5]);
+    assert!(lights.weighs_emitters());
+    let pmf_at = |x: Point3| {
+        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+        let h = lights.towards_emitters(x, &mut pmf).unwrap();
+        [h.pmf(0), h.pmf(1), h.pmf(2)]
+    };
+    // Below the lamp at the origin: the lamp's A h / d^3 = 4 x 3 / 27, the sphere's cone with
+    // s = 0.25 / 17, the panel's 1 x 3 / 9.25^(3/2) (its centre at (-3, 0.5, 0)).
+    let x = Point3::ZERO;
+    let s = 0.25 / 17.0;
+    let w = [
+        2.0 * 4.0 * 3.0 / 27.0,
+        2.0 * std::f64::consts::TAU * s / (1.0 + (1.0 - s).sqrt()),
+        0.5 * 3.0 / 9.25f64.powf(1.5),
+    ];
+    let total: f64 = w.iter().sum();
+    let want = w.map(|w| (1.0 - UNIFORM_SHARE) * w / total + UNIFORM_SHARE / 3.0);
+    let got = pmf_at(x);
+    for i in 0..3 {
+        assert!(
+            (got[i] - want[i]).abs() < 1e-12,
+            "{i}: {got:?} against {want:?}"
+        );
+    }
+    assert!((got.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    assert!(got[0] > 0.5, "the lamp overhead is the likeliest: {got:?}");
+    // Beside the sphere, it takes most of the choices instead.
+    let near_ball = pmf_at(Point3::new(4.0, 0.2, 0.0));
+    assert!(near_ball[1] > 0.8, "{near_ball:?}");
+    // Above the one-sided lamp: exactly 0 for it (it sends nothing there), the others share all.
+    let above = pmf_at(Point3::new(0.0, 4.0, 0.0));
+    assert_eq!(above[0], 0.0);
+    assert!(above[1] >= UNIFORM_SHARE / 2.0 && above[2] >= UNIFORM_SHARE / 2.0);
+    assert!((above[1] + above[2] - 1.0).abs() < 1e-12);
+    // In the plane of the two-sided panel (no solid angle): its floor, never 0.
+    let in_plane = pmf_at(Point3::new(-3.0, 0.5, 2.0));
+    assert!(in_plane[2] >= UNIFORM_SHARE / 3.0 - 1e-15, "{in_plane:?}");
+    // Far from everything: every emitter keeps at least its uniform share.
+    for x in [Point3::new(1e6, -1e6, 3e5), Point3::new(4.0, 1.0, 0.0)] {
+        let p = pmf_at(x);
+        assert!(
+            p.iter().all(|&p| p >= UNIFORM_SHARE / 3.0 - 1e-15),
+            "{x}: {p:?}"
+        );
+    }
+    assert!(lights.describe_emitters().contains("per shading point"));
+    // A point that is not a number (a ray gone wrong upstream): a distribution all the same, no panic.
+    let nan = pmf_at(Point3::splat(f64::NAN));
+    assert!((nan.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{nan:?}");
+}
+
+#[test]
+fn the_light_sample_and_the_mis_weight_use_the_same_density() {
+    // The density a sample comes with is the one `emitters_pdf` (the MIS weight's) gives its
+    // direction, from points all around the emitters; and from behind the lamp its directions never
+    // have the lamp's density.
+    let lights = three_emitters();
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(31);
+    let mut behind = 0;
+    for _ in 0..3000 {
+        let x = Point3::new(
+            rng.random_range(-6.0..6.0),
+            rng.random_range(-2.0..5.0),
+            rng.random_range(-3.0..3.0),
+        );
+        let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+        let h = lights.towards_emitters(x, &mut pmf).unwrap();
+        let Some(s) = h.sample(DVec2::new(rng.random(), rng.random())) else {
+            continue;
+        };
+        let p = lights.emitters_pdf(x, s.direction);
+        assert!(
+            (s.pdf - p).abs() <= 1e-9 * p,
+            "at {x}: sampled with {} but weighted by {p}",
+            s.pdf
+        );
+        if x.y > 3.0 {
+            behind += 1;
+            assert_eq!(lights.emitters[0].pdf(x, s.direction), 0.0);
+        }
+    }
+    assert!(behind > 100);
+}
+
+#[test]
+fn one_emitter_or_more_than_the_stack_holds_keep_the_uniform_choice() {
+    let light = |b: &mut SceneBuilder, c: f64| {
+        b.material(Material::DiffuseLight {
+            emit: Albedo::Constant(Color::splat(c)),
+            two_sided: false,
+        })
+    };
+    // More emitters than MAX_WEIGHED_EMITTERS: 1 / n each, wherever the point is.
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let n = MAX_WEIGHED_EMITTERS + 1;
+    for i in 0..n {
+        let m = light(&mut b, 1.0 + i as f64);
+        b.sphere(w, Point3::new(2.0 * i as f64, 3.0, 0.0), 0.3, m)
+            .unwrap();
+    }
+    let lights = Lights::new(&b.build().unwrap(), false);
+    assert!(!lights.weighs_emitters());
+    let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
+    let h = lights.towards_emitters(Point3::ZERO, &mut pmf).unwrap();
+    for i in 0..n {
+        assert_eq!(h.pmf(i), 1.0 / n as f64);
+    }
+    assert!(lights.describe_emitters().ends_with(&format!(
+        "chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters)"
+    )));
+    // The Cornell box's one light: no weights, the description as before.
+    let cornell =
+        (rtl_render::scenes::find("cornell").unwrap().build)(&Default::default()).unwrap();
+    let lights = Lights::new(&cornell.scene, false);
+    assert!(!lights.weighs_emitters());
+    assert_eq!(
+        lights.describe_emitters(),
+        "1 emitter (1 of them in the list of targets)"
+    );
+    // Behind every one-sided emitter: nothing to sample, density 0.
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let m = light(&mut b, 1.0);
+    for x in [-1.0, 1.0] {
+        b.quad(
+            w,
+            Point3::new(x, 2.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            m,
+        )
+        .unwrap(); // u x v = +y: shines up
+    }
+    let lights = Lights::new(&b.build().unwrap(), false);
+    assert!(lights.weighs_emitters());
+    assert!(lights.towards_emitters(Point3::ZERO, &mut pmf).is_none());
+    assert_eq!(lights.emitters_pdf(Point3::ZERO, Vec3::Y), 0.0);
+    assert!(
+        lights
+            .towards_emitters(Point3::new(0.0, 5.0, 0.0), &mut pmf)
+            .is_some()
+    );
 }

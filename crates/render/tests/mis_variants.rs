@@ -11,7 +11,9 @@
 //!   where the path scatters;
 //! - fuzzy metal balls (fuzz 0.5 and 1.6) under a light: `mis` weights light samples and emission
 //!   hits by the metal's density (wrong: a cosine lobe's density), and must also agree with the metal
-//!   treated as a specular bounce.
+//!   treated as a specular bounce;
+//! - a wide bright lamp and a dim ball: next-event estimation chooses the emitter per shading point
+//!   (wrong: the emission met by material sampling weighted by the uniform choice's density).
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
@@ -242,6 +244,68 @@ fn mis_inside_glass_agrees_with_cosine_and_the_wrong_variants_are_caught() {
     assert!(
         !disagreements(&cosine, &wrong).is_empty(),
         "roulette in media without reweighting went unnoticed"
+    );
+}
+
+/// A floor under two emitters of very different importance: a wide one-sided 6 x 6 lamp low above
+/// it (radiance 2; from the floor it fills much of the sky, so material sampling finds it as often as
+/// the light sample does) and a dim ball (radiance 0.5, radius 0.3) on the floor beside it, which
+/// takes most of next-event estimation's choices near it and few elsewhere.
+pub fn bright_lamp_and_dim_ball() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(2.0)),
+        two_sided: false,
+    });
+    let dim = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(0.5)),
+        two_sided: false,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    // u x v = (0, -36, 0): shines down
+    b.quad(
+        w,
+        Point3::new(-3.0, 1.2, -3.0),
+        Vec3::new(6.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 6.0),
+        lamp,
+    )
+    .unwrap();
+    b.sphere(w, Point3::new(1.5, 0.5, 0.5), 0.3, dim).unwrap();
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 0.8, 6.0),
+        lookat: Point3::new(0.0, 0.4, 0.0),
+        vfov: 50.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+#[test]
+fn emitters_chosen_per_point_agree_and_a_uniform_weight_is_caught() {
+    let scene = bright_lamp_and_dim_ball();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert!(lights.weighs_emitters(), "two emitters: weighed per point");
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let wrong =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongUniformLightWeight));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the uniform choice's density in the MIS weight went unnoticed"
     );
 }
 
