@@ -127,15 +127,14 @@ impl Sphere {
     /// `p = o + t d` itself and the book's outward normal `(p - c) / r` (inward for a negative
     /// radius, book 1's hollow sphere), with no square root or division on the way from `t`.
     ///
-    /// The point is not projected onto the sphere, so its error is that of `o + t d`: the rounding
-    /// of the sum and of `t d`, a few ulps of `|o| + |t d|`, and that of the root `t`, a few ulps of
-    /// `|t d|` where the ray crosses the surface steeply (where it grazes, `t` may err more, but
-    /// along a direction in which the distance to the surface hardly changes). As `|o| <= |p| + |t
-    /// d|` and `p` lies on the sphere up to that error, `|o| <= |c| + |r| + |t d|`, and the bound
-    /// ([`Sphere::point_error`]) is [`REL_ERROR`] `(|c| + |r|)`, the projected point's, plus
-    /// [`RAY_ERROR`] `t |d|` (each a largest coordinate): 256 ulps of `t |d|`, some 30 times what
-    /// these operations commit (`crates/render/tests/sphere_record.rs` finds at most 1/70 of the
-    /// bound). The normal's length is `|p - c| / |r|`, within `err / |r|` of 1. A sphere small beside
+    /// The point is not projected onto the sphere, so its error is that of `o + t d`: the sum rounds
+    /// by an ulp of `|p| <= |c| + |r|` (up to the error itself), the product by an ulp of `|t d|`,
+    /// and the root `t` errs by a few ulps of `t` where the ray crosses the surface steeply (where it
+    /// grazes, `t` may err more, but along a direction in which the distance to the surface hardly
+    /// changes). The bound ([`Sphere::point_error`]) is therefore [`REL_ERROR`] `(|c| + |r|)`, the
+    /// projected point's, plus [`RAY_ERROR`] `t |d|`, 256 ulps of `t |d|` (each a largest
+    /// coordinate), some 30 times what the product and the root commit
+    /// (`crates/render/tests/sphere_record.rs` finds at most 1/70 of the bound). The normal's length is `|p - c| / |r|`, within `err / |r|` of 1. A sphere small beside
     /// the ray's terms (`err > 2^-20 |r|`, a normal that could be off unit length by more than 1e-6)
     /// takes the normalised normal and the projected point instead ([`Sphere::hit_at_projected`]).
     #[inline]
