@@ -101,14 +101,15 @@ impl Sphere {
         }
     }
 
-    /// The bound on the error of a hit point (the sphere's own magnitude; see [`Sphere::hit`]).
+    /// The bound on the error of a point projected onto the sphere (the sphere's own magnitude; see
+    /// [`Sphere::hit_at_projected`]).
     #[inline]
     pub fn hit_error(&self, time: f64) -> f64 {
         REL_ERROR * (self.center_at(time).abs().max_element() + self.radius.abs())
     }
 
-    /// Ray-sphere intersection: the first of [`Sphere::roots`] in `range`. The hit point is then
-    /// projected back onto the sphere, which bounds its error by the sphere's own magnitude.
+    /// Ray-sphere intersection: the first of [`Sphere::roots`] in `range`, its record built by
+    /// [`Sphere::hit_at`].
     #[inline]
     pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
         let t = self.hit_t(ray, range)?;
@@ -122,17 +123,31 @@ impl Sphere {
         Self::first_root_in(self.roots(ray)?, range)
     }
 
-    /// The record of [`Sphere::hit`]'s hit at parameter `t` (found by [`Sphere::hit_t`]).
+    /// The record of [`Sphere::hit`]'s hit at parameter `t` (found by [`Sphere::hit_t`]): the point
+    /// `p = o + t d` itself and the book's outward normal `(p - c) / r` (inward for a negative
+    /// radius, book 1's hollow sphere), with no square root or division on the way from `t`.
+    ///
+    /// The point is not projected onto the sphere, so its error is that of `o + t d`: the sum rounds
+    /// by an ulp of `|p| <= |c| + |r|` (up to the error itself), the product by an ulp of `|t d|`,
+    /// and the root `t` errs by a few ulps of `t` where the ray crosses the surface steeply (where it
+    /// grazes, `t` may err more, but along a direction in which the distance to the surface hardly
+    /// changes). The bound ([`Sphere::point_error`]) is therefore [`REL_ERROR`] `(|c| + |r|)`, the
+    /// projected point's, plus [`RAY_ERROR`] `t |d|`, 256 ulps of `t |d|` (each a largest
+    /// coordinate), some 30 times what the product and the root commit
+    /// (`crates/render/tests/sphere_record.rs` finds at most 1/70 of the bound). The normal's length is `|p - c| / |r|`, within `err / |r|` of 1. A sphere small beside
+    /// the ray's terms (`err > 2^-20 |r|`, a normal that could be off unit length by more than 1e-6)
+    /// takes the normalised normal and the projected point instead ([`Sphere::hit_at_projected`]).
     #[inline]
     pub fn hit_at(&self, ray: &Ray, t: f64) -> Hit {
         let center = self.center_at(ray.time);
         let r = self.radius;
-        // The outward normal (inward for a negative radius, book 1's hollow sphere), and the hit point
-        // projected back onto the sphere.
-        let outward = (ray.at(t) - center).normalize() * r.signum();
-        let p = center + r * outward;
+        let err = self.point_error(ray, t);
+        if err > UNIT_NORMAL * r.abs() {
+            return self.hit_at_projected(ray, t);
+        }
+        let p = ray.at(t);
+        let outward = (p - center) * (1.0 / r);
         let (normal, front_face) = Hit::face(ray, outward);
-        let err = self.hit_error(ray.time);
         Hit {
             t,
             p,
@@ -143,7 +158,45 @@ impl Sphere {
             uv_source: UvSource::Sphere(outward),
         }
     }
+
+    /// The bound on the error of [`Sphere::hit_at`]'s point `o + t d` (see there).
+    #[inline(always)]
+    pub fn point_error(&self, ray: &Ray, t: f64) -> f64 {
+        let td = t.abs() * ray.direction.abs().max_element();
+        REL_ERROR * (self.center_at(ray.time).abs().max_element() + self.radius.abs())
+            + RAY_ERROR * td
+    }
+
+    /// The record of a hit at parameter `t` with the point projected back onto the sphere, `c + r
+    /// (p - c) / |p - c|`, whose error is bounded by the sphere's own magnitude
+    /// ([`Sphere::hit_error`]) and whose normal is of unit length: [`Sphere::hit_at`] for a sphere
+    /// small beside the ray's terms.
+    #[cold]
+    pub fn hit_at_projected(&self, ray: &Ray, t: f64) -> Hit {
+        let center = self.center_at(ray.time);
+        let r = self.radius;
+        let outward = (ray.at(t) - center).normalize() * r.signum();
+        let p = center + r * outward;
+        let (normal, front_face) = Hit::face(ray, outward);
+        Hit {
+            t,
+            p,
+            normal,
+            front_face,
+            err: self.hit_error(ray.time),
+            material: self.material,
+            uv_source: UvSource::Sphere(outward),
+        }
+    }
 }
+
+/// [`Sphere::hit_at`] takes the point `o + t d` unprojected while its error bound is at most this
+/// fraction of the radius: the normal `(p - c) / r` is then of unit length within it.
+pub const UNIT_NORMAL: f64 = 1.0 / 1_048_576.0;
+
+/// The error allowed per unit of `t |d|` in a sphere's unprojected hit point `o + t d`
+/// ([`Sphere::hit_at`]): 2^-44, 256 ulps.
+pub const RAY_ERROR: f64 = 1.0 / 17_592_186_044_416.0;
 
 /// The parallelogram `{Q + a u + b v : a, b in [0, 1]}`, normal `normalize(u x v)`.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
