@@ -83,6 +83,11 @@ pub struct CompareArgs {
     /// The two seeds of each renderer's pair of renders.
     #[arg(long, value_delimiter = ',', default_values_t = [1u32, 2])]
     seeds: Vec<u32>,
+    /// Measure everything this many times in turn (book, Mitsuba, rtl, then again) and summarise
+    /// each renderer's ratios to the book *of the same round* by their median and range: on a
+    /// machine whose speed drifts, a ratio taken within one round is what stays put.
+    #[arg(long, default_value_t = 1)]
+    rounds: usize,
     /// The rtl binary to time (default: this one), e.g. a build of another commit.
     #[arg(long)]
     rtl: Option<PathBuf>,
@@ -121,8 +126,8 @@ fn cpu_model() -> String {
 }
 
 fn validate(a: &CompareArgs) -> Result<()> {
-    if a.width == 0 || a.spp == 0 || a.threads == 0 || a.cores == 0 {
-        bail!("--width, --spp, --threads and --cores must be positive");
+    if a.width == 0 || a.spp == 0 || a.threads == 0 || a.cores == 0 || a.rounds == 0 {
+        bail!("--width, --spp, --threads, --cores and --rounds must be positive");
     }
     if let Some(w) = a.project_width
         && (w == 0 || w > rtl_render::limits::MAX_SIDE)
@@ -199,19 +204,14 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         a.threads,
         w = a.width
     );
-    let mut rows = Vec::new();
-    let mut book_c = None;
-    if let Some(book) = &a.book {
-        let m = run_book(&a, book, depth)?;
-        book_c = Some(m.c);
-        rows.push(m);
+    let mut rounds = Vec::with_capacity(a.rounds);
+    for r in 0..a.rounds {
+        if a.rounds > 1 {
+            eprintln!("round {} of {}", r + 1, a.rounds);
+        }
+        rounds.push(measure_round(&a, depth)?);
     }
-    if let Some(py) = &a.mitsuba {
-        rows.push(run_mitsuba(&a, py, depth)?);
-    }
-    for s in &a.strategy {
-        rows.push(run_rtl(&a, s, depth)?);
-    }
+    let book_c = a.book.as_ref().map(|_| rounds[0][0].c);
     let target = match (a.target_rmse, book_c) {
         (Some(t), _) => t,
         (None, Some(c)) => c / (a.target_book_spp as f64).sqrt(),
@@ -219,7 +219,69 @@ fn compare(mut a: CompareArgs) -> Result<()> {
     };
     let side = a.project_width.unwrap_or(a.width);
     let pixels = side * side;
+    for (r, rows) in rounds.iter().enumerate() {
+        println!();
+        if a.rounds > 1 {
+            println!("round {} of {}", r + 1, a.rounds);
+        }
+        print_table(&a, rows, target, pixels, side);
+    }
+    if a.rounds > 1 && a.book.is_some() {
+        println!();
+        println!(
+            "over {} rounds, each renderer's ratio to the book's C++ measured in the same round: \
+             median (lowest-highest)",
+            a.rounds
+        );
+        println!(
+            "{:<22} {:>14} {:>26} {:>26}",
+            "renderer", "samples/s/core", "samples/s vs book", "time to target vs book"
+        );
+        for i in 1..rounds[0].len() {
+            let rate = Spread::of(rounds.iter().map(|rows| rows[i].per_core));
+            let by_rate = rate_ratio(&rounds, i);
+            let by_time = Spread::of(rounds.iter().map(|rows| {
+                seconds_to(rows[0].c, target, pixels, rows[0].per_core, a.cores)
+                    / seconds_to(rows[i].c, target, pixels, rows[i].per_core, a.cores)
+            }));
+            println!(
+                "{:<22} {:>14.0} {:>26} {:>26}",
+                rounds[0][i].name,
+                rate.median,
+                by_rate.ratio(),
+                by_time.ratio()
+            );
+        }
+    }
     println!();
+    println!(
+        "vs book: samples/s per core / time to the target (both as ratios to the book's C++). samples/s per core is samples per \
+         second of processor time (user + system, all threads: the process for the book and rtl, `mi.render` for Mitsuba), \
+         the projection assumes that rate on each of the cores; every image is encoded as the book's write_color does \
+         (sqrt, clamp, 8 bits) before c is measured. The book's main.cc was patched in a copy under {}.",
+        a.scratch.display()
+    );
+    Ok(())
+}
+
+/// One round: the book's program, Mitsuba and each rtl strategy, one after another.
+fn measure_round(a: &CompareArgs, depth: u32) -> Result<Vec<Measured>> {
+    let mut rows = Vec::new();
+    if let Some(book) = &a.book {
+        rows.push(run_book(a, book, depth)?);
+    }
+    if let Some(py) = &a.mitsuba {
+        rows.push(run_mitsuba(a, py, depth)?);
+    }
+    for s in &a.strategy {
+        rows.push(run_rtl(a, s, depth)?);
+    }
+    Ok(rows)
+}
+
+/// The table of one round: rates, noise constants and projected times, and the ratios to the book
+/// (the first row) when it ran.
+fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, side: usize) {
     println!(
         "target: per-pixel RMSE {target:.5} (display values, gamma 2){}; times for {side} x {side} pixels",
         if a.target_rmse.is_none() {
@@ -240,7 +302,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
     );
     let book_rate = a.book.as_ref().map(|_| rows[0].per_core);
     let book_secs = book_rate.map(|r| seconds_to(rows[0].c, target, pixels, r, a.cores));
-    for m in &rows {
+    for m in rows {
         let secs = seconds_to(m.c, target, pixels, m.per_core, a.cores);
         let vs = match (book_rate, book_secs) {
             (Some(r), Some(s)) => format!("{:.2}x/{:.1}x", m.per_core / r, s / secs),
@@ -258,15 +320,51 @@ fn compare(mut a: CompareArgs) -> Result<()> {
             m.note
         );
     }
-    println!();
-    println!(
-        "vs book: samples/s per core / time to the target (both as ratios to the book's C++). samples/s per core is samples per \
-         second of processor time (user + system, all threads: the process for the book and rtl, `mi.render` for Mitsuba), \
-         the projection assumes that rate on each of the cores; every image is encoded as the book's write_color does \
-         (sqrt, clamp, 8 bits) before c is measured. The book's main.cc was patched in a copy under {}.",
-        a.scratch.display()
-    );
-    Ok(())
+}
+
+/// Renderer `i`'s samples per second over the book's (row 0), each taken within one round.
+fn rate_ratio(rounds: &[Vec<Measured>], i: usize) -> Spread {
+    Spread::of(
+        rounds
+            .iter()
+            .map(|rows| rows[i].per_core / rows[0].per_core),
+    )
+}
+
+/// The median and range of a few measurements (the rounds of a comparison).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Spread {
+    median: f64,
+    lowest: f64,
+    highest: f64,
+}
+
+impl Spread {
+    /// Of a non-empty list; the median of an even count is the mean of the middle two.
+    fn of(values: impl Iterator<Item = f64>) -> Spread {
+        let mut v: Vec<f64> = values.collect();
+        assert!(!v.is_empty(), "a spread of no values");
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        let median = if n % 2 == 1 {
+            v[n / 2]
+        } else {
+            (v[n / 2 - 1] + v[n / 2]) / 2.0
+        };
+        Spread {
+            median,
+            lowest: v[0],
+            highest: v[n - 1],
+        }
+    }
+
+    /// As a ratio: `2.90x (2.79-3.31x)`.
+    fn ratio(&self) -> String {
+        format!(
+            "{:.2}x ({:.2}-{:.2}x)",
+            self.median, self.lowest, self.highest
+        )
+    }
 }
 
 fn num_cores() -> usize {
@@ -541,6 +639,39 @@ mod tests {
         assert!(now >= 0.0);
     }
 
+    #[test]
+    fn ratios_are_taken_within_a_round_then_summarised() {
+        let s = Spread::of([3.0, 1.0, 2.0].into_iter());
+        assert_eq!((s.median, s.lowest, s.highest), (2.0, 1.0, 3.0));
+        assert_eq!(Spread::of([4.0, 1.0, 2.0, 3.0].into_iter()).median, 2.5);
+        assert_eq!(s.ratio(), "2.00x (1.00-3.00x)");
+        // The machine drifts between rounds: the book at 100, 50, 90 samples/s, rtl at 300, 200, 180.
+        // Within each round rtl is 3x, 4x, 2x as fast: the median ratio is 3x. The ratio of the
+        // medians (200 / 90 = 2.2x) mixes rounds, which is what the summary must not do.
+        let m = |per_core: f64| Measured {
+            name: String::new(),
+            per_core,
+            c: 0.3,
+            mean: 0.2,
+            note: String::new(),
+        };
+        let rounds: Vec<Vec<Measured>> = [(100.0, 300.0), (50.0, 200.0), (90.0, 180.0)]
+            .into_iter()
+            .map(|(b, r)| vec![m(b), m(r)])
+            .collect();
+        let within = rate_ratio(&rounds, 1);
+        assert_eq!(
+            (within.median, within.lowest, within.highest),
+            (3.0, 2.0, 4.0)
+        );
+        let mixed = Spread::of(rounds.iter().map(|r| r[1].per_core)).median
+            / Spread::of(rounds.iter().map(|r| r[0].per_core)).median;
+        assert!(
+            (mixed - within.median).abs() > 0.5,
+            "the check tells the two apart"
+        );
+    }
+
     fn parse(args: &[&str]) -> CompareArgs {
         #[derive(clap::Parser)]
         struct Cli {
@@ -561,6 +692,7 @@ mod tests {
         let e = err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]);
         assert!(e.contains("--strategy") && e.contains("fast"), "{e}");
         assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
+        assert!(err(&["--target-rmse", "0.01", "--rounds", "0"]).contains("--rounds"));
         for w in ["0", "65537"] {
             let e = err(&["--target-rmse", "0.01", "--project-width", w]);
             assert!(e.contains("--project-width") && e.contains(w), "{e}");
