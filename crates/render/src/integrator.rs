@@ -291,14 +291,6 @@ fn radiance_one_sample(
 }
 // ANCHOR_END: radiance
 
-/// The density with which next-event estimation from `origin` picks `direction` (0 without emitters):
-/// the emitter chosen by the same per-point probabilities as the light sample's
-/// ([`Lights::towards_emitters`]).
-#[inline]
-fn light_pdf(origin: Point3, lights: &Lights, direction: Vec3) -> f64 {
-    lights.emitters_pdf(origin, direction)
-}
-
 // ANCHOR: shadow_ray
 /// What a shadow ray meets: the first surface along `ray`, and the transmittance of the media before
 /// it, `exp(-sum_i sigma_i l_i)` for constant media of density `sigma_i` crossed over length `l_i`.
@@ -818,7 +810,8 @@ pub fn radiance_mis_variant(
                             HittablePdf::new(origin, &lights.emitters)
                                 .map_or(0.0, |h| h.pdf(ray.direction))
                         } else {
-                            light_pdf(origin, lights, ray.direction)
+                            // the light sample's own per-point probabilities
+                            lights.emitters_pdf(origin, ray.direction)
                         };
                         power_heuristic(1.0, p_material, 1.0, p_light)
                     }

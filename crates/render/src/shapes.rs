@@ -134,9 +134,10 @@ impl Sphere {
     /// changes). The bound ([`Sphere::point_error`]) is therefore [`REL_ERROR`] `(|c| + |r|)`, the
     /// projected point's, plus [`RAY_ERROR`] `t |d|`, 256 ulps of `t |d|` (each a largest
     /// coordinate), some 30 times what the product and the root commit
-    /// (`crates/render/tests/sphere_record.rs` finds at most 1/70 of the bound). The normal's length is `|p - c| / |r|`, within `err / |r|` of 1. A sphere small beside
-    /// the ray's terms (`err > 2^-20 |r|`, a normal that could be off unit length by more than 1e-6)
-    /// takes the normalised normal and the projected point instead ([`Sphere::hit_at_projected`]).
+    /// (`crates/render/tests/sphere_record.rs` finds at most 1/70 of the bound). The normal's length
+    /// is `|p - c| / |r|`, within `err / |r|` of 1. A sphere small beside the ray's terms
+    /// (`err > 2^-20 |r|`, a normal that could be off unit length by more than 1e-6) takes the
+    /// normalised normal and the projected point instead ([`Sphere::hit_at_projected`]).
     #[inline]
     pub fn hit_at(&self, ray: &Ray, t: f64) -> Hit {
         let center = self.center_at(ray.time);
