@@ -748,6 +748,15 @@ mod tests {
         ]
     }
 
+    /// Removes its directory when dropped, so a case that returns early leaves nothing behind.
+    struct RemoveDirOnDrop(std::path::PathBuf);
+
+    impl Drop for RemoveDirOnDrop {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
     proptest! {
         // A fixed seed: the same cases every run (a failure found once is also kept in
         // proptest-regressions/).
@@ -778,6 +787,8 @@ mod tests {
         ) {
             let dir = std::env::temp_dir().join(format!("rtl-props-{}", std::process::id()));
             std::fs::create_dir_all(&dir).unwrap();
+            // Removed however the case ends (nothing is written into it: no render runs).
+            let _cleanup = RemoveDirOnDrop(dir.clone());
             let out = dir.join("x.png").display().to_string();
             let mut argv = vec!["rtl".to_string(), "cornell".into(), "-o".into(), out];
             let mut seen = Vec::new();
