@@ -398,6 +398,18 @@ impl MediaCrossed {
         self.push(t0, t1, density);
     }
 
+    /// How many stretches are recorded (not counting the spilled ones).
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// No stretch recorded.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
     /// The recorded stretches `((t0, t1, density), phase)` (not the spilled ones).
     #[inline]
     pub fn stretches(&self) -> impl Iterator<Item = ((f64, f64, f64), u32)> + '_ {
