@@ -728,9 +728,17 @@ fn segment_light(
     let e = centres[((ctx.uniform() * n as f64) as usize).min(n - 1)];
     let mut pick = ctx.uniform() * e.mass;
     let mut chosen = None;
+    let one = crossed.len() == 1;
     for ((t0, t1, density), m) in crossed.stretches() {
         let t1 = t1.min(t_surface);
-        let range = if t1 > t0 { e.angle(t0, t1) } else { 0.0 };
+        // one stretch: its angle is the mass, already taken (the same arctangent)
+        let range = if one {
+            e.mass
+        } else if t1 > t0 {
+            e.angle(t0, t1)
+        } else {
+            0.0
+        };
         if range > 0.0 {
             chosen = Some((range, t0, t1, density, m));
             if pick < range {
