@@ -463,6 +463,8 @@ impl Equiangular {
 /// by distance sampling, so the light such a pixel gets from beyond its segment is a Bernoulli draw.
 /// Forcing the later bounces too costs more than it saves (book/src/figures/render-speed.md, fog5).
 pub const FORCED_SCATTER_BOUNCES: u32 = 1;
+// (forced scattering takes the roulette's dimension: the two never meet at one bounce)
+const _: () = assert!(FORCED_SCATTER_BOUNCES <= ROULETTE_AFTER);
 /// The share of the equiangular density in the density a forced scattering point is drawn from (the
 /// rest is the exponential of distance sampling, truncated to the stretch): near the emitters, where
 /// the light is, and never less than `1 - FORCED_EQUIANGULAR_SHARE` times the exponential's density
@@ -642,12 +644,19 @@ fn forced_scatter(
         0.0
     };
     let centres = &centres[..n];
-    let t = if a > 0.0 && ctx.uniform() < a {
-        let e = centres[((ctx.uniform() * n as f64) as usize).min(n - 1)];
-        e.at_angle(t0, t1, ctx.uniform() * e.mass)
+    // One stratified number picks the density, the centre and the point: `[0, a)` the equiangular
+    // densities (`n` equal parts, one a centre), `[a, 1)` the exponential, each part rescaled to
+    // `[0, 1)`, so the pixel's samples are spread along the ray.
+    let u = ctx.sample_1d(Dimension::Scatter(ctx.bounce));
+    let t = if u < a {
+        let v = u / a * n as f64;
+        let i = (v as usize).min(n - 1);
+        let e = centres[i];
+        e.at_angle(t0, t1, (v - i as f64).clamp(0.0, 1.0) * e.mass)
     } else {
-        // the inverse of the truncated exponential's distribution; ln_1p's argument is in (-1, 0]
-        (t0 - (ctx.uniform() * (-tau).exp_m1()).ln_1p() / density).clamp(t0, t1)
+        let v = ((u - a) / (1.0 - a)).clamp(0.0, 1.0);
+        // the inverse of the truncated exponential's distribution; ln_1p's argument is in [-1, 0]
+        (t0 - (v * (-tau).exp_m1()).ln_1p() / density).clamp(t0, t1)
     };
     if !t.is_finite() {
         return None;
