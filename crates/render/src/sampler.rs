@@ -179,6 +179,10 @@ pub enum Dimension {
     Material(u32),
     /// At bounce `b`: Russian roulette (1D).
     Roulette(u32),
+    /// At bounce `b`: where a forced scattering point lies along the ray (1D). It shares
+    /// [`Dimension::Roulette`]'s pair: paths are forced to scatter only at bounces before
+    /// [`ROULETTE_AFTER`](crate::integrator::ROULETTE_AFTER), where no roulette is played.
+    Scatter(u32),
 }
 
 impl Dimension {
@@ -186,7 +190,7 @@ impl Dimension {
     pub const PER_BOUNCE: u32 = 3;
 
     /// The pair index of the padded Sobol sampler: 0 lens, 1 time, then `2 + 3 b` light,
-    /// `3 + 3 b` material, `4 + 3 b` roulette.
+    /// `3 + 3 b` material, `4 + 3 b` roulette (or forced scattering).
     #[inline]
     pub const fn pair(self) -> u32 {
         match self {
@@ -194,7 +198,7 @@ impl Dimension {
             Dimension::Time => 1,
             Dimension::Light(b) => 2 + Self::PER_BOUNCE * b,
             Dimension::Material(b) => 3 + Self::PER_BOUNCE * b,
-            Dimension::Roulette(b) => 4 + Self::PER_BOUNCE * b,
+            Dimension::Roulette(b) | Dimension::Scatter(b) => 4 + Self::PER_BOUNCE * b,
         }
     }
 }
@@ -398,6 +402,18 @@ impl MediaCrossed {
         self.push(t0, t1, density);
     }
 
+    /// How many stretches are recorded (not counting the spilled ones).
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// No stretch recorded.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
     /// The recorded stretches `((t0, t1, density), phase)` (not the spilled ones).
     #[inline]
     pub fn stretches(&self) -> impl Iterator<Item = ((f64, f64, f64), u32)> + '_ {
@@ -597,6 +613,7 @@ mod tests {
             Dimension::Light(0),
             Dimension::Material(5),
             Dimension::Roulette(11),
+            Dimension::Scatter(0),
         ];
         for i in 0..4000u64 {
             let (key, k) = (mix64(i), i * 7919 + ((i % 3) << 32));
