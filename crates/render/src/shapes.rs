@@ -208,12 +208,12 @@ pub struct Quad {
     /// The dual basis of `(u, v)` in the quad's plane: `v x w` and `w x u` with `w = n / (n . n)`,
     /// `n = u x v`. A planar offset `p` has coordinates `alpha = p . du`, `beta = p . dv` (book 2's
     /// `w . (p x v)` and `w . (u x p)`, with the triple products' fixed factors computed once).
-    du: Vec3,
-    dv: Vec3,
+    pub(crate) du: Vec3,
+    pub(crate) dv: Vec3,
     /// Unit normal.
     pub normal: Vec3,
     /// Plane offset `normal . Q`.
-    d: f64,
+    pub(crate) d: f64,
     /// Error bound of a hit point, from the quad's own magnitude.
     err: f64,
     pub material: MaterialId,
