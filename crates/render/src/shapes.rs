@@ -296,11 +296,11 @@ impl Quad {
 /// their `t` is NaN and never counts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quad4 {
-    q: [F64x4; 3],
-    du: [F64x4; 3],
-    dv: [F64x4; 3],
-    normal: [F64x4; 3],
-    d: F64x4,
+    pub(crate) q: [F64x4; 3],
+    pub(crate) du: [F64x4; 3],
+    pub(crate) dv: [F64x4; 3],
+    pub(crate) normal: [F64x4; 3],
+    pub(crate) d: F64x4,
     /// The index of each lane's quad in the group's objects (`u32::MAX` for an unused lane).
     pub index: [u32; 4],
 }

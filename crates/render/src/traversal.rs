@@ -31,8 +31,10 @@ pub struct Accel {
     pub other_bounds: Vec<Aabb>,
     /// For a small group: its quads again, in the order of `packets`, eight to a packet (quad `k` in
     /// lane `k % 8` of packet `k / 8`, as in lane `k % 4` of `packets[k / 4]`), for the AVX-512 tier
-    /// ([`HitTier::Avx512`]).
+    /// ([`HitTier::Avx512`]); a rest of at most four is left to the last of `packets`, the tail.
     pub packets8: Vec<Quad8>,
+    /// Whether the AVX-512 tier tests the last of `packets` after `packets8` (see [`Quad8::packets`]).
+    pub tail4: bool,
 }
 
 /// Which form of the closest-hit traversal runs: chosen at run time from the processor's features
@@ -44,8 +46,9 @@ pub enum HitTier {
     Portable,
     /// x86-64 with AVX2: the quad packets four lanes to an instruction.
     Avx2,
-    /// x86-64 with AVX-512F (and AVX2): a small flat group's quads eight lanes to an instruction, in
-    /// [`Accel::packets8`]; the trees as [`HitTier::Avx2`] (compiled with AVX-512 enabled).
+    /// x86-64 with AVX-512F and VL (and AVX2): a small flat group's quads eight lanes to an instruction, in
+    /// [`Accel::packets8`]; the trees as [`HitTier::Avx2`] ([`Scene::hit_group`] sends only the small
+    /// groups to this tier's code).
     Avx512,
 }
 
@@ -56,6 +59,7 @@ impl HitTier {
         #[cfg(target_arch = "x86_64")]
         {
             if std::arch::is_x86_feature_detected!("avx512f")
+                && std::arch::is_x86_feature_detected!("avx512vl")
                 && std::arch::is_x86_feature_detected!("avx2")
             {
                 return HitTier::Avx512;
@@ -136,9 +140,11 @@ impl Accel {
             .map(|(i, _)| (i as u32, bounds[i]))
             .unzip();
         let plain: Vec<Quad> = quads.iter().map(|(q, _)| *q).collect();
+        let (packets8, held) = Quad8::packets(&plain);
         Accel {
             packets: quads.chunks(PACKET).map(Quad4::new).collect(),
-            packets8: Quad8::packets(&plain),
+            packets8,
+            tail4: held < plain.len(),
             others,
             other_bounds,
             flat: true,
@@ -201,17 +207,19 @@ impl Scene {
     #[inline]
     pub fn hit_group(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
         #[cfg(target_arch = "x86_64")]
-        {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // Only the small groups take the AVX-512 form: the trees compiled with it were 5%
+            // slower on book 2's final scene (the same instructions in EVEX encodings and zmm
+            // registers).
             if std::arch::is_x86_feature_detected!("avx512f")
-                && std::arch::is_x86_feature_detected!("avx2")
+                && std::arch::is_x86_feature_detected!("avx512vl")
+                && self.groups[g.0 as usize].accel.flat
             {
-                // SAFETY: the processor supports AVX-512F and AVX2, checked just above.
+                // SAFETY: the processor supports AVX-512F, VL and AVX2, checked just above.
                 return unsafe { self.hit_group_avx512(g, ray, range, ctx) };
             }
-            if std::arch::is_x86_feature_detected!("avx2") {
-                // SAFETY: the processor supports AVX2, checked just above.
-                return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
-            }
+            // SAFETY: the processor supports AVX2, checked just above.
+            return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
         }
         self.hit_group_portable(g, ray, range, ctx)
     }
@@ -244,7 +252,7 @@ impl Scene {
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx2")]
+    #[target_feature(enable = "avx512f,avx512vl,avx2")]
     unsafe fn hit_group_avx512(
         &self,
         g: GroupId,
@@ -408,7 +416,12 @@ impl Scene {
             // it is.
             let h = unsafe {
                 let lanes = crate::quad8::RayLanes8::new(ray);
-                Quad8::closest_avx512(&accel.packets8, &lanes, range)
+                let tail = if accel.tail4 {
+                    accel.packets.last()
+                } else {
+                    None
+                };
+                Quad8::closest_avx512(&accel.packets8, tail, &lanes, range)
             };
             if let Some(h) = h {
                 closest = h.t;
