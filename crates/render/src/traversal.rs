@@ -12,6 +12,7 @@ use crate::scene::{ConstantMedium, GroupId, Object, Scene, Transform};
 use crate::shapes::{Quad, Quad4, Sphere};
 use crate::vec::Vec3;
 use std::mem::MaybeUninit;
+use std::sync::atomic::{AtomicU8, Ordering};
 
 /// The traversal form of a group: [`Bvh4`] nodes whose leaves are [`LeafItems`], or for a small
 /// group ([`Accel::small`]) no tree at all.
@@ -37,10 +38,14 @@ pub struct Accel {
     pub tail4: bool,
 }
 
+/// [`HitTier::cached`]'s store: 0 before the first traversal, then the detected tier plus one.
+static TIER: AtomicU8 = AtomicU8::new(0);
+
 /// Which form of the closest-hit traversal runs: chosen at run time from the processor's features
 /// ([`HitTier::detected`]). Every tier finds bit-identical hits: the same `f64` operations in the
 /// same order, lane by lane, and no fused multiply-adds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
 pub enum HitTier {
     /// Any processor: the quad packets lane by lane (which the compiler may vectorise for SSE2).
     Portable,
@@ -69,6 +74,25 @@ impl HitTier {
             }
         }
         HitTier::Portable
+    }
+
+    /// [`HitTier::detected`], detected once and kept: one load per traversal (three feature tests
+    /// each time cost the AVX2 tier ~1% more instructions on the Cornell box).
+    #[inline(always)]
+    fn cached() -> HitTier {
+        match TIER.load(Ordering::Relaxed) {
+            1 => HitTier::Portable,
+            2 => HitTier::Avx2,
+            3 => HitTier::Avx512,
+            _ => Self::detect_once(),
+        }
+    }
+
+    #[cold]
+    fn detect_once() -> HitTier {
+        let t = HitTier::detected();
+        TIER.store(t as u8 + 1, Ordering::Relaxed);
+        t
     }
 
     /// Does this processor run the tier?
@@ -204,22 +228,25 @@ impl Scene {
     /// vectors and the quad packets use [`Quad4::hit_avx`]; with AVX-512F as well, a small group's
     /// quads are tested eight at a time ([`HitTier::Avx512`]). Rounding is identical (no fused
     /// multiply-adds are formed), so the hits are too.
-    #[inline]
+    ///
+    /// Never inlined: inlined into the integrator's loop, the same code was 5-7% slower on the
+    /// Cornell box's `mixture` in both tiers (user time, interleaved; fewer instructions, but the loop's
+    /// registers and code layout suffer).
+    #[inline(never)]
     pub fn hit_group(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // Only the small groups take the AVX-512 form: the trees compiled with it were 5%
-            // slower on book 2's final scene (the same instructions in EVEX encodings and zmm
-            // registers).
-            if std::arch::is_x86_feature_detected!("avx512f")
-                && std::arch::is_x86_feature_detected!("avx512vl")
-                && self.groups[g.0 as usize].accel.flat
-            {
-                // SAFETY: the processor supports AVX-512F, VL and AVX2, checked just above.
+        match HitTier::cached() {
+            // Only the small groups take the AVX-512 form: the trees keep the AVX2 code (compiled
+            // with AVX-512 they were up to 5% slower on book 2's final scene in one measurement).
+            HitTier::Avx512 if self.groups[g.0 as usize].accel.flat => {
+                // SAFETY: the processor runs the tier: AVX-512F, VL and AVX2.
                 return unsafe { self.hit_group_avx512(g, ray, range, ctx) };
             }
-            // SAFETY: the processor supports AVX2, checked just above.
-            return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
+            HitTier::Avx2 | HitTier::Avx512 => {
+                // SAFETY: the processor runs the tier: AVX2.
+                return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
+            }
+            HitTier::Portable => {}
         }
         self.hit_group_portable(g, ray, range, ctx)
     }
