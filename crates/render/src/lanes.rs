@@ -159,18 +159,4 @@ pub mod avx512 {
     pub fn load3(x: &[F64x8; 3]) -> [__m512d; 3] {
         [load(&x[0]), load(&x[1]), load(&x[2])]
     }
-
-    /// A scalar vector broadcast: every lane of register `a` holds coordinate `a`.
-    ///
-    /// # Safety
-    /// Only where the processor has AVX-512F.
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    pub fn splat3(v: [f64; 3]) -> [__m512d; 3] {
-        [
-            _mm512_set1_pd(v[0]),
-            _mm512_set1_pd(v[1]),
-            _mm512_set1_pd(v[2]),
-        ]
-    }
 }

@@ -1,6 +1,6 @@
 //! Eight quads to a packet, for processors with AVX-512: a small flat group's quads (at most
-//! [`crate::traversal::SMALL_QUADS`]) in one or two 8-lane passes instead of three 4-lane ones, and
-//! the closest lane of both found at once by a masked reduction.
+//! [`crate::traversal::SMALL_QUADS`]) in one 8-lane pass and a 4-lane one (the tail) instead of three
+//! 4-lane ones, and the closest lane of both found at once by a masked reduction.
 //!
 //! The arithmetic of each lane is exactly that of [`Quad::hit`] (the same `f64` operations in the same
 //! order, no fused multiply-adds), so a lane's `t`, `alpha` and `beta` are bit-identical to the
@@ -158,7 +158,8 @@ mod wide {
         /// inside the quad with `t` in the open interval `range`.
         #[inline(always)]
         unsafe fn lanes(&self, ray: &RayLanes8, range: Interval) -> Lanes {
-            // SAFETY: the caller runs on a processor with AVX-512F, in a function compiled with it.
+            // SAFETY: the caller runs on a processor with AVX-512F and VL, in a function compiled
+            // with them.
             unsafe {
                 let (o, dir) = (ray.origin, ray.direction);
                 let n = load3(&self.normal);
@@ -195,8 +196,8 @@ mod wide {
         /// Cornell room's twelve quads) are reduced together, more one after the other.
         ///
         /// # Safety
-        /// Only where the processor has AVX-512F, and only from a function compiled with it enabled
-        /// (into which this is always inlined).
+        /// Only where the processor has AVX-512F and VL, and only from a function compiled with them
+        /// enabled (into which this is always inlined).
         #[inline(always)]
         pub unsafe fn closest_avx512(
             packets: &[Quad8],
