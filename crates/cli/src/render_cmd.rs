@@ -197,6 +197,10 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             "(plain colours only: no texture lookups)"
         )
     );
+    println!(
+        "  intersection        : {}",
+        rtl_render::traversal::HitTier::detected().name()
+    );
     if f.flattened_instances > 0 {
         println!(
             "  instances           : {} placed in world space at build time (rigid, of non-emitting \

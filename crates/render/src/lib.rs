@@ -37,6 +37,7 @@ pub mod material;
 pub mod metal_pdf;
 pub mod output;
 pub mod perlin;
+pub mod quad8;
 pub mod ray;
 pub mod render;
 pub mod sampler;

@@ -208,12 +208,12 @@ pub struct Quad {
     /// The dual basis of `(u, v)` in the quad's plane: `v x w` and `w x u` with `w = n / (n . n)`,
     /// `n = u x v`. A planar offset `p` has coordinates `alpha = p . du`, `beta = p . dv` (book 2's
     /// `w . (p x v)` and `w . (u x p)`, with the triple products' fixed factors computed once).
-    du: Vec3,
-    dv: Vec3,
+    pub(crate) du: Vec3,
+    pub(crate) dv: Vec3,
     /// Unit normal.
     pub normal: Vec3,
     /// Plane offset `normal . Q`.
-    d: f64,
+    pub(crate) d: f64,
     /// Error bound of a hit point, from the quad's own magnitude.
     err: f64,
     pub material: MaterialId,
@@ -296,11 +296,11 @@ impl Quad {
 /// their `t` is NaN and never counts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quad4 {
-    q: [F64x4; 3],
-    du: [F64x4; 3],
-    dv: [F64x4; 3],
-    normal: [F64x4; 3],
-    d: F64x4,
+    pub(crate) q: [F64x4; 3],
+    pub(crate) du: [F64x4; 3],
+    pub(crate) dv: [F64x4; 3],
+    pub(crate) normal: [F64x4; 3],
+    pub(crate) d: F64x4,
     /// The index of each lane's quad in the group's objects (`u32::MAX` for an unused lane).
     pub index: [u32; 4],
 }

@@ -5,12 +5,14 @@
 use crate::aabb::Aabb;
 use crate::bvh::{Bvh, Bvh4, EMPTY, LEAF, PACKET};
 use crate::hit::{Hit, REL_ERROR};
+use crate::quad8::Quad8;
 use crate::ray::{Interval, Ray};
 use crate::sampler::Ctx;
 use crate::scene::{ConstantMedium, GroupId, Object, Scene, Transform};
 use crate::shapes::{Quad, Quad4, Sphere};
 use crate::vec::Vec3;
 use std::mem::MaybeUninit;
+use std::sync::atomic::{AtomicU8, Ordering};
 
 /// The traversal form of a group: [`Bvh4`] nodes whose leaves are [`LeafItems`], or for a small
 /// group ([`Accel::small`]) no tree at all.
@@ -28,6 +30,87 @@ pub struct Accel {
     pub flat: bool,
     /// For a small group: the bounding box of each of `others`.
     pub other_bounds: Vec<Aabb>,
+    /// For a small group: its quads again, in the order of `packets`, eight to a packet (quad `k` in
+    /// lane `k % 8` of packet `k / 8`, as in lane `k % 4` of `packets[k / 4]`), for the AVX-512 tier
+    /// ([`HitTier::Avx512`]); a rest of at most four is left to the last of `packets`, the tail.
+    pub packets8: Vec<Quad8>,
+    /// Whether the AVX-512 tier tests the last of `packets` after `packets8` (see [`Quad8::packets`]).
+    pub tail4: bool,
+}
+
+/// [`HitTier::cached`]'s store: 0 before the first traversal, then the detected tier plus one.
+static TIER: AtomicU8 = AtomicU8::new(0);
+
+/// Which form of the closest-hit traversal runs: chosen at run time from the processor's features
+/// ([`HitTier::detected`]). Every tier finds bit-identical hits: the same `f64` operations in the
+/// same order, lane by lane, and no fused multiply-adds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum HitTier {
+    /// Any processor: the quad packets lane by lane (which the compiler may vectorise for SSE2).
+    Portable,
+    /// x86-64 with AVX2: the quad packets four lanes to an instruction.
+    Avx2,
+    /// x86-64 with AVX-512F and VL (and AVX2): a small flat group's quads eight lanes to an instruction, in
+    /// [`Accel::packets8`]; the trees as [`HitTier::Avx2`] ([`Scene::hit_group`] sends only the small
+    /// groups to this tier's code).
+    Avx512,
+}
+
+impl HitTier {
+    /// The best tier this processor runs.
+    #[inline]
+    pub fn detected() -> HitTier {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx512f")
+                && std::arch::is_x86_feature_detected!("avx512vl")
+                && std::arch::is_x86_feature_detected!("avx2")
+            {
+                return HitTier::Avx512;
+            }
+            if std::arch::is_x86_feature_detected!("avx2") {
+                return HitTier::Avx2;
+            }
+        }
+        HitTier::Portable
+    }
+
+    /// [`HitTier::detected`], detected once and kept: one load per traversal (three feature tests
+    /// each time cost the AVX2 tier ~1% more instructions on the Cornell box).
+    #[inline(always)]
+    fn cached() -> HitTier {
+        match TIER.load(Ordering::Relaxed) {
+            1 => HitTier::Portable,
+            2 => HitTier::Avx2,
+            3 => HitTier::Avx512,
+            _ => Self::detect_once(),
+        }
+    }
+
+    #[cold]
+    fn detect_once() -> HitTier {
+        let t = HitTier::detected();
+        TIER.store(t as u8 + 1, Ordering::Relaxed);
+        t
+    }
+
+    /// Does this processor run the tier?
+    pub fn available(self) -> bool {
+        match (self, HitTier::detected()) {
+            (HitTier::Portable, _) | (HitTier::Avx2, HitTier::Avx2 | HitTier::Avx512) => true,
+            (t, d) => t == d,
+        }
+    }
+
+    /// The tier's name, as `--explain` prints it.
+    pub fn name(self) -> &'static str {
+        match self {
+            HitTier::Portable => "portable (no AVX2)",
+            HitTier::Avx2 => "AVX2 (4-lane f64 quad packets)",
+            HitTier::Avx512 => "AVX-512 (8-lane f64 quad packets in small groups, AVX2 elsewhere)",
+        }
+    }
 }
 
 /// The largest group traversed in the flat form: its quads in at most three packets (the Cornell
@@ -80,8 +163,12 @@ impl Accel {
             .filter(|(_, o)| !matches!(o, Object::Quad(_)))
             .map(|(i, _)| (i as u32, bounds[i]))
             .unzip();
+        let plain: Vec<Quad> = quads.iter().map(|(q, _)| *q).collect();
+        let (packets8, held) = Quad8::packets(&plain);
         Accel {
             packets: quads.chunks(PACKET).map(Quad4::new).collect(),
+            packets8,
+            tail4: held < plain.len(),
             others,
             other_bounds,
             flat: true,
@@ -138,16 +225,69 @@ impl Scene {
     /// is a quad's or a sphere's.
     ///
     /// On x86-64 processors with AVX2 (detected at run time) the same code is compiled for 4-wide
-    /// vectors and the quad packets use [`Quad4::hit_avx`]; rounding is identical (no fused
+    /// vectors and the quad packets use [`Quad4::hit_avx`]; with AVX-512F as well, a small group's
+    /// quads are tested eight at a time ([`HitTier::Avx512`]). Rounding is identical (no fused
     /// multiply-adds are formed), so the hits are too.
-    #[inline]
+    ///
+    /// Never inlined: inlined into the integrator's loop, the same code was 5-7% slower on the
+    /// Cornell box's `mixture` in both tiers (user time, interleaved; fewer instructions, but the loop's
+    /// registers and code layout suffer).
+    #[inline(never)]
     pub fn hit_group(&self, g: GroupId, ray: &Ray, range: Interval, ctx: &mut Ctx) -> Option<Hit> {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor supports AVX2, checked just above.
-            return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
+        match HitTier::cached() {
+            // Only the small groups take the AVX-512 form: the trees keep the AVX2 code (compiled
+            // with AVX-512 they were up to 5% slower on book 2's final scene in one measurement).
+            HitTier::Avx512 if self.groups[g.0 as usize].accel.flat => {
+                // SAFETY: the processor runs the tier: AVX-512F, VL and AVX2.
+                return unsafe { self.hit_group_avx512(g, ray, range, ctx) };
+            }
+            HitTier::Avx2 | HitTier::Avx512 => {
+                // SAFETY: the processor runs the tier: AVX2.
+                return unsafe { self.hit_group_avx2(g, ray, range, ctx) };
+            }
+            HitTier::Portable => {}
         }
         self.hit_group_portable(g, ray, range, ctx)
+    }
+
+    /// [`Scene::hit_group`] in the given tier for group `g` itself (groups nested in it go through
+    /// [`Scene::hit_group`]), for tests and benchmarks that compare the tiers; `None` (no answer) if
+    /// the processor does not run it.
+    pub fn hit_group_in(
+        &self,
+        tier: HitTier,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Option<Hit>> {
+        if !tier.available() {
+            return None;
+        }
+        Some(match tier {
+            HitTier::Portable => self.hit_group_portable(g, ray, range, ctx),
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the processor runs the tier, checked just above.
+            HitTier::Avx2 => unsafe { self.hit_group_avx2(g, ray, range, ctx) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above.
+            HitTier::Avx512 => unsafe { self.hit_group_avx512(g, ray, range, ctx) },
+            #[cfg(not(target_arch = "x86_64"))]
+            _ => unreachable!("only the portable tier runs off x86-64"),
+        })
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512vl,avx2")]
+    unsafe fn hit_group_avx512(
+        &self,
+        g: GroupId,
+        ray: &Ray,
+        range: Interval,
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        self.hit_group_with::<true, true>(g, ray, range, ctx)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -159,7 +299,7 @@ impl Scene {
         range: Interval,
         ctx: &mut Ctx,
     ) -> Option<Hit> {
-        self.hit_group_with::<true>(g, ray, range, ctx)
+        self.hit_group_with::<true, false>(g, ray, range, ctx)
     }
 
     /// [`Scene::hit_group`] as processors without AVX2 run it (the quad packets lane by lane), on any
@@ -172,13 +312,14 @@ impl Scene {
         range: Interval,
         ctx: &mut Ctx,
     ) -> Option<Hit> {
-        self.hit_group_with::<false>(g, ray, range, ctx)
+        self.hit_group_with::<false, false>(g, ray, range, ctx)
     }
 
     /// The traversal, its quad packets tested with AVX instructions if `AVX` (only ever set where the
-    /// processor has them) and lane by lane otherwise.
+    /// processor has them) and lane by lane otherwise; a small group's eight at a time in AVX-512
+    /// instructions if `WIDE` (likewise).
     #[inline(always)]
-    fn hit_group_with<const AVX: bool>(
+    fn hit_group_with<const AVX: bool, const WIDE: bool>(
         &self,
         g: GroupId,
         ray: &Ray,
@@ -192,7 +333,7 @@ impl Scene {
         }
         let accel = &group.accel;
         if accel.flat {
-            return self.hit_small_with::<AVX>(g, ray, range, ctx);
+            return self.hit_small_with::<AVX, WIDE>(g, ray, range, ctx);
         }
         let nodes = &accel.tree.nodes;
         if nodes.is_empty() {
@@ -281,8 +422,11 @@ impl Scene {
     /// against the closest hit so far. (A sphere too: its own test rejects only the rays whose line
     /// misses it, not those that meet a wall first, and a third of the Cornell box's rays are aimed
     /// at its glass sphere.) As for quads, a sphere's record is built only if its hit is the closest.
+    ///
+    /// If `WIDE`, the quads are tested in [`Accel::packets8`], all at once, and the closest lane is
+    /// the one testing the 4-lane packets in turn finds.
     #[inline(always)]
-    fn hit_small_with<const AVX: bool>(
+    fn hit_small_with<const AVX: bool, const WIDE: bool>(
         &self,
         g: GroupId,
         ray: &Ray,
@@ -293,13 +437,38 @@ impl Scene {
         let accel = &group.accel;
         let mut closest = range.max;
         let mut best = Closest::Nothing;
-        let lanes = ray_lanes::<AVX>(ray);
-        for (pi, packet) in accel.packets.iter().enumerate() {
-            if let Some(h) =
-                hit_packet::<AVX>(packet, ray, &lanes, Interval::new(range.min, closest))
-            {
+        #[cfg(target_arch = "x86_64")]
+        if WIDE {
+            // SAFETY: `WIDE` is set only by `hit_group_avx512`, compiled with AVX-512F and run where
+            // it is.
+            let h = unsafe {
+                let lanes = crate::quad8::RayLanes8::new(ray);
+                let tail = if accel.tail4 {
+                    accel.packets.last()
+                } else {
+                    None
+                };
+                Quad8::closest_avx512(&accel.packets8, tail, &lanes, range)
+            };
+            if let Some(h) = h {
                 closest = h.t;
-                best = Closest::quad(pi as u32, &h);
+                best = Closest::Quad {
+                    packet: (h.index / PACKET) as u32,
+                    lane: h.index % PACKET,
+                    alpha: h.alpha,
+                    beta: h.beta,
+                };
+            }
+        }
+        if !WIDE {
+            let lanes = ray_lanes::<AVX>(ray);
+            for (pi, packet) in accel.packets.iter().enumerate() {
+                if let Some(h) =
+                    hit_packet::<AVX>(packet, ray, &lanes, Interval::new(range.min, closest))
+                {
+                    closest = h.t;
+                    best = Closest::quad(pi as u32, &h);
+                }
             }
         }
         if accel.others.is_empty() {
@@ -562,8 +731,18 @@ impl Closest<'_> {
                 };
                 Some(q.hit_at(ray, t, alpha, beta))
             }
-            Closest::Sphere(s) => Some(s.hit_at(ray, t)),
+            Closest::Sphere(s) => sphere_record(s, ray, t),
             Closest::Other(h) => Some(h),
         }
     }
+}
+
+/// A sphere's record as the traversal's answer, built in place. With `Some(s.hit_at(..))` in
+/// [`Closest::record`] the record was built in a temporary by 8-byte stores and copied out by two
+/// 64-byte loads, which store-to-load forwarding cannot serve (3-4% of the AVX-512 traversal's
+/// samples); returned as `Option<Hit>` from a call of its own, it is written where the traversal's
+/// caller reads it (mixture 2-3% faster).
+#[inline(never)]
+fn sphere_record(s: &Sphere, ray: &Ray, t: f64) -> Option<Hit> {
+    Some(s.hit_at(ray, t))
 }

@@ -11,6 +11,7 @@ use rtl_render::material::{Albedo, Material};
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
 use rtl_render::scene::{GroupId, Object, Scene, SceneBuilder, Transform};
+use rtl_render::traversal::HitTier;
 use rtl_render::vec::{Color, Point3, Vec3};
 
 fn unit<R: Rng>(rng: &mut R) -> Vec3 {
@@ -101,8 +102,9 @@ fn ray<R: Rng>(rng: &mut R) -> Ray {
     Ray::new(o, d, 0.0)
 }
 
-/// How many of `rays` group `g`'s traversal (either path) hits otherwise than testing its objects one
-/// by one, and how many hit at all.
+/// How many of `rays` group `g`'s traversal (the detected path, or any tier the processor runs:
+/// portable, AVX2, AVX-512) hits otherwise than testing its objects one by one, and how many hit at
+/// all.
 fn mismatches(scene: &Scene, g: GroupId, rays: &[Ray]) -> (usize, usize) {
     let mut ctx = Ctx::new();
     let (mut wrong, mut hits) = (0, 0);
@@ -110,14 +112,35 @@ fn mismatches(scene: &Scene, g: GroupId, rays: &[Ray]) -> (usize, usize) {
         let slow = record(scene.hit_brute_force(g, ray, Interval::FORWARD, &mut ctx));
         let fast = record(scene.hit_group(g, ray, Interval::FORWARD, &mut ctx));
         let portable = record(scene.hit_group_portable(g, ray, Interval::FORWARD, &mut ctx));
-        wrong += (fast != slow || portable != slow) as usize;
+        let tiers = [HitTier::Portable, HitTier::Avx2, HitTier::Avx512].map(|t| {
+            scene
+                .hit_group_in(t, g, ray, Interval::FORWARD, &mut ctx)
+                .map(record)
+        });
+        wrong += (fast != slow
+            || portable != slow
+            || tiers.iter().any(|t| t.is_some_and(|t| t != slow))) as usize;
         hits += slow.is_some() as usize;
     }
     (wrong, hits)
 }
 
+/// The tiers this processor runs, said on the test's output (a tier not run is not tested here).
+fn tiers_run() -> Vec<HitTier> {
+    let run: Vec<HitTier> = [HitTier::Portable, HitTier::Avx2, HitTier::Avx512]
+        .into_iter()
+        .filter(|t| t.available())
+        .collect();
+    eprintln!(
+        "hit tiers tested: {run:?} (detected: {:?})",
+        HitTier::detected()
+    );
+    run
+}
+
 #[test]
 fn small_groups_find_the_brute_force_hits_bit_for_bit() {
+    tiers_run();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(16);
     let (mut hits, mut instances, mut flattened) = (0, 0, 0);
     for i in 0..200 {
@@ -143,6 +166,38 @@ fn small_groups_find_the_brute_force_hits_bit_for_bit() {
         hits > 4_000 && instances > 30 && flattened > 30,
         "{hits} hits, {instances} scenes with instances, {flattened} with a third packet"
     );
+}
+
+#[test]
+fn the_small_group_check_catches_a_wrong_eight_lane_packet() {
+    // Quads lost from the AVX-512 tier's form only (the 4-lane packets and the objects keep them):
+    // that tier, where it runs, must be caught.
+    if !tiers_run().contains(&HitTier::Avx512) {
+        return;
+    }
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(18);
+    let mut caught = 0;
+    for _ in 0..20 {
+        let (mut scene, g) = small_scene(&mut rng, true);
+        let quads = scene.groups[g.0 as usize].accel.packets.len();
+        if quads == 0 {
+            continue;
+        }
+        let rays: Vec<Ray> = (0..300).map(|_| ray(&mut rng)).collect();
+        assert_eq!(mismatches(&scene, g, &rays).0, 0);
+        let accel = &mut scene.groups[g.0 as usize].accel;
+        // One of the 8-lane packets emptied, or the 4-lane tail dropped: their quads are missed by
+        // the AVX-512 tier alone.
+        let units = accel.packets8.len() + accel.tail4 as usize;
+        let k = rng.random_range(0..units);
+        if k < accel.packets8.len() {
+            accel.packets8[k] = rtl_render::quad8::Quad8::new(&[]);
+        } else {
+            accel.tail4 = false;
+        }
+        caught += (mismatches(&scene, g, &rays).0 > 0) as usize;
+    }
+    assert!(caught >= 10, "{caught}");
 }
 
 #[test]
