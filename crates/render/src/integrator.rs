@@ -458,7 +458,7 @@ impl Equiangular {
 }
 
 /// Camera rays (bounce 0; bounces `0..FORCED_SCATTER_BOUNCES`) that would otherwise leave the scene
-/// through a medium scatter in it on every path ([`trace_through_media`]'s forced scattering). On
+/// through a medium scatter in it on every path (the forced scattering of `trace_through_media`). On
 /// book2-final a camera ray that meets only the fog (optical depth about 0.5) scatters 39% of the time
 /// by distance sampling, so the light such a pixel gets from beyond its segment is a Bernoulli draw.
 /// Forcing the later bounces too costs more than it saves (book/src/figures/render-speed.md, fog5).
