@@ -326,13 +326,10 @@ mod tests {
     use super::*;
     use crate::ids::MaterialId;
     use crate::ray::{Interval, Ray};
+    use crate::shapes::quad_cases::{random_quad, ray_at};
     use crate::vec::{Point3, Vec3};
     use rand::{Rng, SeedableRng};
     use rand_xoshiro::Xoshiro256PlusPlus;
-
-    fn unit<R: Rng>(rng: &mut R) -> Vec3 {
-        rtl_pdf::warp::sample_uniform_sphere(glam::DVec2::new(rng.random(), rng.random()))
-    }
 
     /// The quads one after the other, the range shrinking to each hit: (index, t, alpha, beta) bits.
     fn one_by_one(quads: &[Quad], ray: &Ray, range: Interval) -> Option<(usize, [u64; 3])> {
@@ -393,24 +390,11 @@ mod tests {
                     quads.push(q);
                     continue;
                 }
-                let q = unit(&mut rng) * rng.random_range(0.0..3.0);
-                let u = unit(&mut rng) * rng.random_range(0.1..3.0);
-                let v = unit(&mut rng) * rng.random_range(0.1..3.0);
-                quads.push(Quad::new(q, u, v, MaterialId(0)).unwrap());
+                quads.push(random_quad(&mut rng));
             }
             for _ in 0..12 {
                 let q = &quads[rng.random_range(0..n)];
-                let (a, b) = match rng.random_range(0..3) {
-                    0 => (rng.random::<f64>(), rng.random::<f64>()),
-                    1 => (rng.random::<f64>(), [0.0, 1.0][rng.random_range(0..2)]),
-                    _ => (
-                        [0.0, 1.0][rng.random_range(0..2)],
-                        [0.0, 1.0][rng.random_range(0..2)],
-                    ),
-                };
-                let target = q.q + a * q.u + b * q.v;
-                let origin = target + unit(&mut rng) * rng.random_range(0.5..10.0);
-                let ray = Ray::new(origin, target - origin, 0.0);
+                let ray = ray_at(&mut rng, q);
                 let grazing = Ray::new(q.q - q.u, q.u + 1e-17 * q.v, 0.0);
                 let cases = [
                     (ray, Interval::FORWARD),

@@ -493,13 +493,17 @@ pub fn box_quads(a: Point3, b: Point3, material: MaterialId) -> Option<[Quad; 6]
     ])
 }
 
+/// Random quads and the rays aimed at them that the packet tests share (`shapes`, `quad8`).
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use rand::{Rng, SeedableRng};
-    use rand_xoshiro::Xoshiro256PlusPlus;
+pub(crate) mod quad_cases {
+    use super::Quad;
+    use crate::ids::MaterialId;
+    use crate::ray::Ray;
+    use crate::vec::Vec3;
+    use rand::Rng;
 
-    fn unit<R: Rng>(rng: &mut R) -> Vec3 {
+    /// A direction uniform on the sphere (by rejection from the cube).
+    pub fn unit<R: Rng>(rng: &mut R) -> Vec3 {
         loop {
             let v = Vec3::new(
                 rng.random_range(-1.0..1.0),
@@ -511,6 +515,37 @@ mod tests {
             }
         }
     }
+
+    /// A quad with its corner within 3 of the origin and edges 0.1 to 3 long in random directions.
+    pub fn random_quad<R: Rng>(rng: &mut R) -> Quad {
+        let q = unit(rng) * rng.random_range(0.0..3.0);
+        let u = unit(rng) * rng.random_range(0.1..3.0);
+        let v = unit(rng) * rng.random_range(0.1..3.0);
+        Quad::new(q, u, v, MaterialId(0)).unwrap()
+    }
+
+    /// A ray from 0.5 to 10 away aimed at a random point of `q`, or exactly at an edge or a corner.
+    pub fn ray_at<R: Rng>(rng: &mut R, q: &Quad) -> Ray {
+        let (a, b) = match rng.random_range(0..3) {
+            0 => (rng.random::<f64>(), rng.random::<f64>()),
+            1 => (rng.random::<f64>(), [0.0, 1.0][rng.random_range(0..2)]),
+            _ => (
+                [0.0, 1.0][rng.random_range(0..2)],
+                [0.0, 1.0][rng.random_range(0..2)],
+            ),
+        };
+        let target = q.q + a * q.u + b * q.v;
+        let origin = target + unit(rng) * rng.random_range(0.5..10.0);
+        Ray::new(origin, target - origin, 0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quad_cases::{random_quad, ray_at};
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_xoshiro::Xoshiro256PlusPlus;
 
     /// The scalar tests of the quads one after the other, as the packet claims to do them.
     fn one_by_one(quads: &[Quad], ray: &Ray, range: Interval) -> Option<(usize, Hit)> {
@@ -557,28 +592,11 @@ mod tests {
         let mut hits = 0;
         for _ in 0..2_000 {
             let n = rng.random_range(1..=4);
-            let quads: Vec<Quad> = (0..n)
-                .map(|_| {
-                    let q = unit(&mut rng) * rng.random_range(0.0..3.0);
-                    let u = unit(&mut rng) * rng.random_range(0.1..3.0);
-                    let v = unit(&mut rng) * rng.random_range(0.1..3.0);
-                    Quad::new(q, u, v, MaterialId(0)).unwrap()
-                })
-                .collect();
+            let quads: Vec<Quad> = (0..n).map(|_| random_quad(&mut rng)).collect();
             for _ in 0..20 {
                 // Aimed at a random point of a random quad, or exactly at an edge or a corner.
                 let q = &quads[rng.random_range(0..n)];
-                let (a, b) = match rng.random_range(0..3) {
-                    0 => (rng.random::<f64>(), rng.random::<f64>()),
-                    1 => (rng.random::<f64>(), [0.0, 1.0][rng.random_range(0..2)]),
-                    _ => (
-                        [0.0, 1.0][rng.random_range(0..2)],
-                        [0.0, 1.0][rng.random_range(0..2)],
-                    ),
-                };
-                let target = q.q + a * q.u + b * q.v;
-                let origin = target + unit(&mut rng) * rng.random_range(0.5..10.0);
-                let ray = Ray::new(origin, target - origin, 0.0);
+                let ray = ray_at(&mut rng, q);
                 hits += check(&quads, &ray, Interval::FORWARD) as u32;
                 // A range that ends before some hits.
                 hits += check(&quads, &ray, Interval::new(0.0, rng.random_range(0.0..1.5))) as u32;
