@@ -180,6 +180,7 @@ impl Bench {
         self.epoch.elapsed().as_millis() as u64
     }
 
+    /// Forget every curve; the running render's curve starts again with its next pass.
     pub fn clear_curves(&self) {
         self.curves.lock().unwrap().clear();
     }
@@ -316,6 +317,10 @@ fn render_generation(bench: &Arc<Bench>, scene: &Arc<Scene>, generation: u64, s:
             }
             continue;
         };
+        // Finished just as the settings changed: a pass of the old render, shown to nobody.
+        if bench.generation() != generation {
+            return;
+        }
         let t = t0.elapsed().as_secs_f64();
         seconds += t;
         rays += stats.rays;
@@ -328,25 +333,32 @@ fn render_generation(bench: &Arc<Bench>, scene: &Arc<Scene>, generation: u64, s:
         };
         if let Some(rmse) = rmse {
             let mut curves = bench.curves.lock().unwrap();
+            // A fresh render of a setting tried before replaces its curve.
             if !curve_started {
                 curves.retain(|c| c.label != label);
-                if curves.len() >= MAX_CURVES {
-                    curves.remove(0);
-                }
-                curves.push(Curve {
-                    label: label.clone(),
-                    width: w,
-                    points: Vec::new(),
-                });
                 curve_started = true;
             }
-            if let Some(c) = curves.iter_mut().find(|c| c.label == label) {
-                if c.points.len() >= MAX_POINTS {
-                    let kept: Vec<_> = c.points.iter().copied().step_by(2).collect();
-                    c.points = kept;
+            // Not there at the start, or cleared by the page since: the curve (re)starts here.
+            let i = match curves.iter().position(|c| c.label == label) {
+                Some(i) => i,
+                None => {
+                    if curves.len() >= MAX_CURVES {
+                        curves.remove(0);
+                    }
+                    curves.push(Curve {
+                        label: label.clone(),
+                        width: w,
+                        points: Vec::new(),
+                    });
+                    curves.len() - 1
                 }
-                c.points.push((seconds, acc.samples, rmse));
+            };
+            let c = &mut curves[i];
+            if c.points.len() >= MAX_POINTS {
+                let kept: Vec<_> = c.points.iter().copied().step_by(2).collect();
+                c.points = kept;
             }
+            c.points.push((seconds, acc.samples, rmse));
         }
         let image_png = png(w, h, to_rgb8(&img, Transfer::Gamma2));
         let variance_png = png(w, h, variance_rgb(&moments));
@@ -466,6 +478,24 @@ mod tests {
                 .iter()
                 .any(|c| c.label == label(&bench.settings()))
         );
+        // Cleared while it runs: the running render's curve comes back alone, from later passes.
+        let spp_at_clear = bench.frame.lock().unwrap().spp;
+        bench.clear_curves();
+        let back = |curves: &Vec<Curve>| {
+            curves.len() == 1
+                && curves[0].label == label(&bench.settings())
+                && curves[0].points.iter().all(|p| p.1 > spp_at_clear)
+        };
+        let start = Instant::now();
+        while !back(&bench.curves.lock().unwrap()) {
+            assert!(
+                start.elapsed() < Duration::from_secs(60),
+                "the curve did not come back after a clear: {:?}",
+                bench.curves.lock().unwrap()
+            );
+            bench.touch();
+            std::thread::sleep(Duration::from_millis(20));
+        }
         // Nobody asks: the passes stop.
         bench.last_seen_ms.store(NEVER, Ordering::SeqCst);
         std::thread::sleep(Duration::from_millis(300));

@@ -101,8 +101,18 @@ const check = (ok, what) => {
 
   await page.selectOption("#c-strategy", "uniform");
   const g1 = await generationAfter(0);
+  // A frame of uniform: the render the page opened on (mis) is over and adds nothing more. Its
+  // curve, if it drew one, would be replaced by the mis curve below rather than joined: clear it.
+  await frameOf(g1, 1);
+  await Promise.all([
+    page.waitForResponse((r) => r.url().includes("/api/render/clear")),
+    page.click("#c-clear"),
+  ]);
   await frameOf(g1, 4);
-  await page.waitForFunction(() => document.querySelectorAll("#c-curves .curve").length >= 1);
+  await page.waitForFunction(() => {
+    const cs = [...document.querySelectorAll("#c-curves .curve")];
+    return cs.length === 1 && (cs[0].dataset.label || "").startsWith("uniform");
+  });
   const uniform = await pixels();
   const before = await curves();
   await page.selectOption("#c-strategy", "mis");
