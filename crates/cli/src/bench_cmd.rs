@@ -11,6 +11,7 @@ use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
 use clap::{Args, Subcommand, ValueEnum};
 use noise::{DisplayImage, noise_constant, parse_pfm, parse_ppm, seconds_to};
 use rtl_render::integrator::Strategy;
+use rtl_render::traversal::HitTier;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -91,6 +92,12 @@ pub struct CompareArgs {
     /// The rtl binary to time (default: this one), e.g. a build of another commit.
     #[arg(long)]
     rtl: Option<PathBuf>,
+    /// Intersection tiers to time each strategy in, comma-separated (`portable`, `avx2`, `avx512`;
+    /// `rtl render --hit-tier`), e.g. `avx2,avx512` for the code a processor without AVX-512 runs
+    /// beside the best one, in the same rounds. Default: the best this processor runs, unnamed (as
+    /// an `--rtl` binary from before the flag needs).
+    #[arg(long, value_delimiter = ',', value_name = "TIERS")]
+    hit_tier: Vec<String>,
     /// Where the patched copy, the builds and the images go.
     #[arg(long, default_value = "target/bench-compare")]
     scratch: PathBuf,
@@ -172,6 +179,15 @@ fn validate(a: &CompareArgs) -> Result<()> {
         s.parse::<Strategy>()
             .map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
     }
+    for t in &a.hit_tier {
+        let tier: HitTier = t.parse().map_err(|e| anyhow::anyhow!("--hit-tier: {e}"))?;
+        if !tier.available() {
+            bail!(
+                "--hit-tier {t}: this processor does not run it (the best it runs is {})",
+                HitTier::detected().key()
+            );
+        }
+    }
     Ok(())
 }
 
@@ -234,8 +250,12 @@ fn compare(mut a: CompareArgs) -> Result<()> {
             a.rounds
         );
         println!(
-            "{:<22} {:>14} {:>26} {:>26}",
-            "renderer", "samples/s/core", "samples/s vs book", "time to target vs book"
+            "{:<nw$} {:>14} {:>26} {:>26}",
+            "renderer",
+            "samples/s/core",
+            "samples/s vs book",
+            "time to target vs book",
+            nw = name_width(&rounds[0])
         );
         for i in 1..rounds[0].len() {
             let rate = Spread::of(rounds.iter().map(|rows| rows[i].per_core));
@@ -245,11 +265,12 @@ fn compare(mut a: CompareArgs) -> Result<()> {
                     / seconds_to(rows[i].c, target, pixels, rows[i].per_core, a.cores)
             }));
             println!(
-                "{:<22} {:>14.0} {:>26} {:>26}",
+                "{:<nw$} {:>14.0} {:>26} {:>26}",
                 rounds[0][i].name,
                 rate.median,
                 by_rate.ratio(),
-                by_time.ratio()
+                by_time.ratio(),
+                nw = name_width(&rounds[0])
             );
         }
     }
@@ -274,7 +295,12 @@ fn measure_round(a: &CompareArgs, depth: u32) -> Result<Vec<Measured>> {
         rows.push(run_mitsuba(a, py, depth)?);
     }
     for s in &a.strategy {
-        rows.push(run_rtl(a, s, depth)?);
+        if a.hit_tier.is_empty() {
+            rows.push(run_rtl(a, s, None, depth)?);
+        }
+        for t in &a.hit_tier {
+            rows.push(run_rtl(a, s, Some(t), depth)?);
+        }
     }
     Ok(rows)
 }
@@ -291,14 +317,15 @@ fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, s
         }
     );
     println!(
-        "{:<22} {:>14} {:>8} {:>8} {:>11} {:>14} {:>10}  note",
+        "{:<nw$} {:>14} {:>8} {:>8} {:>11} {:>14} {:>10}  note",
         "renderer",
         "samples/s/core",
         "c",
         "mean",
         "spp needed",
         format!("s on {} cores", a.cores),
-        "vs book"
+        "vs book",
+        nw = name_width(rows)
     );
     let book_rate = a.book.as_ref().map(|_| rows[0].per_core);
     let book_secs = book_rate.map(|r| seconds_to(rows[0].c, target, pixels, r, a.cores));
@@ -309,7 +336,7 @@ fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, s
             _ => "-".into(),
         };
         println!(
-            "{:<22} {:>14.0} {:>8.4} {:>8.4} {:>11.0} {:>14.1} {:>10}  {}",
+            "{:<nw$} {:>14.0} {:>8.4} {:>8.4} {:>11.0} {:>14.1} {:>10}  {}",
             m.name,
             m.per_core,
             m.c,
@@ -317,9 +344,15 @@ fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, s
             noise::spp_to(m.c, target),
             secs,
             vs,
-            m.note
+            m.note,
+            nw = name_width(rows)
         );
     }
+}
+
+/// The width of the tables' first column: the longest renderer's name, at least 22.
+fn name_width(rows: &[Measured]) -> usize {
+    rows.iter().map(|m| m.name.len()).max().unwrap_or(0).max(22)
 }
 
 /// Renderer `i`'s samples per second over the book's (row 0), each taken within one round.
@@ -562,7 +595,8 @@ fn run_mitsuba(a: &CompareArgs, python: &Path, depth: u32) -> Result<Measured> {
     })
 }
 
-fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
+/// rtl's pair of renders with `strategy`, in intersection tier `tier` if one is named.
+fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> Result<Measured> {
     let exe = match &a.rtl {
         Some(p) => p.clone(),
         None => std::env::current_exe().context("cannot find the rtl binary itself")?,
@@ -574,9 +608,17 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
     let scene = scene.get_name();
     let mut images = Vec::new();
     let (mut secs, mut wall) = (0.0, 0.0);
+    let name = match tier {
+        Some(t) => format!("rtl --strategy {strategy} --hit-tier {t}"),
+        None => format!("rtl --strategy {strategy}"),
+    };
+    let stem = format!(
+        "{scene}-{strategy}{}",
+        tier.map_or(String::new(), |t| format!("-{t}"))
+    );
     for &seed in &a.seeds {
-        let png = dir.join(format!("{scene}-{strategy}-{seed}.png"));
-        let pfm = dir.join(format!("{scene}-{strategy}-{seed}.pfm"));
+        let png = dir.join(format!("{stem}-{seed}.png"));
+        let pfm = dir.join(format!("{stem}-{seed}.pfm"));
         let mut cmd = Command::new(&exe);
         cmd.arg("render")
             .arg(scene)
@@ -591,6 +633,9 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
             .arg("--linear")
             .arg(&pfm)
             .stdout(Stdio::null());
+        if let Some(t) = tier {
+            cmd.args(["--hit-tier", t]);
+        }
         if a.scene == CompareScene::Book2Final
             && let Some(book) = &a.book
         {
@@ -599,7 +644,7 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
                 cmd.arg("--texture").arg(earth);
             }
         }
-        eprintln!("running rtl --strategy {strategy}, seed {seed}");
+        eprintln!("running {name}, seed {seed}");
         let (_, s) = timed(&mut cmd, "rtl render")?;
         eprintln!(
             "  {:.2} s processor time, {:.2} s wall",
@@ -613,7 +658,7 @@ fn run_rtl(a: &CompareArgs, strategy: &str, depth: u32) -> Result<Measured> {
     let samples = (a.width * a.width) as f64 * a.spp as f64 * 2.0;
     let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
     Ok(Measured {
-        name: format!("rtl --strategy {strategy}"),
+        name,
         per_core: samples / secs,
         c,
         mean,
@@ -691,6 +736,17 @@ mod tests {
         assert!(err(&["--target-rmse", "0.01", "--seeds", "3,3"]).contains("--seeds"));
         let e = err(&["--target-rmse", "0.01", "--strategy", "mis,fast"]);
         assert!(e.contains("--strategy") && e.contains("fast"), "{e}");
+        let e = err(&["--target-rmse", "0.01", "--hit-tier", "avx2,sse9"]);
+        assert!(e.contains("--hit-tier") && e.contains("sse9"), "{e}");
+        // every tier this processor runs is taken, one it does not is refused by name
+        for t in HitTier::ALL {
+            let v = validate(&parse(&["--target-rmse", "0.01", "--hit-tier", t.key()]));
+            match (t.available(), v) {
+                (true, Ok(())) => {}
+                (false, Err(e)) => assert!(e.to_string().contains(t.key()), "{e}"),
+                (run, v) => panic!("{t:?} (runs here: {run}): {v:?}"),
+            }
+        }
         assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
         assert!(err(&["--target-rmse", "0.01", "--rounds", "0"]).contains("--rounds"));
         for w in ["0", "65537"] {

@@ -16,6 +16,7 @@ use rtl_render::render::{
 use rtl_render::sampler::Stats;
 use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
+use rtl_render::traversal::{HitTier, HitTierError};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -95,6 +96,24 @@ pub struct RenderArgs {
     /// Render samples K .. K+spp of every pixel (a part of a render split over processes or machines).
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub sample_offset: u64,
+    /// The intersection code to run: portable, avx2 or avx512 (default: the best this processor
+    /// runs, which `--explain` names). Every tier finds the same hits, so the image is the same bit
+    /// for bit: this is for timing the tiers side by side, or the one a processor without AVX-512
+    /// runs.
+    #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
+    pub hit_tier: Option<HitTier>,
+}
+
+/// A tier that this processor runs, by its key.
+fn parse_hit_tier(s: &str) -> Result<HitTier, HitTierError> {
+    let tier: HitTier = s.parse()?;
+    if !tier.available() {
+        return Err(HitTierError::Unavailable {
+            tier: tier.key(),
+            best: HitTier::detected().key(),
+        });
+    }
+    Ok(tier)
 }
 
 fn parse_strategy(s: &str) -> Result<Strategy, String> {
@@ -197,10 +216,16 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             "(plain colours only: no texture lookups)"
         )
     );
-    println!(
-        "  intersection        : {}",
-        rtl_render::traversal::HitTier::detected().name()
-    );
+    let (tier, best) = (HitTier::current(), HitTier::detected());
+    if tier == best {
+        println!("  intersection        : {}", tier.name());
+    } else {
+        println!(
+            "  intersection        : {} (--hit-tier; the best this processor runs is {})",
+            tier.name(),
+            best.key()
+        );
+    }
     if f.flattened_instances > 0 {
         println!(
             "  instances           : {} placed in world space at build time (rigid, of non-emitting \
@@ -549,6 +574,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let Some(scene_arg) = args.scene.as_deref() else {
         bail!("name a scene to render (rtl render --list shows the built-in ones) or a scene file");
     };
+    if let Some(tier) = args.hit_tier {
+        tier.select().context("--hit-tier")?;
+    }
     let job = settings(&args, scene_arg)?;
     let scene = &job.loaded.built.scene;
     if args.explain {

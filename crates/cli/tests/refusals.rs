@@ -509,3 +509,39 @@ fn parts_larger_than_the_memory_are_refused_before_they_are_read() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
+    let d = dir("hit-tier");
+    // Every tier this processor runs gives the same image, bit for bit, and `--explain` names it.
+    let tiers: Vec<_> = rtl_render::traversal::HitTier::ALL
+        .into_iter()
+        .filter(|t| t.available())
+        .collect();
+    assert!(!tiers.is_empty());
+    let mut images = Vec::new();
+    for t in &tiers {
+        let pfm = format!("{}.pfm", t.key());
+        ok(&d, &render(&["--hit-tier", t.key(), "--linear", &pfm]));
+        images.push(std::fs::read(d.join(&pfm)).unwrap());
+        let out = rtl(&d, &render(&["--hit-tier", t.key(), "--explain"]));
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains(t.name()), "{t:?}: {text}");
+    }
+    assert!(images.windows(2).all(|w| w[0] == w[1]), "{tiers:?} differ");
+    // An unknown tier, or one this processor does not run, is refused by clap (exit 2) naming the
+    // flag and the value, before anything is written.
+    let not_run = rtl_render::traversal::HitTier::ALL
+        .into_iter()
+        .find(|t| !t.available())
+        .map(|t| t.key());
+    for bad in ["avx9"].into_iter().chain(not_run) {
+        let out = rtl(&d, &render(&["--hit-tier", bad, "-o", "bad.png"]));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("--hit-tier") && err.contains(bad), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!d.join("bad.png").exists());
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}

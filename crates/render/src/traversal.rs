@@ -111,6 +111,62 @@ impl HitTier {
             HitTier::Avx512 => "AVX-512 (8-lane f64 quad packets in small groups, AVX2 elsewhere)",
         }
     }
+
+    /// Every tier, slowest first.
+    pub const ALL: [HitTier; 3] = [HitTier::Portable, HitTier::Avx2, HitTier::Avx512];
+
+    /// The tier's key, as `--hit-tier` takes it: `portable`, `avx2` or `avx512`.
+    pub fn key(self) -> &'static str {
+        match self {
+            HitTier::Portable => "portable",
+            HitTier::Avx2 => "avx2",
+            HitTier::Avx512 => "avx512",
+        }
+    }
+
+    /// Run this tier in every traversal from now on instead of the detected one (to measure the tiers
+    /// side by side on one processor, or one that a processor without AVX-512 would run). The hits
+    /// are bit-identical in every tier, so this changes the speed only. Refused if the processor
+    /// does not run the tier.
+    pub fn select(self) -> Result<(), HitTierError> {
+        if !self.available() {
+            return Err(HitTierError::Unavailable {
+                tier: self.key(),
+                best: HitTier::detected().key(),
+            });
+        }
+        TIER.store(self as u8 + 1, Ordering::Relaxed);
+        Ok(())
+    }
+
+    /// The tier traversals run: the one [`HitTier::select`]ed, else the detected one.
+    pub fn current() -> HitTier {
+        HitTier::cached()
+    }
+}
+
+/// Why a tier could not be chosen.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum HitTierError {
+    #[error("unknown intersection tier '{0}' (portable, avx2 or avx512)")]
+    Unknown(String),
+    #[error("this processor does not run the {tier} tier (the best it runs is {best})")]
+    Unavailable {
+        tier: &'static str,
+        best: &'static str,
+    },
+}
+
+impl std::str::FromStr for HitTier {
+    type Err = HitTierError;
+
+    /// A tier by its [`HitTier::key`].
+    fn from_str(s: &str) -> Result<HitTier, HitTierError> {
+        HitTier::ALL
+            .into_iter()
+            .find(|t| t.key() == s)
+            .ok_or_else(|| HitTierError::Unknown(s.into()))
+    }
 }
 
 /// The largest group traversed in the flat form: its quads in at most three packets (the Cornell

@@ -11,7 +11,7 @@ use rtl_render::material::{Albedo, Material};
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
 use rtl_render::scene::{GroupId, Object, Scene, SceneBuilder, Transform};
-use rtl_render::traversal::HitTier;
+use rtl_render::traversal::{HitTier, HitTierError};
 use rtl_render::vec::{Color, Point3, Vec3};
 
 fn unit<R: Rng>(rng: &mut R) -> Vec3 {
@@ -112,7 +112,7 @@ fn mismatches(scene: &Scene, g: GroupId, rays: &[Ray]) -> (usize, usize) {
         let slow = record(scene.hit_brute_force(g, ray, Interval::FORWARD, &mut ctx));
         let fast = record(scene.hit_group(g, ray, Interval::FORWARD, &mut ctx));
         let portable = record(scene.hit_group_portable(g, ray, Interval::FORWARD, &mut ctx));
-        let tiers = [HitTier::Portable, HitTier::Avx2, HitTier::Avx512].map(|t| {
+        let tiers = HitTier::ALL.map(|t| {
             scene
                 .hit_group_in(t, g, ray, Interval::FORWARD, &mut ctx)
                 .map(record)
@@ -127,10 +127,7 @@ fn mismatches(scene: &Scene, g: GroupId, rays: &[Ray]) -> (usize, usize) {
 
 /// The tiers this processor runs, said on the test's output (a tier not run is not tested here).
 fn tiers_run() -> Vec<HitTier> {
-    let run: Vec<HitTier> = [HitTier::Portable, HitTier::Avx2, HitTier::Avx512]
-        .into_iter()
-        .filter(|t| t.available())
-        .collect();
+    let run: Vec<HitTier> = HitTier::ALL.into_iter().filter(|t| t.available()).collect();
     eprintln!(
         "hit tiers tested: {run:?} (detected: {:?})",
         HitTier::detected()
@@ -303,4 +300,39 @@ fn a_sphere_boundary_crossed_in_one_solve_matches_the_two_queries() {
     // The check sees a boundary one ulp larger.
     let bigger = fog_scene(false, f64::from_bits(4.0f64.to_bits() + 1));
     assert!(medium_mismatches(&fog_scene(true, 4.0), &bigger).0 > 0);
+}
+
+#[test]
+fn a_tier_is_chosen_by_its_key_and_refused_where_it_does_not_run() {
+    for t in HitTier::ALL {
+        assert_eq!(t.key().parse::<HitTier>(), Ok(t));
+    }
+    assert_eq!(
+        "avx9".parse::<HitTier>(),
+        Err(HitTierError::Unknown("avx9".into()))
+    );
+    assert!("AVX2".parse::<HitTier>().is_err(), "keys are lower case");
+    let detected = HitTier::detected();
+    for t in HitTier::ALL {
+        match t.select() {
+            Ok(()) => {
+                assert!(t.available(), "{t:?} selected where it does not run");
+                assert_eq!(HitTier::current(), t);
+            }
+            Err(e) => {
+                assert!(!t.available(), "{t:?} refused where it runs: {e}");
+                assert_eq!(
+                    e,
+                    HitTierError::Unavailable {
+                        tier: t.key(),
+                        best: detected.key()
+                    }
+                );
+                assert_ne!(HitTier::current(), t);
+            }
+        }
+    }
+    // The other tests of this file may run meanwhile: every tier finds the same hits.
+    detected.select().unwrap();
+    assert_eq!(HitTier::current(), detected);
 }
