@@ -106,14 +106,7 @@ pub struct RenderArgs {
 
 /// A tier that this processor runs, by its key.
 fn parse_hit_tier(s: &str) -> Result<HitTier, HitTierError> {
-    let tier: HitTier = s.parse()?;
-    if !tier.available() {
-        return Err(HitTierError::Unavailable {
-            tier: tier.key(),
-            best: HitTier::detected().key(),
-        });
-    }
-    Ok(tier)
+    s.parse::<HitTier>()?.runnable()
 }
 
 fn parse_strategy(s: &str) -> Result<Strategy, String> {

@@ -129,14 +129,20 @@ impl HitTier {
     /// are bit-identical in every tier, so this changes the speed only. Refused if the processor
     /// does not run the tier.
     pub fn select(self) -> Result<(), HitTierError> {
-        if !self.available() {
-            return Err(HitTierError::Unavailable {
+        TIER.store(self.runnable()? as u8 + 1, Ordering::Relaxed);
+        Ok(())
+    }
+
+    /// This tier if the processor runs it, else the refusal that names the best one it does.
+    pub fn runnable(self) -> Result<HitTier, HitTierError> {
+        if self.available() {
+            Ok(self)
+        } else {
+            Err(HitTierError::Unavailable {
                 tier: self.key(),
                 best: HitTier::detected().key(),
-            });
+            })
         }
-        TIER.store(self as u8 + 1, Ordering::Relaxed);
-        Ok(())
     }
 
     /// The tier traversals run: the one [`HitTier::select`]ed, else the detected one.
