@@ -94,8 +94,8 @@ pub struct CompareArgs {
     rtl: Option<PathBuf>,
     /// Intersection tiers to time each strategy in, comma-separated (`portable`, `avx2`, `avx512`;
     /// `rtl render --hit-tier`), e.g. `avx2,avx512` for the code a processor without AVX-512 runs
-    /// beside the best one, in the same rounds. Default: the best this processor runs, unnamed (as
-    /// an `--rtl` binary from before the flag needs).
+    /// beside the best one, in the same rounds. Default: the one `rtl render` runs unless told
+    /// (`HitTier::preferred`), unnamed (as an `--rtl` binary from before the flag needs).
     #[arg(long, value_delimiter = ',', value_name = "TIERS")]
     hit_tier: Vec<String>,
     /// Where the patched copy, the builds and the images go.
@@ -119,17 +119,41 @@ pub fn run(args: BenchArgs) -> Result<()> {
     }
 }
 
-/// The processor's model name, from /proc/cpuinfo.
+/// The processor, from /proc/cpuinfo: its model name, which on a VM is often generic ("Intel(R)
+/// Xeon(R) Processor", "AMD EPYC"), with the vendor, family and model that tell its generation, and
+/// the vector extensions that decide the intersection tier.
 fn cpu_model() -> String {
     std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
+        .and_then(|s| cpu_of(&s))
         .unwrap_or_else(|| "unknown (no /proc/cpuinfo)".into())
+}
+
+/// [`cpu_model`] for the text of a /proc/cpuinfo (its first processor's block).
+fn cpu_of(cpuinfo: &str) -> Option<String> {
+    let block = cpuinfo.split("\n\n").next()?;
+    let field = |name: &str| {
+        block.lines().find_map(|l| {
+            let (k, v) = l.split_once(':')?;
+            (k.trim() == name).then(|| v.trim().to_string())
+        })
+    };
+    let model_name = field("model name")?;
+    let mut out = model_name;
+    if let (Some(vendor), Some(family), Some(model)) =
+        (field("vendor_id"), field("cpu family"), field("model"))
+    {
+        out.push_str(&format!(", {vendor} family {family} model {model}"));
+    }
+    let flags = field("flags").unwrap_or_default();
+    let has = |f: &str| flags.split_whitespace().any(|x| x == f);
+    let vector = match (has("avx2"), has("avx512f") && has("avx512vl")) {
+        (_, true) => "AVX2 + AVX-512",
+        (true, false) => "AVX2, no AVX-512",
+        (false, false) => "no AVX2",
+    };
+    out.push_str(&format!(", {vector}"));
+    Some(out)
 }
 
 fn validate(a: &CompareArgs) -> Result<()> {
@@ -668,6 +692,25 @@ fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cpu_names_its_generation_and_vector_extensions() {
+        let info = "processor\t: 0\nvendor_id\t: GenuineIntel\ncpu family\t: 6\nmodel\t\t: 207\n\
+                    model name\t: Intel(R) Xeon(R) Processor\nflags\t\t: fpu avx avx2 avx512f avx512vl\n\n\
+                    processor\t: 1\nmodel name\t: other\n";
+        assert_eq!(
+            cpu_of(info).as_deref(),
+            Some("Intel(R) Xeon(R) Processor, GenuineIntel family 6 model 207, AVX2 + AVX-512")
+        );
+        let amd = "vendor_id\t: AuthenticAMD\ncpu family\t: 25\nmodel\t\t: 1\nmodel name\t: AMD EPYC\n\
+                   flags\t\t: avx avx2 avx512f\n";
+        assert_eq!(
+            cpu_of(amd).as_deref(),
+            Some("AMD EPYC, AuthenticAMD family 25 model 1, AVX2, no AVX-512")
+        );
+        assert_eq!(cpu_of("model name\t: X\n").as_deref(), Some("X, no AVX2"));
+        assert_eq!(cpu_of("processor\t: 0\n"), None);
+    }
 
     #[test]
     fn children_cpu_time_is_read_past_the_command_name() {

@@ -97,7 +97,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub sample_offset: u64,
     /// The intersection code to run: portable, avx2 or avx512 (default: the best this processor
-    /// runs, which `--explain` names). Every tier finds the same hits, so the image is the same bit
+    /// runs, but avx2 on an Intel processor with AVX-512, where it is faster; `--explain` names it). Every tier finds the same hits, so the image is the same bit
     /// for bit: this is for timing the tiers side by side, or the one a processor without AVX-512
     /// runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
@@ -212,6 +212,14 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
     let (tier, best) = (HitTier::current(), HitTier::detected());
     if tier == best {
         println!("  intersection        : {}", tier.name());
+    } else if tier == HitTier::preferred() {
+        println!(
+            "  intersection        : {} (this processor also runs {}, slower on Intel cores: \
+             --hit-tier {} runs it)",
+            tier.name(),
+            best.key(),
+            best.key()
+        );
     } else {
         println!(
             "  intersection        : {} (--hit-tier; the best this processor runs is {})",

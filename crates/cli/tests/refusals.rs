@@ -529,6 +529,17 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
         assert!(text.contains(t.name()), "{t:?}: {text}");
     }
     assert!(images.windows(2).all(|w| w[0] == w[1]), "{tiers:?} differ");
+    // Without the flag the preferred tier runs (AVX2 on an Intel processor with AVX-512), and
+    // `--explain` says so on its intersection line.
+    let out = rtl(&d, &render(&["--explain"]));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let preferred = rtl_render::traversal::HitTier::preferred();
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("intersection"))
+        .unwrap_or_else(|| panic!("no intersection line: {text}"));
+    assert!(line.contains(preferred.name()), "{preferred:?}: {line}");
+    assert!(!line.contains("--hit-tier;"), "no --hit-tier was given: {line}");
     // An unknown tier, or one this processor does not run, is refused by clap (exit 2) naming the
     // flag and the value, before anything is written.
     let not_run = rtl_render::traversal::HitTier::ALL

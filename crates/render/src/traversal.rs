@@ -42,7 +42,7 @@ pub struct Accel {
 static TIER: AtomicU8 = AtomicU8::new(0);
 
 /// Which form of the closest-hit traversal runs: chosen at run time from the processor's features
-/// ([`HitTier::detected`]). Every tier finds bit-identical hits: the same `f64` operations in the
+/// ([`HitTier::detected`], [`HitTier::preferred`]). Every tier finds bit-identical hits: the same `f64` operations in the
 /// same order, lane by lane, and no fused multiply-adds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
@@ -76,7 +76,21 @@ impl HitTier {
         HitTier::Portable
     }
 
-    /// [`HitTier::detected`], detected once and kept: one load per traversal (three feature tests
+    /// The tier traversals run unless one is [`HitTier::select`]ed: the [`HitTier::detected`] one,
+    /// except on an Intel processor, where [`HitTier::Avx2`] runs even if AVX-512 is there. Measured
+    /// side by side on an Intel Xeon (family 6 model 207), the 8-lane packets made the Cornell box's
+    /// `mixture` 1.08x and `mis` 1.03x *slower* (render-speed.md, "Issue 16, seventh round"); on
+    /// Intel's cores a 512-bit instruction takes the vector units of two ports, so eight lanes a
+    /// time buy no throughput over two four-lane instructions, while AMD's Zen 4 and 5, where they
+    /// were 1.04-1.11x faster, keep them.
+    pub fn preferred() -> HitTier {
+        match HitTier::detected() {
+            HitTier::Avx512 if intel() => HitTier::Avx2,
+            t => t,
+        }
+    }
+
+    /// [`HitTier::preferred`], found once and kept: one load per traversal (three feature tests
     /// each time cost the AVX2 tier ~1% more instructions on the Cornell box).
     #[inline(always)]
     fn cached() -> HitTier {
@@ -90,7 +104,7 @@ impl HitTier {
 
     #[cold]
     fn detect_once() -> HitTier {
-        let t = HitTier::detected();
+        let t = HitTier::preferred();
         TIER.store(t as u8 + 1, Ordering::Relaxed);
         t
     }
@@ -145,10 +159,27 @@ impl HitTier {
         }
     }
 
-    /// The tier traversals run: the one [`HitTier::select`]ed, else the detected one.
+    /// The tier traversals run: the one [`HitTier::select`]ed, else the [`HitTier::preferred`] one.
     pub fn current() -> HitTier {
         HitTier::cached()
     }
+}
+
+/// Is this an Intel processor (CPUID leaf 0's vendor string "GenuineIntel")?
+fn intel() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: CPUID exists on every x86-64 processor.
+        #[allow(unused_unsafe)]
+        let r = unsafe { std::arch::x86_64::__cpuid(0) };
+        let mut vendor = [0u8; 12];
+        vendor[..4].copy_from_slice(&r.ebx.to_le_bytes());
+        vendor[4..8].copy_from_slice(&r.edx.to_le_bytes());
+        vendor[8..].copy_from_slice(&r.ecx.to_le_bytes());
+        &vendor == b"GenuineIntel"
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    false
 }
 
 /// Why a tier could not be chosen.

@@ -336,3 +336,18 @@ fn a_tier_is_chosen_by_its_key_and_refused_where_it_does_not_run() {
     detected.select().unwrap();
     assert_eq!(HitTier::current(), detected);
 }
+
+#[test]
+fn the_default_tier_runs_here_and_is_avx2_on_an_intel_processor_with_avx512() {
+    let (preferred, detected) = (HitTier::preferred(), HitTier::detected());
+    assert!(preferred.available(), "{preferred:?} is not run here");
+    let intel = std::fs::read_to_string("/proc/cpuinfo")
+        .map(|s| s.lines().any(|l| l.starts_with("vendor_id") && l.ends_with("GenuineIntel")))
+        .unwrap_or(false);
+    let expected = match detected {
+        HitTier::Avx512 if intel => HitTier::Avx2,
+        t => t,
+    };
+    eprintln!("detected {detected:?}, preferred {preferred:?} (Intel: {intel})");
+    assert_eq!(preferred, expected);
+}
