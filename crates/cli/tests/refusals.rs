@@ -539,7 +539,10 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
         .find(|l| l.trim_start().starts_with("intersection"))
         .unwrap_or_else(|| panic!("no intersection line: {text}"));
     assert!(line.contains(preferred.name()), "{preferred:?}: {line}");
-    assert!(!line.contains("--hit-tier;"), "no --hit-tier was given: {line}");
+    assert!(
+        !line.contains("--hit-tier;"),
+        "no --hit-tier was given: {line}"
+    );
     // An unknown tier, or one this processor does not run, is refused by clap (exit 2) naming the
     // flag and the value, before anything is written.
     let not_run = rtl_render::traversal::HitTier::ALL

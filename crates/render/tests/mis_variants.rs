@@ -13,14 +13,17 @@
 //!   hits by the metal's density (wrong: a cosine lobe's density), and must also agree with the metal
 //!   treated as a specular bounce;
 //! - a wide bright lamp and a dim ball: next-event estimation chooses the emitter per shading point
-//!   (wrong: the emission met by material sampling weighted by the uniform choice's density).
+//!   (wrong: the emission met by material sampling weighted by the uniform choice's density);
+//! - a glass ball listed as a target under a light: material sampling draws `OTHERS_SHARE` of its
+//!   directions towards the ball (wrong: divided by the density of the book's even mixture).
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, MisVariant, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{RenderSettings, render};
-use rtl_render::scene::{Background, Scene, SceneBuilder};
+use rtl_render::scene::{Background, ImportanceTarget, Scene, SceneBuilder};
+use rtl_render::shapes::Sphere;
 use rtl_render::vec::{Point3, Vec3};
 
 mod batch_means;
@@ -179,7 +182,7 @@ pub fn fuzzy_metals() -> Scene {
     .unwrap();
     b.quad(
         w,
-        Point3::new(-1.0, 3.0, -1.0),
+        Point3::new(-1.0, 4.0, -1.0),
         Vec3::new(2.0, 0.0, 0.0),
         Vec3::new(0.0, 0.0, 2.0),
         lamp,
@@ -306,6 +309,74 @@ fn emitters_chosen_per_point_agree_and_a_uniform_weight_is_caught() {
     assert!(
         !disagreements(&cosine, &wrong).is_empty(),
         "the uniform choice's density in the MIS weight went unnoticed"
+    );
+}
+
+/// A floor under a one-sided ceiling light and a glass ball (radius 0.8) between them, listed as an
+/// importance target the way the book lists the Cornell box's glass sphere: `mis` mixes it into
+/// material sampling, for the caustic it focuses on the floor (which only material sampling finds:
+/// the shadow rays towards the light meet the glass).
+pub fn glass_ball_listed_under_a_light() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(8.0)),
+        two_sided: false,
+    });
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        white,
+    )
+    .unwrap();
+    // u x v = (0, -4, 0): shines down
+    b.quad(
+        w,
+        Point3::new(-1.0, 4.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        lamp,
+    )
+    .unwrap();
+    let ball = Point3::new(0.0, 1.6, 0.0);
+    b.sphere(w, ball, 0.8, glass).unwrap();
+    b.targets.push(ImportanceTarget::Sphere(Sphere::new(
+        ball,
+        0.8,
+        rtl_render::scene::NO_MATERIAL,
+    )));
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 4.0, 3.0),
+        lookat: Point3::new(0.0, 0.0, 0.0),
+        vfov: 50.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
+#[test]
+fn material_sampling_mixed_with_a_listed_ball_agrees_and_a_wrong_share_is_caught() {
+    let scene = glass_ball_listed_under_a_light();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(
+        lights.others.len(),
+        1,
+        "the ball is a target that does not emit"
+    );
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongOthersShare));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "dividing by the even mixture's density went unnoticed"
     );
 }
 

@@ -342,7 +342,10 @@ fn the_default_tier_runs_here_and_is_avx2_on_an_intel_processor_with_avx512() {
     let (preferred, detected) = (HitTier::preferred(), HitTier::detected());
     assert!(preferred.available(), "{preferred:?} is not run here");
     let intel = std::fs::read_to_string("/proc/cpuinfo")
-        .map(|s| s.lines().any(|l| l.starts_with("vendor_id") && l.ends_with("GenuineIntel")))
+        .map(|s| {
+            s.lines()
+                .any(|l| l.starts_with("vendor_id") && l.ends_with("GenuineIntel"))
+        })
         .unwrap_or(false);
     let expected = match detected {
         HitTier::Avx512 if intel => HitTier::Avx2,
