@@ -81,8 +81,8 @@ impl HitTier {
     /// side by side on an Intel Xeon (family 6 model 207), the 8-lane packets made the Cornell box's
     /// `mixture` 1.08x and `mis` 1.03x *slower* (render-speed.md, "Issue 16, seventh round"); on
     /// Intel's cores a 512-bit instruction takes the vector units of two ports, so eight lanes a
-    /// time buy no throughput over two four-lane instructions, while AMD's Zen 4 and 5, where they
-    /// were 1.04-1.11x faster, keep them.
+    /// time buy no throughput over two four-lane instructions. AMD keeps them: on a Zen 5 they were
+    /// 1.04-1.11x faster (Zen 4 is unmeasured).
     pub fn preferred() -> HitTier {
         match HitTier::detected() {
             HitTier::Avx512 if intel() => HitTier::Avx2,
