@@ -14,7 +14,8 @@
 //!   treated as a specular bounce;
 //! - a wide bright lamp and a dim ball: next-event estimation chooses the emitter per shading point
 //!   (wrong: the emission met by material sampling weighted by the uniform choice's density);
-//! - a glass ball listed as a target under a light: material sampling draws `OTHERS_SHARE` of its
+//! - a glass ball listed as a target under a light, beside a second lamp seen mostly from behind:
+//!   material sampling draws `OTHERS_SHARE` of its
 //!   directions towards the ball (wrong: divided by the density of the book's even mixture).
 
 use rtl_render::Color;
@@ -312,8 +313,8 @@ fn emitters_chosen_per_point_agree_and_a_uniform_weight_is_caught() {
     );
 }
 
-/// A floor under a one-sided ceiling light and a glass ball (radius 0.8) between them, listed as an
-/// importance target the way the book lists the Cornell box's glass sphere: `mis` mixes it into
+/// A floor under a one-sided ceiling light, a dim one-sided lamp standing on it, and a glass ball
+/// (radius 0.8) between floor and ceiling light, listed as an importance target the way the book lists the Cornell box's glass sphere: `mis` mixes it into
 /// material sampling, for the caustic it focuses on the floor (which only material sampling finds:
 /// the shadow rays towards the light meet the glass).
 pub fn glass_ball_listed_under_a_light() -> Scene {
@@ -342,6 +343,21 @@ pub fn glass_ball_listed_under_a_light() -> Scene {
         lamp,
     )
     .unwrap();
+    // A second, dim one-sided lamp standing on the floor, u x v = (2, 0, 0): it shines towards +x,
+    // and the floor left of it (most of the image) sees only its back, where its density and its
+    // emission are 0.
+    let side = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(2.0)),
+        two_sided: false,
+    });
+    b.quad(
+        w,
+        Point3::new(1.8, 0.2, 1.0),
+        Vec3::new(0.0, 0.0, -2.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        side,
+    )
+    .unwrap();
     let ball = Point3::new(0.0, 1.6, 0.0);
     b.sphere(w, ball, 0.8, glass).unwrap();
     b.targets.push(ImportanceTarget::Sphere(Sphere::new(
@@ -368,6 +384,11 @@ fn material_sampling_mixed_with_a_listed_ball_agrees_and_a_wrong_share_is_caught
         lights.others.len(),
         1,
         "the ball is a target that does not emit"
+    );
+    assert_eq!(
+        lights.emitters.len(),
+        2,
+        "both lamps are found without a list"
     );
     let cosine = cosine_means(&scene);
     let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
