@@ -11,9 +11,14 @@ work=target/lab-browser
 shots=${1:-$work/shots}
 mkdir -p "$work" "$shots"
 
-if ! [ -x /usr/bin/chromium ] || ! command -v npm >/dev/null; then
-  echo "installing chromium and npm (apt)"
-  apt-get update -qq && apt-get install -y -qq chromium nodejs npm >/dev/null
+# Only what is missing: a machine whose Node.js came from elsewhere (with its own npm) cannot take
+# Debian's npm beside it.
+missing=()
+[ -x /usr/bin/chromium ] || missing+=(chromium)
+command -v npm >/dev/null || missing+=(nodejs npm)
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing ${missing[*]} (apt)"
+  apt-get update -qq && apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 # playwright-core at the version of the lockfile, under target/ (nothing installed in the repository)
 if ! cmp -s "$here/package-lock.json" "$work/package-lock.json" || ! [ -d "$work/node_modules/playwright-core" ]; then
