@@ -97,9 +97,9 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub sample_offset: u64,
     /// The intersection code to run: portable, avx2 or avx512 (default: the best this processor
-    /// runs, but avx2 on an Intel processor with AVX-512, where it is faster; `--explain` names it). Every tier finds the same hits, so the image is the same bit
-    /// for bit: this is for timing the tiers side by side, or the one a processor without AVX-512
-    /// runs.
+    /// runs, but avx2 on an Intel processor with AVX-512, where it is faster; `--explain` names it).
+    /// Every tier finds the same hits, so the image is the same bit for bit: this is for timing the
+    /// tiers side by side, or the one a processor without AVX-512 runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
     pub hit_tier: Option<HitTier>,
 }

@@ -151,8 +151,8 @@ impl Strategy {
                 format!(
                     "next-event estimation to every emitter (through media with their \
                      transmittance) + material sampling mixed with the other targets ({:.0}% \
-                     towards them), power heuristic; Russian roulette {}, spherical rectangles {}, low-discrepancy \
-                     samples {}",
+                     towards them), power heuristic; Russian roulette {}, spherical rectangles \
+                     {}, low-discrepancy samples {}",
                     100.0 * OTHERS_SHARE,
                     on_off(o.russian_roulette),
                     on_off(o.spherical_rectangles),
@@ -1108,7 +1108,8 @@ pub fn radiance_mis_variant(
             l += throughput * attenuation * emitted * weight;
         }
 
-        // Material sampling (mixed with the non-emitting targets, OTHERS_SHARE): the path goes on this way.
+        // Material sampling (mixed with the non-emitting targets by OTHERS_SHARE): the path goes on
+        // this way.
         let u = ctx.sample_2d(Dimension::Material(depth));
         let sampled = match &towards_others {
             Some(t) if variant == MisVariant::WrongOthersShare => {

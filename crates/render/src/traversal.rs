@@ -42,8 +42,8 @@ pub struct Accel {
 static TIER: AtomicU8 = AtomicU8::new(0);
 
 /// Which form of the closest-hit traversal runs: chosen at run time from the processor's features
-/// ([`HitTier::detected`], [`HitTier::preferred`]). Every tier finds bit-identical hits: the same `f64` operations in the
-/// same order, lane by lane, and no fused multiply-adds.
+/// ([`HitTier::detected`], [`HitTier::preferred`]). Every tier finds bit-identical hits: the same
+/// `f64` operations in the same order, lane by lane, and no fused multiply-adds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub enum HitTier {
