@@ -23,7 +23,7 @@ use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, MisVariant, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{RenderSettings, render};
-use rtl_render::scene::{Background, ImportanceTarget, Scene, SceneBuilder};
+use rtl_render::scene::{Background, GroupId, ImportanceTarget, MaterialId, Scene, SceneBuilder};
 use rtl_render::shapes::Sphere;
 use rtl_render::vec::{Point3, Vec3};
 
@@ -38,6 +38,26 @@ const BATCH_SPP: u64 = 16;
 const GRID: usize = 4;
 const MAX_DEPTH: u32 = 50;
 
+/// The floor every scene here stands on: an 8 x 6 quad at height 0 about the origin.
+fn floor(b: &mut SceneBuilder, w: GroupId, material: MaterialId) {
+    b.quad(
+        w,
+        Point3::new(-4.0, 0.0, 3.0),
+        Vec3::new(8.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -6.0),
+        material,
+    )
+    .unwrap();
+}
+
+/// A one-sided emitter of grey radiance `l`.
+fn one_sided_lamp(l: f64) -> Material {
+    Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(l)),
+        two_sided: false,
+    }
+}
+
 /// A floor under a one-sided ceiling light, and on it a glass ball (radius 1) filled with a medium
 /// (density 1.5, albedo 0.8) with a small glowing ball at its centre. Nothing is listed as a target:
 /// next-event estimation finds both emitters by itself.
@@ -49,22 +69,12 @@ pub fn glass_ball_with_medium_and_glow() -> Scene {
     let smoke = b.material(Material::Isotropic {
         albedo: Albedo::Constant(Color::splat(0.8)),
     });
-    let lamp = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(5.0)),
-        two_sided: false,
-    });
+    let lamp = b.material(one_sided_lamp(5.0));
     let glow = b.material(Material::DiffuseLight {
         emit: Albedo::Constant(Color::splat(4.0)),
         two_sided: true,
     });
-    b.quad(
-        w,
-        Point3::new(-4.0, 0.0, 3.0),
-        Vec3::new(8.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -6.0),
-        white,
-    )
-    .unwrap();
+    floor(&mut b, w, white);
     b.quad(
         w,
         Point3::new(-1.0, 3.5, -1.0),
@@ -104,22 +114,12 @@ pub fn fog_and_smoke() -> Scene {
     let smoke = b.material(Material::Isotropic {
         albedo: Albedo::Constant(Color::splat(0.8)),
     });
-    let lamp = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(6.0)),
-        two_sided: false,
-    });
+    let lamp = b.material(one_sided_lamp(6.0));
     let glow = b.material(Material::DiffuseLight {
         emit: Albedo::Constant(Color::splat(3.0)),
         two_sided: true,
     });
-    b.quad(
-        w,
-        Point3::new(-4.0, 0.0, 3.0),
-        Vec3::new(8.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -6.0),
-        white,
-    )
-    .unwrap();
+    floor(&mut b, w, white);
     b.quad(
         w,
         Point3::new(-1.0, 4.0, -1.0),
@@ -165,22 +165,12 @@ pub fn fuzzy_metals() -> Scene {
         albedo: Color::splat(0.8),
         fuzz: 1.6,
     });
-    let lamp = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(6.0)),
-        two_sided: false,
-    });
+    let lamp = b.material(one_sided_lamp(6.0));
     let glow = b.material(Material::DiffuseLight {
         emit: Albedo::Constant(Color::splat(4.0)),
         two_sided: true,
     });
-    b.quad(
-        w,
-        Point3::new(-4.0, 0.0, 3.0),
-        Vec3::new(8.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -6.0),
-        white,
-    )
-    .unwrap();
+    floor(&mut b, w, white);
     b.quad(
         w,
         Point3::new(-1.0, 4.0, -1.0),
@@ -259,22 +249,9 @@ pub fn bright_lamp_and_dim_ball() -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let white = b.material(Material::lambertian(Color::splat(0.7)));
-    let lamp = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(2.0)),
-        two_sided: false,
-    });
-    let dim = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(0.5)),
-        two_sided: false,
-    });
-    b.quad(
-        w,
-        Point3::new(-4.0, 0.0, 3.0),
-        Vec3::new(8.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -6.0),
-        white,
-    )
-    .unwrap();
+    let lamp = b.material(one_sided_lamp(2.0));
+    let dim = b.material(one_sided_lamp(0.5));
+    floor(&mut b, w, white);
     // u x v = (0, -36, 0): shines down
     b.quad(
         w,
@@ -322,18 +299,8 @@ pub fn glass_ball_listed_under_a_light() -> Scene {
     let w = b.world();
     let white = b.material(Material::lambertian(Color::splat(0.7)));
     let glass = b.material(Material::Dielectric { ior: 1.5 });
-    let lamp = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(8.0)),
-        two_sided: false,
-    });
-    b.quad(
-        w,
-        Point3::new(-4.0, 0.0, 3.0),
-        Vec3::new(8.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -6.0),
-        white,
-    )
-    .unwrap();
+    let lamp = b.material(one_sided_lamp(8.0));
+    floor(&mut b, w, white);
     // u x v = (0, -4, 0): shines down
     b.quad(
         w,
@@ -346,10 +313,7 @@ pub fn glass_ball_listed_under_a_light() -> Scene {
     // A second, dim one-sided lamp standing on the floor, u x v = (2, 0, 0): it shines towards +x,
     // and the floor left of it (most of the image) sees only its back, where its density and its
     // emission are 0.
-    let side = b.material(Material::DiffuseLight {
-        emit: Albedo::Constant(Color::splat(2.0)),
-        two_sided: false,
-    });
+    let side = b.material(one_sided_lamp(2.0));
     b.quad(
         w,
         Point3::new(1.8, 0.2, 1.0),
