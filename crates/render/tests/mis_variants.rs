@@ -38,6 +38,20 @@ const BATCH_SPP: u64 = 16;
 const GRID: usize = 4;
 const MAX_DEPTH: u32 = 50;
 
+/// The scene `b` seen from `lookfrom` towards `lookat` (vertical field of view `vfov` degrees),
+/// against a black background, paths of at most [`MAX_DEPTH`] bounces.
+fn framed(mut b: SceneBuilder, lookfrom: Point3, lookat: Point3, vfov: f64) -> Scene {
+    b.camera = CameraSettings {
+        lookfrom,
+        lookat,
+        vfov,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = MAX_DEPTH;
+    b.build().unwrap()
+}
+
 /// The floor every scene here stands on: an 8 x 6 quad at height 0 about the origin.
 fn floor(b: &mut SceneBuilder, w: GroupId, material: MaterialId) {
     b.quad(
@@ -89,15 +103,12 @@ pub fn glass_ball_with_medium_and_glow() -> Scene {
     b.sphere(boundary, centre, 1.0, glass).unwrap();
     b.medium(w, boundary, 1.5, smoke).unwrap();
     b.sphere(w, centre, 0.25, glow).unwrap();
-    b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 1.5, 5.0),
-        lookat: Point3::new(0.0, 1.0, 0.0),
-        vfov: 40.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ZERO);
-    b.max_depth = MAX_DEPTH;
-    b.build().unwrap()
+    framed(
+        b,
+        Point3::new(0.0, 1.5, 5.0),
+        Point3::new(0.0, 1.0, 0.0),
+        40.0,
+    )
 }
 
 /// A floor under a one-sided ceiling light, all inside a fog (a ball of radius 12, density 0.04,
@@ -140,15 +151,12 @@ pub fn fog_and_smoke() -> Scene {
     let fog_boundary = b.group();
     b.sphere(fog_boundary, Point3::ZERO, 12.0, glass).unwrap();
     b.medium(w, fog_boundary, 0.04, fog).unwrap();
-    b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 2.0, 7.0),
-        lookat: Point3::new(0.0, 1.8, 0.0),
-        vfov: 55.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ZERO);
-    b.max_depth = MAX_DEPTH;
-    b.build().unwrap()
+    framed(
+        b,
+        Point3::new(0.0, 2.0, 7.0),
+        Point3::new(0.0, 1.8, 0.0),
+        55.0,
+    )
 }
 
 /// A floor under a one-sided ceiling light with two fuzzy metal balls on it (fuzz 0.5: directions in
@@ -183,15 +191,12 @@ pub fn fuzzy_metals() -> Scene {
         .unwrap();
     b.sphere(w, Point3::new(1.1, 1.0, 0.0), 1.0, wide).unwrap();
     b.sphere(w, Point3::new(0.0, 0.4, 1.6), 0.3, glow).unwrap();
-    b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 1.5, 6.0),
-        lookat: Point3::new(0.0, 1.0, 0.0),
-        vfov: 45.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ZERO);
-    b.max_depth = MAX_DEPTH;
-    b.build().unwrap()
+    framed(
+        b,
+        Point3::new(0.0, 1.5, 6.0),
+        Point3::new(0.0, 1.0, 0.0),
+        45.0,
+    )
 }
 
 fn settings(seed: u64, strategy: Strategy) -> RenderSettings {
@@ -262,15 +267,12 @@ pub fn bright_lamp_and_dim_ball() -> Scene {
     )
     .unwrap();
     b.sphere(w, Point3::new(1.5, 0.5, 0.5), 0.3, dim).unwrap();
-    b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 0.8, 6.0),
-        lookat: Point3::new(0.0, 0.4, 0.0),
-        vfov: 50.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ZERO);
-    b.max_depth = MAX_DEPTH;
-    b.build().unwrap()
+    framed(
+        b,
+        Point3::new(0.0, 0.8, 6.0),
+        Point3::new(0.0, 0.4, 0.0),
+        50.0,
+    )
 }
 
 #[test]
@@ -329,15 +331,12 @@ pub fn glass_ball_listed_under_a_light() -> Scene {
         0.8,
         rtl_render::scene::NO_MATERIAL,
     )));
-    b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 4.0, 3.0),
-        lookat: Point3::new(0.0, 0.0, 0.0),
-        vfov: 50.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ZERO);
-    b.max_depth = MAX_DEPTH;
-    b.build().unwrap()
+    framed(
+        b,
+        Point3::new(0.0, 4.0, 3.0),
+        Point3::new(0.0, 0.0, 0.0),
+        50.0,
+    )
 }
 
 #[test]
