@@ -48,6 +48,8 @@ pub use mis::{balance_heuristic, power_heuristic};
 pub use mixture::{MixtureError, MixtureOfPdfs, MixturePdf};
 pub use onb::Onb;
 pub use pdf::{CosinePdf, DirectionSample, HemispherePdf, Pdf, SpherePdf};
+/// The largest `f64` below 1, `1 - 2^-53`: where a remapped uniform number is kept (from rtl-sampling).
+pub use rtl_sampling::ONE_MINUS_EPSILON;
 pub use selection::{Choice, Selection, SelectionError};
 pub use target::{
     MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE, MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE, QuadSampling,

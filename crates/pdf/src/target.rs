@@ -262,6 +262,20 @@ impl QuadTarget {
     pub fn normal(&self) -> DVec3 {
         self.normal
     }
+    /// `1 / area`: the density per unit area of a point uniform on the quad.
+    pub fn inv_area(&self) -> f64 {
+        self.inv_area
+    }
+    /// The dual basis `(v x w, w x u)` of the quad's plane (`w = n / (n . n)`, `n = u x v`): a point
+    /// `q + p` of the plane has coordinates `(p . (v x w), p . (w x u))`.
+    pub fn dual_basis(&self) -> (DVec3, DVec3) {
+        (self.vw, self.wu)
+    }
+    /// `max |u_i| + max |v_i|`: the quad's part of the tolerance below which an origin counts as in
+    /// its plane.
+    pub fn edge_scale(&self) -> f64 {
+        self.edge_scale
+    }
 
     /// The signed height of `origin` above the quad's plane, or `None` when `origin` lies in the plane
     /// (to rounding: within 8 ulps of the distances involved), where the quad has no solid angle.

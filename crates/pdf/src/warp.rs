@@ -15,15 +15,15 @@ use std::f64::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI, TAU};
 /// of a frame that carries the direction to the world (about `1e-16`), so the direction stays above
 /// the horizon there too, where its density is positive; and far below the `cos theta` of any `u`
 /// away from the boundary of the square, so only `u` on that boundary (or within `2^-40` of it) move.
-const MIN_COS_THETA: f64 = 1.0 / (1u64 << 40) as f64;
+pub const MIN_COS_THETA: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// The largest `2 u - 1` of the concentric map, `1 - 2^-52`: what `u = 1 - 2^-53` gives. `u = 0` is
 /// mapped as its neighbour `2^-53` is, so neither end of `[0, 1)` reaches the rim of the disk.
-const CONCENTRIC_MAX: f64 = 1.0 - f64::EPSILON;
+pub const CONCENTRIC_MAX: f64 = 1.0 - f64::EPSILON;
 
 /// The largest `u.x` of the cone warp, `1 - 2^-48`: the rounding of `1 - cos theta` recomputed from the
 /// direction (a few ulps) cannot then carry the last `u` outside the cone.
-const CONE_U_MAX: f64 = 1.0 - 16.0 * f64::EPSILON;
+pub const CONE_U_MAX: f64 = 1.0 - 16.0 * f64::EPSILON;
 
 /// The azimuth `phi` of `w` about `+z`, in `[0, 1)` turns (so `phi / 2 pi`).
 #[inline]

@@ -200,7 +200,7 @@ fn ratio(s: f64, p: f64) -> Option<f64> {
 /// sample contributes nothing further (`p = 0`, `s = 0` or a non-finite quotient). `u` is the bounce's
 /// material pair ([`Dimension::Material`]); a mixture picks its part with `u.x` and hands the rest on.
 #[inline]
-fn sample_diffuse(
+pub(crate) fn sample_diffuse(
     strategy: Strategy,
     mixture_weight: f64,
     pdf: &ScatterPdf,
@@ -269,47 +269,150 @@ fn radiance_one_sample(
     ctx: &mut Ctx,
 ) -> Color {
     let mut ray = ray;
-    let mut throughput = Color::ONE;
-    let mut l = Color::ZERO;
-    for depth in 0..max_depth {
+    let mut path = OneSamplePath::default();
+    while path.depth < max_depth {
         ctx.stats.rays += 1;
-        ctx.bounce = depth;
+        ctx.bounce = path.depth;
         // Borrowed where `scene.hit` left it: moving the record out copied its 112 bytes each vertex.
         let found = scene.hit(&ray, ctx);
-        let Some(hit) = &found else {
-            l += throughput * scene.background.value(&ray);
-            break;
+        match path.vertex(
+            scene,
+            lights,
+            &ray,
+            found.as_ref(),
+            strategy,
+            mixture_weight,
+            ctx,
+        ) {
+            Some(next) => ray = next,
+            None => break,
+        }
+    }
+    path.l
+}
+
+/// One path of the book's estimator in flight: the throughput it carries (the product of
+/// `attenuation * s / p` so far), the emission it has gathered and how many times it has met the
+/// scene. A path is advanced one vertex at a time, so that several can be traced side by side
+/// ([`crate::paths8`]).
+#[derive(Clone, Copy, Debug)]
+pub struct OneSamplePath {
+    pub throughput: Color,
+    /// The radiance gathered so far.
+    pub l: Color,
+    /// Intersections so far.
+    pub depth: u32,
+}
+
+impl Default for OneSamplePath {
+    /// A path at the camera: nothing gathered, the throughput 1.
+    fn default() -> Self {
+        OneSamplePath {
+            throughput: Color::ONE,
+            l: Color::ZERO,
+            depth: 0,
+        }
+    }
+}
+
+impl OneSamplePath {
+    /// The vertex where `ray` meets `found` (nothing: the background): its emission, then the
+    /// scattered ray, or `None` if the path ends here.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn vertex(
+        &mut self,
+        scene: &Scene,
+        lights: &Lights,
+        ray: &Ray,
+        found: Option<&Hit>,
+        strategy: Strategy,
+        mixture_weight: f64,
+        ctx: &mut Ctx,
+    ) -> Option<Ray> {
+        match self.scatter(scene, ray, found, ctx)? {
+            Bounce::Along(next) => Some(next),
+            Bounce::Diffuse {
+                attenuation,
+                pdf,
+                u,
+            } => {
+                let hit = found?;
+                // p = 0 or s = 0: the sample keeps the emission it has
+                let (direction, weight) =
+                    sample_diffuse(strategy, mixture_weight, &pdf, hit.p, hit.normal, lights, u)?;
+                self.diffuse(hit, ray, attenuation, direction, weight)
+            }
+        }
+    }
+
+    /// The first half of [`OneSamplePath::vertex`], up to where the strategy picks a diffuse
+    /// direction: the emission met, then the material's answer (`None`: the path ends).
+    #[inline(always)]
+    pub fn scatter(
+        &mut self,
+        scene: &Scene,
+        ray: &Ray,
+        found: Option<&Hit>,
+        ctx: &mut Ctx,
+    ) -> Option<Bounce> {
+        let depth = self.depth;
+        self.depth += 1;
+        let Some(hit) = found else {
+            self.l += self.throughput * scene.background.value(ray);
+            return None;
         };
         let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
-            l += throughput * material.emitted(hit, &scene.textures, ctx);
+            self.l += self.throughput * material.emitted(hit, &scene.textures, ctx);
         }
         // (matched in place, like the hit)
-        match &material.scatter(&ray, hit, &scene.textures, ctx) {
-            None => break,
+        match &material.scatter(ray, hit, &scene.textures, ctx) {
+            None => None,
             Some(Scatter::Specular {
                 attenuation,
                 direction,
             }) => {
-                throughput *= *attenuation;
-                ray = hit.spawn(*direction, ray.time);
+                self.throughput *= *attenuation;
+                (self.throughput != Color::ZERO)
+                    .then(|| Bounce::Along(hit.spawn(*direction, ray.time)))
             }
-            Some(Scatter::Diffuse { attenuation, pdf }) => {
-                let u = ctx.sample_2d(Dimension::Material(depth));
-                let Some((direction, weight)) =
-                    sample_diffuse(strategy, mixture_weight, pdf, hit.p, hit.normal, lights, u)
-                else {
-                    break; // p = 0 or s = 0: the sample keeps the emission it has
-                };
-                throughput *= *attenuation * weight;
-                ray = hit.spawn(direction, ray.time);
-            }
-        }
-        if throughput == Color::ZERO {
-            break;
+            Some(Scatter::Diffuse { attenuation, pdf }) => Some(Bounce::Diffuse {
+                attenuation: *attenuation,
+                pdf: *pdf,
+                u: ctx.sample_2d(Dimension::Material(depth)),
+            }),
         }
     }
-    l
+
+    /// The second half of a diffuse vertex: the throughput takes `attenuation * weight` (the
+    /// strategy's `s / p` for `direction`), and the path goes on from `hit` along `direction`.
+    #[inline(always)]
+    pub fn diffuse(
+        &mut self,
+        hit: &Hit,
+        ray: &Ray,
+        attenuation: Color,
+        direction: Vec3,
+        weight: f64,
+    ) -> Option<Ray> {
+        self.throughput *= attenuation * weight;
+        (self.throughput != Color::ZERO).then(|| hit.spawn(direction, ray.time))
+    }
+}
+
+/// What a path does at a surface before its strategy picks a direction ([`OneSamplePath::scatter`]).
+#[derive(Clone, Copy, Debug)]
+pub enum Bounce {
+    /// A specular bounce: the path goes on along this ray.
+    Along(Ray),
+    /// A diffuse bounce: a direction is to be drawn for the material's density `pdf` with the
+    /// bounce's numbers `u`, and weighted by `attenuation * s / p`.
+    Diffuse {
+        attenuation: Color,
+        pdf: ScatterPdf,
+        u: glam::DVec2,
+    },
 }
 // ANCHOR_END: radiance
 

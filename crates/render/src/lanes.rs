@@ -19,6 +19,12 @@ impl F64x8 {
     pub const ZERO: F64x8 = F64x8([0.0; 8]);
 }
 
+impl Default for F64x8 {
+    fn default() -> Self {
+        F64x8::ZERO
+    }
+}
+
 /// The AVX form of the lanes: loads, broadcasts and the arithmetic the packets use, each one
 /// instruction on all four lanes. IEEE rounding lane by lane, exactly as the scalar operations (no
 /// fused multiply-adds), so code written with these finds bit-identical results to its scalar twin.

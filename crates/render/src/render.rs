@@ -7,6 +7,7 @@
 use crate::camera::Camera;
 use crate::integrator::{Strategy, radiance};
 use crate::lights::Lights;
+use crate::ray::Ray;
 use crate::sampler::{Ctx, SampleRng, Sampler, Stats, sample_key};
 use crate::scene::Scene;
 use crate::vec::Color;
@@ -127,6 +128,11 @@ pub struct Renderer<'a> {
     /// Whether every dimension after the pixel position is low-discrepancy (`mis`'s option, resolved
     /// once here rather than per sample).
     low_discrepancy: bool,
+    /// Whether eight paths are traced side by side, their rays intersected together
+    /// ([`crate::paths8`]): the same image, sooner.
+    paths_in_lanes: bool,
+    /// The `mixture` strategy's density in the lanes, where the paths are traced in them.
+    mixture8: Option<crate::mixture8::Mixture8>,
 }
 
 impl<'a> Renderer<'a> {
@@ -140,13 +146,40 @@ impl<'a> Renderer<'a> {
         let camera = Camera::new(&scene.camera, settings.width, scene.features.motion);
         let options = settings.strategy.mis_options();
         let spherical_rectangles = options.is_some_and(|o| o.spherical_rectangles);
+        let lights = Lights::new(scene, spherical_rectangles);
+        let paths_in_lanes = crate::paths8::applies(scene, settings.strategy);
+        let mixture8 = (paths_in_lanes && settings.strategy == Strategy::Mixture)
+            .then(|| crate::mixture8::Mixture8::new(&lights.all, settings.mixture_weight))
+            .flatten();
         Renderer {
             scene,
             camera,
             settings,
-            lights: Lights::new(scene, spherical_rectangles),
+            lights,
             low_discrepancy: options.is_some_and(|o| o.low_discrepancy),
+            paths_in_lanes,
+            mixture8,
         }
+    }
+
+    /// Whether eight paths are traced side by side ([`crate::paths8`]): for the book's one-sample
+    /// strategies in a scene whose rays meet a small group (no tree), on a processor with AVX-512.
+    pub fn paths_in_lanes(&self) -> bool {
+        self.paths_in_lanes
+    }
+
+    /// The `mixture` strategy's density at Lambertian points, in the lanes ([`crate::mixture8`]), if
+    /// the paths are traced in them and the targets allow it.
+    pub fn mixture_in_lanes(&self) -> Option<&crate::mixture8::Mixture8> {
+        self.mixture8.as_ref()
+    }
+
+    /// Trace one path at a time even where [`Renderer::paths_in_lanes`] would trace eight: the same
+    /// image (for tests and for measuring what the lanes buy).
+    pub fn one_path_at_a_time(mut self) -> Self {
+        self.paths_in_lanes = false;
+        self.mixture8 = None;
+        self
     }
 
     pub fn accumulator(&self) -> Accumulator {
@@ -162,11 +195,7 @@ impl<'a> Renderer<'a> {
     /// The value of sample `k` of pixel `(i, j)`: a function of `(seed, pixel, k)` only.
     #[inline]
     pub fn sample(&self, i: usize, j: usize, k: u64, ctx: &mut Ctx) -> Color {
-        let pixel = (j * self.camera.width + i) as u64;
-        ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
-        let pixel_key = self.pixel_key(pixel);
-        ctx.sampler = Sampler::new(self.low_discrepancy, pixel_key, k);
-        let ray = self.camera.ray(i, j, pixel_key, k, ctx);
+        let ray = self.start_sample(i, j, k, ctx);
         let value = radiance(
             self.scene,
             &self.lights,
@@ -176,9 +205,25 @@ impl<'a> Renderer<'a> {
             self.settings.mixture_weight,
             ctx,
         );
+        Self::finish_sample(ctx);
+        value
+    }
+
+    /// Sample `k` of pixel `(i, j)` begun: `ctx` set to its numbers, and its camera ray.
+    #[inline]
+    pub(crate) fn start_sample(&self, i: usize, j: usize, k: u64, ctx: &mut Ctx) -> Ray {
+        let pixel = (j * self.camera.width + i) as u64;
+        ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
+        let pixel_key = self.pixel_key(pixel);
+        ctx.sampler = Sampler::new(self.low_discrepancy, pixel_key, k);
+        self.camera.ray(i, j, pixel_key, k, ctx)
+    }
+
+    /// The counters of a sample whose path has ended.
+    #[inline]
+    pub(crate) fn finish_sample(ctx: &mut Ctx) {
         ctx.stats.samples += 1;
         ctx.stats.random_numbers += ctx.rng.drawn;
-        value
     }
 
     /// Add samples `k0..k1` of every pixel to `acc`, in parallel over rows; `on_row` is called after each
@@ -218,6 +263,14 @@ impl<'a> Renderer<'a> {
             .zip(acc.dropped.par_chunks_mut(w))
             .enumerate()
             .map(|(j, ((sum, count), dropped))| {
+                if self.paths_in_lanes {
+                    let stats =
+                        crate::paths8::render_row(self, j, k0, k1, sum, count, dropped, stop);
+                    if stats.is_some() {
+                        on_row();
+                    }
+                    return stats;
+                }
                 let mut ctx = Ctx::new();
                 for i in 0..w {
                     if stop() {

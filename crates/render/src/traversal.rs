@@ -36,6 +36,9 @@ pub struct Accel {
     pub packets8: Vec<Quad8>,
     /// Whether the AVX-512 tier tests the last of `packets` after `packets8` (see [`Quad8::packets`]).
     pub tail4: bool,
+    /// For a small group whose `others` are all static spheres: those spheres with their boxes, in
+    /// the order of `others`, so that eight rays test them in the lanes too ([`crate::ray8`]).
+    pub spheres: Option<Vec<(Sphere, Aabb)>>,
 }
 
 /// [`HitTier::cached`]'s store: 0 before the first traversal, then the detected tier plus one.
@@ -258,10 +261,20 @@ impl Accel {
             .unzip();
         let plain: Vec<Quad> = quads.iter().map(|(q, _)| *q).collect();
         let (packets8, held) = Quad8::packets(&plain);
+        let spheres = objects
+            .iter()
+            .zip(bounds)
+            .filter(|(o, _)| !matches!(o, Object::Quad(_)))
+            .map(|(o, b)| match o {
+                Object::Sphere(s) if !s.is_moving() => Some((*s, *b)),
+                _ => None,
+            })
+            .collect();
         Accel {
             packets: quads.chunks(PACKET).map(Quad4::new).collect(),
             packets8,
             tail4: held < plain.len(),
+            spheres,
             others,
             other_bounds,
             flat: true,
@@ -582,6 +595,92 @@ impl Scene {
         best.record(group, ray, closest)
     }
 
+    /// Whether eight rays can be intersected with group `g` at once ([`Scene::hit8_small_avx512`]):
+    /// a small group (no tree), on a processor whose tier is AVX-512.
+    pub fn hits_eight_at_once(&self, g: GroupId) -> bool {
+        let group = &self.groups[g.0 as usize];
+        cfg!(target_arch = "x86_64")
+            && HitTier::cached() == HitTier::Avx512
+            && group.accel.flat
+            && group.objects.len() > 1
+    }
+
+    /// The closest hit in the small group `g` ([`Accel::small`], [`Scene::hits_eight_at_once`]) of
+    /// each ray `rays[i]` whose bit `i` is set in `active`, with `t` in the open interval `range`:
+    /// `out[i]`, its record to be built by [`Found::record`] (the other lanes are left as they are);
+    /// `lanes` holds the same rays by coordinate ([`crate::ray8::Rays8`]). The quads are tested for
+    /// all eight rays at once ([`crate::ray8::closest_avx512`]), then each lane's other objects with
+    /// its own `ctxs[i]`, exactly as [`Scene::hit_group`] tests them for one ray: every lane's record
+    /// is the one [`Scene::hit_group`] returns, bit for bit.
+    ///
+    /// # Safety
+    /// Only where the processor has AVX-512F and VL and AVX2 (the tier [`HitTier::Avx512`]).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512vl,avx2")]
+    #[allow(clippy::too_many_arguments)]
+    pub unsafe fn hit8_small_avx512<'s>(
+        &'s self,
+        g: GroupId,
+        rays: &[Ray; 8],
+        lanes: &crate::ray8::Rays8,
+        active: u8,
+        range: Interval,
+        ctxs: &mut [Ctx; 8],
+        out: &mut [Found<'s>; 8],
+    ) {
+        let group = &self.groups[g.0 as usize];
+        let accel = &group.accel;
+        debug_assert!(accel.flat);
+        let spheres = accel.spheres.as_deref();
+        // SAFETY: this function is compiled with AVX-512F and runs where the processor has it.
+        let found = unsafe {
+            crate::ray8::closest_avx512(&accel.packets, spheres.unwrap_or(&[]), lanes, range)
+        };
+        let mut bits = active;
+        while bits != 0 {
+            let i = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let ray = &rays[i];
+            let mut closest = found.t[i];
+            let mut best = match found.hit[i] {
+                crate::ray8::NO_HIT => Closest::Nothing,
+                h if h & crate::ray8::SPHERE != 0 => {
+                    let oi = accel.others[(h & !crate::ray8::SPHERE) as usize];
+                    let Object::Sphere(s) = &group.objects[oi as usize] else {
+                        unreachable!("the group's spheres are its others")
+                    };
+                    Closest::Sphere(s)
+                }
+                q => Closest::Quad {
+                    packet: q / PACKET as u32,
+                    lane: q as usize % PACKET,
+                    alpha: found.alpha[i],
+                    beta: found.beta[i],
+                },
+            };
+            if spheres.is_none() {
+                // Others that are not all static spheres: one lane at a time, as for one ray.
+                let inv = ray.direction.recip();
+                for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
+                    if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
+                        continue;
+                    }
+                    let o = &group.objects[oi as usize];
+                    let within = Interval::new(range.min, closest);
+                    if let Some((t, c)) = self.hit_other(o, ray, within, &mut ctxs[i]) {
+                        closest = t;
+                        best = c;
+                    }
+                }
+            }
+            out[i] = Found {
+                group,
+                closest: best,
+                t: closest,
+            };
+        }
+    }
+
     /// A hit on `o`, an object of a leaf or small group that is not in a quad packet, as the closest
     /// candidate so far: a sphere's only as its parameter (its record is built if it stays the
     /// closest), any other object's with its record.
@@ -780,8 +879,35 @@ fn hit_packet<const AVX: bool>(
     packet.hit(ray, range)
 }
 
+/// What a ray met in a group ([`Scene::hit8_small_avx512`]), its record not yet built: built by the
+/// path that reads it ([`Found::record`]), in place, rather than copied out of the traversal.
+#[derive(Clone, Copy)]
+pub struct Found<'a> {
+    group: &'a crate::scene::Group,
+    closest: Closest<'a>,
+    t: f64,
+}
+
+impl<'a> Found<'a> {
+    /// Nothing met, in `group`.
+    pub fn nothing(group: &'a crate::scene::Group) -> Self {
+        Found {
+            group,
+            closest: Closest::Nothing,
+            t: f64::INFINITY,
+        }
+    }
+
+    /// The hit's record (`None` if nothing was met); `ray` is the ray that met it.
+    #[inline(always)]
+    pub fn record(self, ray: &Ray) -> Option<Hit> {
+        self.closest.record(self.group, ray, self.t)
+    }
+}
+
 /// The closest hit found so far in a group, its record built only at the end where it can be
 /// ([`Closest::record`]).
+#[derive(Clone, Copy)]
 enum Closest<'a> {
     Nothing,
     /// Lane `lane` of packet `packet`, at plane coordinates `(alpha, beta)`.

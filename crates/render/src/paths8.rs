@@ -1,0 +1,298 @@
+//! Eight paths side by side: the book's one-sample estimator ([`OneSamplePath`]) traced for eight
+//! samples at once, their rays intersected together in the lanes of AVX-512 registers
+//! ([`crate::ray8`]), each path's vertex (its material, its direction, its weight) then computed on
+//! its own as one path at a time would.
+//!
+//! A scene as small as book 3's Cornell box (twelve quads and a sphere, no tree) spends most of a
+//! path's intersection on work that does not depend on the ray: with one ray, the quads fill the
+//! lanes and every ray pays for the reduction to its closest quad and for the latency of each step;
+//! with eight rays, each quad is broadcast once and tested against all eight.
+//!
+//! Every sample is still a function of `(seed, pixel, k)` alone, traced with its own numbers (a
+//! [`Ctx`] per lane), and each pixel's samples are summed in the order of `k`: samples that end
+//! early wait in a ring until those before them are done. So the image is bit-identical to tracing
+//! one path at a time (tested in `crates/render/tests/paths8.rs`).
+
+use crate::integrator::{Bounce, OneSamplePath, Strategy, sample_diffuse};
+use crate::lanes::F64x8;
+use crate::material::ScatterPdf;
+use crate::mixture8::Mixture8;
+use crate::ray::{Interval, Ray};
+use crate::ray8::Rays8;
+use crate::render::{Accumulator, Renderer};
+use crate::sampler::{Ctx, Stats};
+use crate::scene::{GroupId, Scene};
+use crate::traversal::Found;
+use crate::vec::{Color, Point3, Vec3};
+
+/// Lanes: paths in flight per thread.
+pub const LANES: usize = 8;
+
+/// How many samples may be finished but not yet summed into their pixel (waiting for an earlier
+/// sample of the row, still in flight, to end). A lane whose next sample would go beyond waits.
+const RING: usize = 256;
+
+/// Whether a render of `scene` by `strategy` traces eight paths side by side: the book's
+/// one-sample strategies (`mis` has its own integrator), when the scene's rays meet a small group on
+/// a processor with AVX-512 ([`Scene::hits_eight_at_once`]).
+pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
+    !matches!(strategy, Strategy::Mis(_)) && scene.hits_eight_at_once(GroupId(0))
+}
+
+/// Samples finished out of order, summed into their pixels in order.
+struct Ring {
+    value: [Color; RING],
+    done: [bool; RING],
+    /// The first sample (in the row's order) not yet summed.
+    commit: u64,
+}
+
+impl Ring {
+    /// Keep sample `seq`'s value, then sum every finished sample from `commit` on, in order, into
+    /// pixel `seq / spp` of the row.
+    #[inline]
+    fn finish(&mut self, seq: u64, value: Color, spp: u64, row: &mut Row<'_>, stats: &mut Stats) {
+        let slot = (seq % RING as u64) as usize;
+        self.value[slot] = value;
+        self.done[slot] = true;
+        loop {
+            let slot = (self.commit % RING as u64) as usize;
+            if !self.done[slot] {
+                break;
+            }
+            self.done[slot] = false;
+            let i = (self.commit / spp) as usize;
+            let v = self.value[slot];
+            if !Accumulator::add(&mut row.sum[i], &mut row.count[i], &mut row.dropped[i], v) {
+                stats.non_finite += 1;
+            }
+            self.commit += 1;
+        }
+    }
+}
+
+/// A row of the accumulation buffer.
+struct Row<'a> {
+    sum: &'a mut [Color],
+    count: &'a mut [u64],
+    dropped: &'a mut [u64],
+}
+
+/// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels, eight
+/// paths at a time; `None` if `stop()` (asked before each pixel's first sample) said to stop.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn render_row(
+    r: &Renderer,
+    j: usize,
+    k0: u64,
+    k1: u64,
+    sum: &mut [Color],
+    count: &mut [u64],
+    dropped: &mut [u64],
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Option<Stats> {
+    let scene = r.scene;
+    let (strategy, weight) = (r.settings.strategy, r.settings.mixture_weight);
+    let max_depth = r.settings.max_depth;
+    let spp = k1.saturating_sub(k0);
+    let total = sum.len() as u64 * spp;
+    let mut row = Row {
+        sum,
+        count,
+        dropped,
+    };
+    let mut stats = Stats::default();
+    let mut ring = Ring {
+        value: [Color::ZERO; RING],
+        done: [false; RING],
+        commit: 0,
+    };
+    let mut ctxs: [Ctx; LANES] = std::array::from_fn(|_| Ctx::new());
+    let placeholder = Ray::new(Point3::ZERO, Vec3::X, 0.0);
+    let mut paths = [OneSamplePath::default(); LANES];
+    let mut seqs = [0u64; LANES];
+    let mut rays = [placeholder; LANES];
+    let mut lanes = Rays8::default();
+    let mut found = [Found::nothing(&scene.groups[0]); LANES];
+    let mixture = r.mixture_in_lanes();
+    let mut shading = Shading8::default();
+    let mut hits: [Option<crate::hit::Hit>; LANES] = [None; LANES];
+    let mut attenuations = [Color::ZERO; LANES];
+    let mut active = 0u8;
+    let mut next = 0u64;
+    loop {
+        // Each idle lane takes the row's next sample, if the ring has room for it.
+        for l in 0..LANES {
+            if active & (1 << l) != 0 {
+                continue;
+            }
+            while next < total && next - ring.commit < RING as u64 {
+                let (i, k) = ((next / spp) as usize, k0 + next % spp);
+                if k == k0 && stop() {
+                    return None;
+                }
+                let ctx = &mut ctxs[l];
+                let ray = r.start_sample(i, j, k, ctx);
+                let seq = next;
+                next += 1;
+                if max_depth > 0 {
+                    ctx.stats.rays += 1;
+                    ctx.bounce = 0;
+                    (paths[l], seqs[l], rays[l]) = (OneSamplePath::default(), seq, ray);
+                    lanes.set(l, &ray);
+                    active |= 1 << l;
+                    break;
+                }
+                // No intersection allowed at all: the sample is black.
+                Renderer::finish_sample(ctx);
+                ring.finish(seq, Color::ZERO, spp, &mut row, &mut stats);
+            }
+        }
+        if active == 0 {
+            break;
+        }
+        // SAFETY: `applies` chose this form only where the processor runs the AVX-512 tier.
+        #[cfg(target_arch = "x86_64")]
+        unsafe {
+            scene.hit8_small_avx512(
+                GroupId(0),
+                &rays,
+                &lanes,
+                active,
+                Interval::FORWARD,
+                &mut ctxs,
+                &mut found,
+            )
+        };
+        // A path that goes on takes its next ray; one that ends is summed into its pixel.
+        macro_rules! advance {
+            ($l:expr, $next:expr) => {{
+                let l = $l;
+                let (path, ctx) = (&paths[l], &mut ctxs[l]);
+                match $next {
+                    Some(next) if path.depth < max_depth => {
+                        ctx.stats.rays += 1;
+                        ctx.bounce = path.depth;
+                        rays[l] = next;
+                        lanes.set(l, &next);
+                    }
+                    _ => {
+                        active &= !(1 << l);
+                        Renderer::finish_sample(ctx);
+                        ring.finish(seqs[l], path.l, spp, &mut row, &mut stats);
+                    }
+                }
+            }};
+        }
+        // Each path's vertex up to its diffuse direction; Lambertian bounces of `mixture` wait for
+        // the lanes.
+        let mut waiting = 0u8;
+        let mut bits = active;
+        while bits != 0 {
+            let l = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let ray = rays[l];
+            let hit = found[l].record(&ray);
+            let next = match paths[l].scatter(scene, &ray, hit.as_ref(), &mut ctxs[l]) {
+                None => None,
+                Some(Bounce::Along(next)) => Some(next),
+                Some(Bounce::Diffuse {
+                    attenuation,
+                    pdf: pdf @ ScatterPdf::Cosine(_),
+                    u,
+                }) if mixture.is_some() => {
+                    let _ = pdf;
+                    let hit = hit.expect("a diffuse bounce has a hit");
+                    shading.set(l, hit.p, hit.normal, u);
+                    (hits[l], attenuations[l]) = (Some(hit), attenuation);
+                    waiting |= 1 << l;
+                    continue;
+                }
+                Some(Bounce::Diffuse {
+                    attenuation,
+                    pdf,
+                    u,
+                }) => {
+                    let hit = hit.expect("a diffuse bounce has a hit");
+                    let lights = &r.lights;
+                    sample_diffuse(strategy, weight, &pdf, hit.p, hit.normal, lights, u).and_then(
+                        |(direction, w)| paths[l].diffuse(&hit, &ray, attenuation, direction, w),
+                    )
+                }
+            };
+            advance!(l, next);
+        }
+        #[cfg(target_arch = "x86_64")]
+        if let (Some(m), true) = (mixture, waiting != 0) {
+            // SAFETY: `applies` chose this form only where the processor runs the AVX-512 tier.
+            let (direction, w) = unsafe { shading.mixture(m, waiting) };
+            let mut bits = waiting;
+            while bits != 0 {
+                let l = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let next = match (w[l], &hits[l]) {
+                    (Some(w), Some(hit)) => {
+                        paths[l].diffuse(hit, &rays[l], attenuations[l], direction[l], w)
+                    }
+                    _ => None,
+                };
+                advance!(l, next);
+            }
+        }
+    }
+    Some(ctxs.iter().fold(stats, |s, c| s + c.stats))
+}
+
+/// The Lambertian points waiting for the mixture's directions, by coordinate: point, unit normal,
+/// and the bounce's two numbers.
+#[derive(Default)]
+struct Shading8 {
+    p: [F64x8; 3],
+    normal: [F64x8; 3],
+    u: [F64x8; 2],
+}
+
+impl Shading8 {
+    /// Lane `l`'s point `p`, normal and numbers `u`.
+    #[inline(always)]
+    fn set(&mut self, l: usize, p: Vec3, normal: Vec3, u: glam::DVec2) {
+        for a in 0..3 {
+            self.p[a].0[l] = p[a];
+            self.normal[a].0[l] = normal[a];
+        }
+        self.u[0].0[l] = u.x;
+        self.u[1].0[l] = u.y;
+    }
+
+    /// The mixture's direction and weight `s / p` in each lane of `lanes` ([`Mixture8::sample`]);
+    /// `None` where the path ends.
+    ///
+    /// # Safety
+    /// Only where the processor has AVX-512F.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn mixture(&self, m: &Mixture8, lanes: u8) -> ([Vec3; LANES], [Option<f64>; LANES]) {
+        use crate::lanes::avx512::{load, load3};
+        use std::arch::x86_64::*;
+        let (direction, w, ok) = unsafe {
+            m.sample(
+                load3(&self.p),
+                load3(&self.normal),
+                [load(&self.u[0]), load(&self.u[1])],
+                lanes,
+            )
+        };
+        let mut d = [F64x8::ZERO; 3];
+        let mut weight = F64x8::ZERO;
+        for a in 0..3 {
+            // SAFETY: F64x8 is eight f64 aligned to 64 bytes.
+            unsafe { _mm512_store_pd(d[a].0.as_mut_ptr(), direction[a]) };
+        }
+        // SAFETY: as above.
+        unsafe { _mm512_store_pd(weight.0.as_mut_ptr(), w) };
+        (
+            std::array::from_fn(|l| Vec3::new(d[0].0[l], d[1].0[l], d[2].0[l])),
+            std::array::from_fn(|l| (ok & (1 << l) != 0).then_some(weight.0[l])),
+        )
+    }
+}
