@@ -53,5 +53,6 @@ pub mod transform;
 pub mod traversal;
 pub mod vec;
 pub mod warp8;
+pub mod wide8;
 
 pub use vec::{Color, Point3, Vec3};

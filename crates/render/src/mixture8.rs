@@ -50,7 +50,7 @@ impl Mixture8 {
     /// if there are no targets (the strategy then samples the material alone) or a quad samples by
     /// spherical rectangles, which the lanes do not.
     pub fn new(lights: &[LightTarget], weight: f64) -> Option<Mixture8> {
-        if lights.is_empty() || lights.len() > wide_limit() || !(weight > 0.0 && weight < 1.0) {
+        if lights.is_empty() || lights.len() > MAX_TARGETS || !(weight > 0.0 && weight < 1.0) {
             return None;
         }
         let targets = lights
@@ -81,49 +81,56 @@ impl Mixture8 {
     }
 }
 
-/// The most targets the lanes take.
-fn wide_limit() -> usize {
-    #[cfg(target_arch = "x86_64")]
-    return wide::MAX_TARGETS;
-    #[cfg(not(target_arch = "x86_64"))]
-    0
-}
+/// The most targets the lanes take (their views are kept on the stack).
+pub const MAX_TARGETS: usize = 8;
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
-    use super::{Mixture8, Target8};
+    use super::{MAX_TARGETS, Mixture8, Target8};
+    use crate::lanes::F64x8;
     use crate::warp8::*;
+    use crate::wide8::*;
     use rtl_pdf::ONE_MINUS_EPSILON;
-    use std::arch::x86_64::*;
 
     /// A direction and its density in each lane, and the lanes where the sampler succeeded.
-    struct Sampled {
-        direction: V3,
-        pdf: F8,
-        ok: M8,
+    struct Sampled<W: Wide8> {
+        direction: V3<W>,
+        pdf: W,
+        ok: W::Mask,
     }
 
     /// rtl-pdf's `remap(u, lo, p)`: `((u - lo) / p).clamp(0, 1 - 2^-53)`, `lo` and `p` lane by lane.
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    fn remap(u: F8, lo: F8, p: F8) -> F8 {
-        clamp(div(sub(u, lo), p), 0.0, ONE_MINUS_EPSILON)
+    #[inline(always)]
+    fn remap<W: Wide8>(u: W, lo: W, p: W) -> W {
+        ((u - lo) / p).clamp(0.0, ONE_MINUS_EPSILON)
+    }
+
+    /// `x / n` for a count `n`: a multiplication by `1 / n` where `n` is a power of two (both are
+    /// exact scalings by a power of two, so the same number), else the division.
+    #[inline(always)]
+    fn over<W: Wide8>(x: W, n: usize) -> W {
+        if n.is_power_of_two() {
+            x * x.splat_like(1.0 / n as f64)
+        } else {
+            x / x.splat_like(n as f64)
+        }
     }
 
     /// What a target looks like from the eight origins: all that its density and its sampler
     /// compute from the origin alone, computed once for both.
     #[derive(Clone, Copy)]
-    enum View8 {
-        /// A quad: the lanes behind it (one-sided) and those out of its plane.
-        Quad { behind: M8, off: M8 },
+    enum View8<W: Wide8> {
+        /// A quad: the origin's height `h` above its plane, the lanes behind it (one-sided) and
+        /// those out of its plane.
+        Quad { h: W, behind: W::Mask, off: W::Mask },
         /// A sphere: the offset to its centre, its square, the lanes inside it, and the cone's
         /// `1 - cos theta_max` and density.
         Sphere {
-            to_center: V3,
-            d2: F8,
-            surrounding: M8,
-            omc: F8,
-            cone_pdf: F8,
+            to_center: V3<W>,
+            d2: W,
+            surrounding: W::Mask,
+            omc: W,
+            cone_pdf: W,
         },
     }
 
@@ -131,40 +138,37 @@ mod wide {
         /// [`View8`] of this target from `origin`: `LightTarget::behind` and `QuadTarget::height`
         /// for a quad; `SphereTarget::view`'s terms for a sphere.
         #[inline(always)]
-        unsafe fn view(&self, origin: V3) -> View8 {
-            // SAFETY: called only from functions compiled with AVX-512F, into which it is inlined.
-            unsafe {
-                let zero = _mm512_setzero_pd();
-                match *self {
-                    Target8::Quad {
-                        q,
-                        normal,
-                        edge_scale,
-                        one_sided,
-                        ..
-                    } => {
-                        let rel = sub3(origin, splat3(q));
-                        let h = dot3(splat3(normal), rel);
-                        let behind = if one_sided { le(h, zero) } else { 0 };
-                        let magnitude = max_element3([abs(rel[0]), abs(rel[1]), abs(rel[2])]);
-                        let scale = add(magnitude, splat(edge_scale));
-                        let off = gt(abs(h), mul(splat(8.0 * f64::EPSILON), scale));
-                        View8::Quad { behind, off }
-                    }
-                    Target8::Sphere { center, radius } => {
-                        let to_center = sub3(splat3(center), origin);
-                        let d2 = dot3(to_center, to_center);
-                        let r2 = splat(radius * radius);
-                        let surrounding =
-                            le(d2, r2) | eq(d2, zero) | _mm512_cmp_pd_mask::<_CMP_UNORD_Q>(d2, d2);
-                        let omc = cone_one_minus_cos(div(r2, d2));
-                        View8::Sphere {
-                            to_center,
-                            d2,
-                            surrounding,
-                            omc,
-                            cone_pdf: uniform_cone_pdf(omc),
-                        }
+        fn view<W: Wide8>(&self, origin: V3<W>) -> View8<W> {
+            let o = origin[0];
+            let zero = o.zero_like();
+            match *self {
+                Target8::Quad {
+                    q,
+                    normal,
+                    edge_scale,
+                    one_sided,
+                    ..
+                } => {
+                    let rel = sub3(origin, splat3_like(o, q));
+                    let h = dot(splat3_like(o, normal), rel);
+                    let behind = if one_sided { h.le(zero) } else { o.mask(0) };
+                    let magnitude = max_element([rel[0].abs(), rel[1].abs(), rel[2].abs()]);
+                    let scale = magnitude + o.splat_like(edge_scale);
+                    let off = h.abs().gt(o.splat_like(8.0 * f64::EPSILON) * scale);
+                    View8::Quad { h, behind, off }
+                }
+                Target8::Sphere { center, radius } => {
+                    let to_center = sub3(splat3_like(o, center), origin);
+                    let d2 = dot(to_center, to_center);
+                    let r2 = o.splat_like(radius * radius);
+                    let surrounding = d2.le(r2) | d2.eq(zero) | d2.is_nan();
+                    let omc = cone_one_minus_cos(r2 / d2);
+                    View8::Sphere {
+                        to_center,
+                        d2,
+                        surrounding,
+                        omc,
+                        cone_pdf: uniform_cone_pdf(omc),
                     }
                 }
             }
@@ -172,160 +176,135 @@ mod wide {
 
         /// rtl-pdf's `area_to_solid_angle(inv_area, origin, point, normal)`.
         #[inline(always)]
-        unsafe fn area_to_solid_angle(
+        fn area_to_solid_angle<W: Wide8>(
             inv_area: f64,
-            origin: V3,
-            point: V3,
-            normal: glam::DVec3,
-        ) -> F8 {
-            // SAFETY: called only from functions compiled with AVX-512F, into which it is inlined.
-            unsafe {
-                let to = sub3(point, origin);
-                let d2 = dot3(to, to);
-                let cos_light = div(abs(dot3(splat3(normal), to)), sqrt(d2));
-                let zero = _mm512_setzero_pd();
-                let ok = gt(cos_light, zero) & gt(d2, zero);
-                let pdf = div(mul(splat(inv_area), d2), cos_light);
-                let ok = ok & le(abs(pdf), splat(f64::MAX));
-                _mm512_maskz_mov_pd(ok, pdf)
-            }
+            origin: V3<W>,
+            point: V3<W>,
+            normal: V3<W>,
+        ) -> W {
+            let to = sub3(point, origin);
+            let d2 = dot(to, to);
+            let cos_light = dot(normal, to).abs() / d2.sqrt();
+            let zero = d2.zero_like();
+            let ok = cos_light.gt(zero) & d2.gt(zero);
+            let pdf = d2.splat_like(inv_area) * d2 / cos_light;
+            let ok = ok & pdf.abs().le(d2.splat_like(f64::MAX));
+            pdf.zero_unless(ok)
         }
 
         /// `LightTarget::pdf(origin, direction)` in each lane, `view` this target's from `origin`.
         #[inline(always)]
-        unsafe fn pdf(&self, view: &View8, origin: V3, direction: V3) -> F8 {
-            // SAFETY: called only from functions compiled with AVX-512F, into which it is inlined.
-            unsafe {
-                let zero = _mm512_setzero_pd();
-                match (*self, *view) {
-                    (
-                        Target8::Quad {
-                            q,
-                            normal,
-                            inv_area,
-                            vw,
-                            wu,
-                            ..
-                        },
-                        View8::Quad { behind, off },
-                    ) => {
-                        // QuadTarget::hit: t = -h / (n . d), then the point's plane coordinates
-                        let rel = sub3(origin, splat3(q));
-                        let h = dot3(splat3(normal), rel);
-                        let t = div(neg(h), dot3(splat3(normal), direction));
-                        let point = add3(origin, scale3(t, direction));
-                        let on = sub3(point, splat3(q));
-                        let (a, b) = (dot3(on, splat3(vw)), dot3(on, splat3(wu)));
-                        let one = splat(1.0);
-                        let inside = le(zero, a) & le(a, one) & le(zero, b) & le(b, one);
-                        let hit = !behind & off & positive_finite(t) & inside;
-                        if hit == 0 {
-                            return zero;
-                        }
-                        let pdf = Self::area_to_solid_angle(inv_area, origin, point, normal);
-                        _mm512_maskz_mov_pd(hit, pdf)
+        fn pdf<W: Wide8>(&self, view: &View8<W>, origin: V3<W>, direction: V3<W>) -> W {
+            let o = origin[0];
+            let zero = origin[0].zero_like();
+            match (*self, *view) {
+                (
+                    Target8::Quad {
+                        q,
+                        normal,
+                        inv_area,
+                        vw,
+                        wu,
+                        ..
+                    },
+                    View8::Quad { h, behind, off },
+                ) => {
+                    // QuadTarget::hit: t = -h / (n . d), then the point's plane coordinates
+                    let normal = splat3_like(o, normal);
+                    let t = -h / dot(normal, direction);
+                    let point = add3(origin, scale3(t, direction));
+                    let on = sub3(point, splat3_like(o, q));
+                    let (a, b) = (dot(on, splat3_like(o, vw)), dot(on, splat3_like(o, wu)));
+                    let one = zero.splat_like(1.0);
+                    let inside = zero.le(a) & a.le(one) & zero.le(b) & b.le(one);
+                    let hit = !behind & off & t.positive_finite() & inside;
+                    if hit.is_empty() {
+                        return zero;
                     }
-                    (
-                        Target8::Sphere { radius, .. },
-                        View8::Sphere {
-                            to_center,
-                            surrounding,
-                            omc,
-                            cone_pdf,
-                            ..
-                        },
-                    ) => {
-                        let cross = cross3(to_center, direction);
-                        let r2 = splat(radius * radius);
-                        let missed =
-                            le(dot3(to_center, direction), zero) | gt(dot3(cross, cross), r2);
-                        let cone = _mm512_maskz_mov_pd(gt(omc, zero) & !missed, cone_pdf);
-                        select(surrounding, splat(UNIFORM_SPHERE_PDF), cone)
-                    }
-                    _ => unreachable!("a target's view is of its own kind"),
+                    Self::area_to_solid_angle(inv_area, origin, point, normal).zero_unless(hit)
                 }
+                (
+                    Target8::Sphere { radius, .. },
+                    View8::Sphere {
+                        to_center,
+                        surrounding,
+                        omc,
+                        cone_pdf,
+                        ..
+                    },
+                ) => {
+                    let c = cross(to_center, direction);
+                    let r2 = zero.splat_like(radius * radius);
+                    let missed = dot(to_center, direction).le(zero) | dot(c, c).gt(r2);
+                    let cone = cone_pdf.zero_unless(omc.gt(zero) & !missed);
+                    cone.select(surrounding, zero.splat_like(UNIFORM_SPHERE_PDF))
+                }
+                _ => unreachable!("a target's view is of its own kind"),
             }
         }
 
         /// `LightTarget::sample(origin, u)` in each lane, `view` this target's from `origin`.
         #[inline(always)]
-        unsafe fn sample(&self, view: &View8, origin: V3, u: [F8; 2]) -> Sampled {
-            // SAFETY: called only from functions compiled with AVX-512F, into which it is inlined.
-            unsafe {
-                match (*self, *view) {
-                    (
-                        Target8::Quad {
-                            q,
-                            u: e1,
-                            v: e2,
-                            normal,
-                            inv_area,
-                            ..
-                        },
-                        View8::Quad { behind, off },
-                    ) => {
-                        // q + u.x e1 + u.y e2
-                        let p = add3(
-                            add3(splat3(q), scale3(u[0], splat3(e1))),
-                            scale3(u[1], splat3(e2)),
-                        );
-                        let to = sub3(p, origin);
-                        let rcp = div(splat(1.0), sqrt(dot3(to, to)));
-                        let direction = [mul(to[0], rcp), mul(to[1], rcp), mul(to[2], rcp)];
-                        let pdf = Self::area_to_solid_angle(inv_area, origin, p, normal);
-                        let ok = !behind & off & positive_finite(rcp) & positive_finite(pdf);
-                        Sampled { direction, pdf, ok }
-                    }
-                    (
-                        Target8::Sphere { .. },
-                        View8::Sphere {
-                            to_center,
-                            d2,
-                            surrounding,
-                            omc,
-                            cone_pdf,
-                        },
-                    ) => {
-                        // the cone about the axis towards the centre
-                        let root = sqrt(d2);
-                        let axis = [
-                            div(to_center[0], root),
-                            div(to_center[1], root),
-                            div(to_center[2], root),
-                        ];
-                        let local = sample_uniform_cone(u, omc);
-                        let mut s = Sampled {
-                            direction: Onb8::new(axis).transform(local),
-                            pdf: cone_pdf,
-                            ok: positive_finite(cone_pdf),
-                        };
-                        // or all around, from inside
-                        if surrounding != 0 {
-                            let around = sample_uniform_sphere(u);
-                            s.direction = select3(surrounding, around, s.direction);
-                            s.pdf = select(surrounding, splat(UNIFORM_SPHERE_PDF), s.pdf);
-                            s.ok |= surrounding;
-                        }
-                        s
-                    }
-                    _ => unreachable!("a target's view is of its own kind"),
+        fn sample<W: Wide8>(&self, view: &View8<W>, origin: V3<W>, u: [W; 2]) -> Sampled<W> {
+            let o = origin[0];
+            match (*self, *view) {
+                (
+                    Target8::Quad {
+                        q,
+                        u: e1,
+                        v: e2,
+                        normal,
+                        inv_area,
+                        ..
+                    },
+                    View8::Quad { behind, off, .. },
+                ) => {
+                    // q + u.x e1 + u.y e2
+                    let p = add3(
+                        add3(splat3_like(o, q), scale3(u[0], splat3_like(o, e1))),
+                        scale3(u[1], splat3_like(o, e2)),
+                    );
+                    let to = sub3(p, origin);
+                    let rcp = u[0].splat_like(1.0) / dot(to, to).sqrt();
+                    let direction = [to[0] * rcp, to[1] * rcp, to[2] * rcp];
+                    let pdf =
+                        Self::area_to_solid_angle(inv_area, origin, p, splat3_like(o, normal));
+                    let ok = !behind & off & rcp.positive_finite() & pdf.positive_finite();
+                    Sampled { direction, pdf, ok }
                 }
+                (
+                    Target8::Sphere { .. },
+                    View8::Sphere {
+                        to_center,
+                        d2,
+                        surrounding,
+                        omc,
+                        cone_pdf,
+                    },
+                ) => {
+                    // the cone about the axis towards the centre
+                    let root = d2.sqrt();
+                    let axis = [
+                        to_center[0] / root,
+                        to_center[1] / root,
+                        to_center[2] / root,
+                    ];
+                    let local = sample_uniform_cone(u, omc);
+                    let mut s = Sampled {
+                        direction: Onb8::new(axis).transform(local),
+                        pdf: cone_pdf,
+                        ok: cone_pdf.positive_finite(),
+                    };
+                    // or all around, from inside
+                    if !surrounding.is_empty() {
+                        s.direction = select3(s.direction, surrounding, sample_uniform_sphere(u));
+                        s.pdf = s.pdf.select(surrounding, d2.splat_like(UNIFORM_SPHERE_PDF));
+                        s.ok = s.ok | surrounding;
+                    }
+                    s
+                }
+                _ => unreachable!("a target's view is of its own kind"),
             }
-        }
-    }
-
-    /// The most targets the lanes take (their views are kept on the stack).
-    pub const MAX_TARGETS: usize = 8;
-
-    /// `x / n` for a count `n`: a multiplication by `1 / n` where `n` is a power of two (both are
-    /// exact scalings by a power of two, so the same number), else the division.
-    #[inline]
-    #[target_feature(enable = "avx512f")]
-    fn over(x: F8, n: usize) -> F8 {
-        if n.is_power_of_two() {
-            mul(x, splat(1.0 / n as f64))
-        } else {
-            div(x, splat(n as f64))
         }
     }
 
@@ -340,83 +319,144 @@ mod wide {
         /// chosen direction: a lane that sampled the targets adds the others' densities to its
         /// own, one that sampled the cosine lobe takes them all, in the targets' order, as the
         /// scalar code adds them.
+        #[inline(always)]
+        fn sample_in<W: Wide8>(
+            &self,
+            p: V3<W>,
+            normal: V3<W>,
+            u: [W; 2],
+            lanes: u8,
+        ) -> (V3<W>, W, W::Mask) {
+            let (wa, n) = (self.weight, self.targets.len());
+            let zero = u[0].zero_like();
+            let lanes = zero.mask(lanes);
+            let towards = lanes & u[0].lt(zero.splat_like(wa));
+            let material = lanes & !towards;
+            let mut views = [View8::Quad {
+                h: zero,
+                behind: zero.mask(0),
+                off: zero.mask(0),
+            }; MAX_TARGETS];
+            for (view, t) in views.iter_mut().zip(&self.targets) {
+                *view = t.view(p);
+            }
+            // u.x's rest: remap(u.x, 0, w) towards the targets, remap(u.x, w, 1 - w) else
+            let (w, rest_w) = (zero.splat_like(wa), zero.splat_like(1.0 - wa));
+            let rest = remap(u[0], w.select(towards, zero), rest_w.select(towards, w));
+            // the targets' sample: target i = min(floor(n u), n - 1) (a float cast saturates, NaN
+            // and below 0 giving 0) with the rest of n u (rtl-pdf's choose_uniform)
+            let (mut direction, mut own, mut chosen, mut ok) =
+                ([zero; 3], zero, zero, zero.mask(0));
+            if !towards.is_empty() {
+                let ut = if n == 1 {
+                    [rest, u[1]]
+                } else {
+                    let scaled = rest * zero.splat_like(n as f64);
+                    chosen = scaled
+                        .max(zero)
+                        .trunc()
+                        .min(zero.splat_like((n - 1) as f64));
+                    [(scaled - chosen).clamp(0.0, ONE_MINUS_EPSILON), u[1]]
+                };
+                for (j, t) in self.targets.iter().enumerate() {
+                    let these = towards & chosen.eq(zero.splat_like(j as f64));
+                    if these.is_empty() {
+                        continue;
+                    }
+                    let s = t.sample(&views[j], p, ut);
+                    direction = select3(direction, these, s.direction);
+                    own = own.select(these, s.pdf);
+                    ok = ok | (these & s.ok);
+                }
+            }
+            // the cosine lobe's
+            let mut lobe = zero;
+            if !material.is_empty() {
+                let local = sample_cosine_hemisphere([rest, u[1]]);
+                lobe = cosine_hemisphere_pdf(local[2]);
+                direction = select3(direction, material, Onb8::new(normal).transform(local));
+                ok = ok | (material & lobe.positive_finite());
+            }
+            // the targets' densities at the chosen direction, in order
+            let (mut with_own, mut all) = (own, zero);
+            for (j, t) in self.targets.iter().enumerate() {
+                let pj = t.pdf(&views[j], p, direction);
+                let other = !chosen.eq(zero.splat_like(j as f64));
+                with_own = with_own.select(other, with_own + pj);
+                all = if j == 0 { pj } else { all + pj };
+            }
+            let (with_own, all) = if n == 1 {
+                (own, all)
+            } else {
+                (over(with_own, n), over(all, n))
+            };
+            let cos = cosine_hemisphere_pdf(dot(direction, normal));
+            // towards: w s.pdf + (1 - w) p_cosine; the lobe: w p_targets + (1 - w) s.pdf
+            let mix = (w * all + rest_w * lobe).select(towards, w * with_own + rest_w * cos);
+            // ratio(s, p): s / p where p > 0, s > 0 and the quotient is finite
+            let r = cos / mix;
+            let ok = ok & mix.gt(zero) & cos.gt(zero) & r.le(zero.splat_like(f64::MAX));
+            (direction, r, ok)
+        }
+
+        /// [`Mixture8::sample_in`] with the lanes stored: the directions, the weights, and the
+        /// lanes where they are usable.
+        #[inline(always)]
+        unsafe fn sample_stored<W: Wide8>(
+            &self,
+            p: &[F64x8; 3],
+            normal: &[F64x8; 3],
+            u: &[F64x8; 2],
+            lanes: u8,
+        ) -> ([F64x8; 3], F64x8, u8) {
+            // SAFETY: as the caller's.
+            let (p, normal, u) = unsafe {
+                (
+                    load3::<W>(p),
+                    load3::<W>(normal),
+                    [W::load(&u[0]), W::load(&u[1])],
+                )
+            };
+            let (d, w, ok) = self.sample_in(p, normal, u, lanes);
+            (
+                [d[0].store(), d[1].store(), d[2].store()],
+                w.store(),
+                ok.bits(),
+            )
+        }
+
+        /// `sample_diffuse` of `mixture` for the Lambertian points `p` (unit normals `normal`,
+        /// numbers `u`) in the lanes of `lanes`, in AVX-512 instructions: the directions, their
+        /// weights `s / p`, and the lanes where the path goes on.
         ///
         /// # Safety
         /// Only where the processor has AVX-512F.
         #[target_feature(enable = "avx512f")]
-        pub unsafe fn sample(&self, p: V3, normal: V3, u: [F8; 2], lanes: M8) -> (V3, F8, M8) {
-            // SAFETY: this function is compiled with AVX-512F and runs where the processor has it.
-            unsafe {
-                let (wa, n) = (self.weight, self.targets.len());
-                let zero = _mm512_setzero_pd();
-                let towards = lanes & lt(u[0], splat(wa));
-                let material = lanes & !towards;
-                let mut views = [View8::Quad { behind: 0, off: 0 }; MAX_TARGETS];
-                for (view, t) in views.iter_mut().zip(&self.targets) {
-                    *view = t.view(p);
-                }
-                // u.x's rest: remap(u.x, 0, w) towards the targets, remap(u.x, w, 1 - w) else
-                let rest = remap(
-                    u[0],
-                    select(towards, zero, splat(wa)),
-                    select(towards, splat(wa), splat(1.0 - wa)),
-                );
-                // the targets' sample: target i = min(floor(n u), n - 1) (a float cast saturates,
-                // NaN and below 0 giving 0) with the rest of n u (choose_uniform)
-                let (mut direction, mut own, mut chosen, mut ok) = ([zero; 3], zero, zero, 0);
-                if towards != 0 {
-                    let ut = if n == 1 {
-                        [rest, u[1]]
-                    } else {
-                        let scaled = mul(rest, splat(n as f64));
-                        chosen = min(trunc(max(scaled, zero)), splat((n - 1) as f64));
-                        [clamp(sub(scaled, chosen), 0.0, ONE_MINUS_EPSILON), u[1]]
-                    };
-                    for (j, t) in self.targets.iter().enumerate() {
-                        let these = towards & eq(chosen, splat(j as f64));
-                        if these == 0 {
-                            continue;
-                        }
-                        let s = t.sample(&views[j], p, ut);
-                        direction = select3(these, s.direction, direction);
-                        own = select(these, s.pdf, own);
-                        ok |= these & s.ok;
-                    }
-                }
-                // the cosine lobe's
-                let mut lobe = zero;
-                if material != 0 {
-                    let local = sample_cosine_hemisphere([rest, u[1]]);
-                    lobe = cosine_hemisphere_pdf(local[2]);
-                    direction = select3(material, Onb8::new(normal).transform(local), direction);
-                    ok |= material & positive_finite(lobe);
-                }
-                // the targets' densities at the chosen direction, in order
-                let (mut with_own, mut all) = (own, zero);
-                for (j, t) in self.targets.iter().enumerate() {
-                    let pj = t.pdf(&views[j], p, direction);
-                    let other = !eq(chosen, splat(j as f64));
-                    with_own = _mm512_mask_add_pd(with_own, other, with_own, pj);
-                    all = if j == 0 { pj } else { add(all, pj) };
-                }
-                let (with_own, all) = if n == 1 {
-                    (own, all)
-                } else {
-                    (over(with_own, n), over(all, n))
-                };
-                let cos = cosine_hemisphere_pdf(dot3(direction, normal));
-                // towards: w s.pdf + (1 - w) p_cosine; the lobe: w p_targets + (1 - w) s.pdf
-                let (w, rest) = (splat(wa), splat(1.0 - wa));
-                let mix = select(
-                    towards,
-                    add(mul(w, with_own), mul(rest, cos)),
-                    add(mul(w, all), mul(rest, lobe)),
-                );
-                // ratio(s, p): s / p where p > 0, s > 0 and the quotient is finite
-                let r = div(cos, mix);
-                let ok = ok & gt(mix, zero) & gt(cos, zero) & le(r, splat(f64::MAX));
-                (direction, r, ok)
-            }
+        pub unsafe fn sample_avx512(
+            &self,
+            p: &[F64x8; 3],
+            normal: &[F64x8; 3],
+            u: &[F64x8; 2],
+            lanes: u8,
+        ) -> ([F64x8; 3], F64x8, u8) {
+            // SAFETY: compiled with AVX-512F, run where the processor has it.
+            unsafe { self.sample_stored::<Avx512>(p, normal, u, lanes) }
+        }
+
+        /// [`Mixture8::sample_avx512`] in AVX2 instructions (four lanes to a register).
+        ///
+        /// # Safety
+        /// Only where the processor has AVX2.
+        #[target_feature(enable = "avx2")]
+        pub unsafe fn sample_avx2(
+            &self,
+            p: &[F64x8; 3],
+            normal: &[F64x8; 3],
+            u: &[F64x8; 2],
+            lanes: u8,
+        ) -> ([F64x8; 3], F64x8, u8) {
+            // SAFETY: compiled with AVX2, run where the processor has it.
+            unsafe { self.sample_stored::<Avx2>(p, normal, u, lanes) }
         }
     }
 }

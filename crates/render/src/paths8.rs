@@ -115,6 +115,7 @@ pub(crate) fn render_row(
     let mut lanes = Rays8::default();
     let mut found = [Found::nothing(&scene.groups[0]); LANES];
     let mixture = r.mixture_in_lanes();
+    let tier = crate::traversal::HitTier::current();
     let mut shading = Shading8::default();
     let mut hits: [Option<crate::hit::Hit>; LANES] = [None; LANES];
     let mut attenuations = [Color::ZERO; LANES];
@@ -138,7 +139,14 @@ pub(crate) fn render_row(
                 if max_depth > 0 {
                     ctx.stats.rays += 1;
                     ctx.bounce = 0;
-                    (paths[l], seqs[l], rays[l]) = (OneSamplePath::default(), seq, ray);
+                    // (field by field: a whole new path written at once was read back across
+                    // its stores, which cannot forward to the load)
+                    let path = &mut paths[l];
+                    path.throughput = Color::ONE;
+                    path.l = Color::ZERO;
+                    path.depth = 0;
+                    seqs[l] = seq;
+                    rays[l] = ray;
                     lanes.set(l, &ray);
                     active |= 1 << l;
                     break;
@@ -151,10 +159,11 @@ pub(crate) fn render_row(
         if active == 0 {
             break;
         }
-        // SAFETY: `applies` chose this form only where the processor runs the AVX-512 tier.
+        // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
         #[cfg(target_arch = "x86_64")]
         unsafe {
-            scene.hit8_small_avx512(
+            scene.hit8_small(
+                tier,
                 GroupId(0),
                 &rays,
                 &lanes,
@@ -224,8 +233,8 @@ pub(crate) fn render_row(
         }
         #[cfg(target_arch = "x86_64")]
         if let (Some(m), true) = (mixture, waiting != 0) {
-            // SAFETY: `applies` chose this form only where the processor runs the AVX-512 tier.
-            let (direction, w) = unsafe { shading.mixture(m, waiting) };
+            // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+            let (direction, w) = unsafe { shading.mixture(tier, m, waiting) };
             let mut bits = waiting;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
@@ -264,32 +273,27 @@ impl Shading8 {
         self.u[1].0[l] = u.y;
     }
 
-    /// The mixture's direction and weight `s / p` in each lane of `lanes` ([`Mixture8::sample`]);
-    /// `None` where the path ends.
+    /// The mixture's direction and weight `s / p` in each lane of `lanes` ([`Mixture8`]), in the
+    /// instructions of `tier`; `None` where the path ends.
     ///
     /// # Safety
-    /// Only where the processor has AVX-512F.
+    /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn mixture(&self, m: &Mixture8, lanes: u8) -> ([Vec3; LANES], [Option<f64>; LANES]) {
-        use crate::lanes::avx512::{load, load3};
-        use std::arch::x86_64::*;
-        let (direction, w, ok) = unsafe {
-            m.sample(
-                load3(&self.p),
-                load3(&self.normal),
-                [load(&self.u[0]), load(&self.u[1])],
-                lanes,
-            )
+    unsafe fn mixture(
+        &self,
+        tier: crate::traversal::HitTier,
+        m: &Mixture8,
+        lanes: u8,
+    ) -> ([Vec3; LANES], [Option<f64>; LANES]) {
+        // SAFETY: as this function's.
+        let (d, weight, ok) = unsafe {
+            match tier {
+                crate::traversal::HitTier::Avx512 => {
+                    m.sample_avx512(&self.p, &self.normal, &self.u, lanes)
+                }
+                _ => m.sample_avx2(&self.p, &self.normal, &self.u, lanes),
+            }
         };
-        let mut d = [F64x8::ZERO; 3];
-        let mut weight = F64x8::ZERO;
-        for a in 0..3 {
-            // SAFETY: F64x8 is eight f64 aligned to 64 bytes.
-            unsafe { _mm512_store_pd(d[a].0.as_mut_ptr(), direction[a]) };
-        }
-        // SAFETY: as above.
-        unsafe { _mm512_store_pd(weight.0.as_mut_ptr(), w) };
         (
             std::array::from_fn(|l| Vec3::new(d[0].0[l], d[1].0[l], d[2].0[l])),
             std::array::from_fn(|l| (ok & (1 << l) != 0).then_some(weight.0[l])),

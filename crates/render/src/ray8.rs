@@ -113,182 +113,174 @@ pub fn closest_portable(
 }
 
 #[cfg(target_arch = "x86_64")]
-pub use wide::closest_avx512;
+pub use wide::{closest_avx2, closest_avx512};
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
     use super::{Closest8, NO_HIT, Rays8, SPHERE};
     use crate::aabb::Aabb;
-    use crate::lanes::avx512::{dot, load3};
     use crate::ray::Interval;
     use crate::shapes::{Quad4, Sphere};
-    use std::arch::x86_64::*;
+    use crate::wide8::*;
 
-    /// [`super::closest_portable`] in AVX-512 instructions, the eight rays in the lanes: bit-identical
-    /// results.
-    ///
-    /// # Safety
-    /// Only where the processor has AVX-512F, and only from a function compiled with it enabled
-    /// (into which this is always inlined).
+    /// [`super::closest_portable`] in the lanes, written once for both instruction sets.
     #[inline(always)]
-    pub unsafe fn closest_avx512(
+    fn closest<W: Wide8>(
         packets: &[Quad4],
         spheres: &[(Sphere, Aabb)],
-        rays: &Rays8,
+        o: V3<W>,
+        dir: V3<W>,
         range: Interval,
     ) -> Closest8 {
-        // SAFETY: as this function's.
-        unsafe {
-            let o = load3(&rays.origin);
-            let dir = load3(&rays.direction);
-            let (zero, one) = (_mm512_setzero_pd(), _mm512_set1_pd(1.0));
-            let min = _mm512_set1_pd(range.min);
-            let mut closest = _mm512_set1_pd(range.max);
-            let mut alpha_best = zero;
-            let mut beta_best = zero;
-            let mut hit = _mm512_set1_epi64(NO_HIT as i64);
-            for (i, p) in packets.iter().enumerate() {
-                for lane in 0..4 {
-                    let b = |x: &crate::lanes::F64x4| _mm512_set1_pd(x.0[lane]);
-                    let b3 = |x: &[crate::lanes::F64x4; 3]| [b(&x[0]), b(&x[1]), b(&x[2])];
-                    let n = b3(&p.normal);
-                    let q = b3(&p.q);
-                    // As `Quad::hit`: t = (d - n . o) / (n . dir), planar = o + t dir - q.
-                    let t = _mm512_div_pd(_mm512_sub_pd(b(&p.d), dot(n, o)), dot(n, dir));
-                    let at = |a: usize| {
-                        _mm512_sub_pd(_mm512_add_pd(o[a], _mm512_mul_pd(t, dir[a])), q[a])
-                    };
-                    let planar = [at(0), at(1), at(2)];
-                    let alpha = dot(planar, b3(&p.du));
-                    let beta = dot(planar, b3(&p.dv));
-                    // Inside the range, shrunk to each lane's closest hit so far, and the quad.
-                    let k = _mm512_cmp_pd_mask::<_CMP_LT_OQ>(min, t);
-                    let k = _mm512_mask_cmp_pd_mask::<_CMP_LT_OQ>(k, t, closest);
-                    let k = _mm512_mask_cmp_pd_mask::<_CMP_LE_OQ>(k, zero, alpha);
-                    let k = _mm512_mask_cmp_pd_mask::<_CMP_LE_OQ>(k, alpha, one);
-                    let k = _mm512_mask_cmp_pd_mask::<_CMP_LE_OQ>(k, zero, beta);
-                    let k = _mm512_mask_cmp_pd_mask::<_CMP_LE_OQ>(k, beta, one);
-                    closest = _mm512_mask_mov_pd(closest, k, t);
-                    alpha_best = _mm512_mask_mov_pd(alpha_best, k, alpha);
-                    beta_best = _mm512_mask_mov_pd(beta_best, k, beta);
-                    hit = _mm512_mask_mov_epi64(hit, k, _mm512_set1_epi64((4 * i + lane) as i64));
-                }
+        let (zero, one) = (o[0].zero_like(), o[0].splat_like(1.0));
+        let min = o[0].splat_like(range.min);
+        let mut closest = o[0].splat_like(range.max);
+        let (mut alpha_best, mut beta_best) = (zero, zero);
+        // which: the quad's place, or SPHERE | the sphere's, as a number (exact below 2^53)
+        let mut which = o[0].splat_like(NO_HIT as f64);
+        for (i, p) in packets.iter().enumerate() {
+            for lane in 0..4 {
+                let n = lane3(zero, &p.normal, lane);
+                // As `Quad::hit`: t = (d - n . o) / (n . dir), planar = o + t dir - q.
+                let t = (zero.splat_like(p.d.0[lane]) - dot(n, o)) / dot(n, dir);
+                let planar = sub3(add3(o, scale3(t, dir)), lane3(zero, &p.q, lane));
+                let alpha = dot(planar, lane3(zero, &p.du, lane));
+                let beta = dot(planar, lane3(zero, &p.dv, lane));
+                // Inside the range, shrunk to each lane's closest hit so far, and the quad.
+                let k = min.lt(t)
+                    & t.lt(closest)
+                    & zero.le(alpha)
+                    & alpha.le(one)
+                    & zero.le(beta)
+                    & beta.le(one);
+                closest = closest.select(k, t);
+                alpha_best = alpha_best.select(k, alpha);
+                beta_best = beta_best.select(k, beta);
+                which = which.select(k, zero.splat_like((4 * i + lane) as f64));
             }
-            if !spheres.is_empty() {
-                // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes.
-                let inv = dir.map(|d| _mm512_div_pd(one, d));
-                for (i, (s, bounds)) in spheres.iter().enumerate() {
-                    let k = enters(bounds, o, inv, min, closest);
-                    let (k, t) = sphere_t(s, o, dir, min, closest, k);
-                    closest = _mm512_mask_mov_pd(closest, k, t);
-                    hit = _mm512_mask_mov_epi64(
-                        hit,
-                        k,
-                        _mm512_set1_epi64((SPHERE | i as u32) as i64),
-                    );
-                }
+        }
+        if !spheres.is_empty() {
+            // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes.
+            let inv = [one / dir[0], one / dir[1], one / dir[2]];
+            for (i, (s, bounds)) in spheres.iter().enumerate() {
+                let k = enters(bounds, o, inv, min, closest);
+                let (k, t) = sphere_t(s, o, dir, min, closest, k);
+                closest = closest.select(k, t);
+                which = which.select(k, zero.splat_like((SPHERE | i as u32) as f64));
             }
-            let mut out = Closest8 {
-                hit: [NO_HIT; 8],
-                t: [0.0; 8],
-                alpha: [0.0; 8],
-                beta: [0.0; 8],
-            };
-            _mm512_storeu_pd(out.t.as_mut_ptr(), closest);
-            _mm512_storeu_pd(out.alpha.as_mut_ptr(), alpha_best);
-            _mm512_storeu_pd(out.beta.as_mut_ptr(), beta_best);
-            _mm256_storeu_si256(
-                out.hit.as_mut_ptr() as *mut __m256i,
-                _mm512_cvtepi64_epi32(hit),
-            );
-            out
+        }
+        let (t, alpha, beta, which) = (
+            closest.store(),
+            alpha_best.store(),
+            beta_best.store(),
+            which.store(),
+        );
+        Closest8 {
+            hit: which.0.map(|w| w as u32),
+            t: t.0,
+            alpha: alpha.0,
+            beta: beta.0,
         }
     }
 
-    /// The lanes whose ray enters `bounds` within `(min, closest)`: [`Aabb::hit`] lane by lane.
-    /// glam's `min`, `max` and their `_element` forms are `a < b ? a : b` and `a > b ? a : b`, which
-    /// are `vminpd a, b` and `vmaxpd a, b` exactly, NaN included; `f64::min` and `f64::max` against a
-    /// number that is never NaN likewise, with the number second.
+    /// Lane `lane` of a packet's field, in every lane.
     #[inline(always)]
-    unsafe fn enters(
-        bounds: &Aabb,
-        o: [__m512d; 3],
-        inv: [__m512d; 3],
-        min: __m512d,
-        closest: __m512d,
-    ) -> __mmask8 {
-        // SAFETY: as `closest_avx512`.
-        unsafe {
-            let slab = |a: usize| {
-                let t0 = _mm512_mul_pd(_mm512_sub_pd(_mm512_set1_pd(bounds.min[a]), o[a]), inv[a]);
-                let t1 = _mm512_mul_pd(_mm512_sub_pd(_mm512_set1_pd(bounds.max[a]), o[a]), inv[a]);
-                (_mm512_min_pd(t0, t1), _mm512_max_pd(t0, t1))
-            };
-            let (n0, f0) = slab(0);
-            let (n1, f1) = slab(1);
-            let (n2, f2) = slab(2);
-            let near = _mm512_max_pd(_mm512_max_pd(n0, _mm512_max_pd(n1, n2)), min);
-            let far = _mm512_min_pd(_mm512_min_pd(f0, _mm512_min_pd(f1, f2)), closest);
-            let far = _mm512_mul_pd(far, _mm512_set1_pd(1.0 + 6.0 * f64::EPSILON));
-            _mm512_cmp_pd_mask::<_CMP_LE_OQ>(near, far)
-        }
+    fn lane3<W: Wide8>(like: W, x: &[crate::lanes::F64x4; 3], lane: usize) -> V3<W> {
+        [
+            like.splat_like(x[0].0[lane]),
+            like.splat_like(x[1].0[lane]),
+            like.splat_like(x[2].0[lane]),
+        ]
+    }
+
+    /// The entry and exit of a slab `[lo, hi]` along one axis: glam's `min` and `max` of
+    /// `(lo - o) inv` and `(hi - o) inv`.
+    #[inline(always)]
+    fn slab<W: Wide8>(lo: f64, hi: f64, o: W, inv: W) -> (W, W) {
+        let t0 = (o.splat_like(lo) - o) * inv;
+        let t1 = (o.splat_like(hi) - o) * inv;
+        (t0.min(t1), t0.max(t1))
+    }
+
+    /// The lanes whose ray enters `bounds` within `(min, closest)`: [`Aabb::hit`] lane by lane.
+    /// glam's `min`, `max` and their `_element` forms are the lanes' `min` and `max`; `f64::min`
+    /// and `f64::max` against a number that is never NaN likewise, with the number second.
+    #[inline(always)]
+    fn enters<W: Wide8>(bounds: &Aabb, o: V3<W>, inv: V3<W>, min: W, closest: W) -> W::Mask {
+        let (n0, f0) = slab(bounds.min[0], bounds.max[0], o[0], inv[0]);
+        let (n1, f1) = slab(bounds.min[1], bounds.max[1], o[1], inv[1]);
+        let (n2, f2) = slab(bounds.min[2], bounds.max[2], o[2], inv[2]);
+        let near = n0.max(n1.max(n2)).max(min);
+        let far = f0.min(f1.min(f2)).min(closest) * min.splat_like(1.0 + 6.0 * f64::EPSILON);
+        near.le(far)
     }
 
     /// Among the lanes of `k`, those whose ray meets the static sphere `s` inside `(min, closest)`,
     /// and where: [`Sphere::hit_t`] lane by lane. A line that misses (a negative discriminant) gives
     /// NaN roots here, which no range holds, where the scalar test returns early.
     #[inline(always)]
-    unsafe fn sphere_t(
+    fn sphere_t<W: Wide8>(
         s: &Sphere,
-        o: [__m512d; 3],
-        dir: [__m512d; 3],
-        min: __m512d,
-        closest: __m512d,
-        k: __mmask8,
-    ) -> (__mmask8, __m512d) {
-        // SAFETY: as `closest_avx512`.
-        unsafe {
-            use _mm512_mul_pd as mul;
-            use _mm512_sub_pd as sub;
-            let c = [s.center.x, s.center.y, s.center.z].map(|x| _mm512_set1_pd(x));
-            let oc = [sub(c[0], o[0]), sub(c[1], o[1]), sub(c[2], o[2])];
-            let a = dot(dir, dir);
-            let h = dot(dir, oc);
-            let r = _mm512_set1_pd(s.radius);
-            // oc x dir, as glam's cross
-            let cross = [
-                sub(mul(oc[1], dir[2]), mul(dir[1], oc[2])),
-                sub(mul(oc[2], dir[0]), mul(dir[2], oc[0])),
-                sub(mul(oc[0], dir[1]), mul(dir[0], oc[1])),
-            ];
-            let disc = sub(
-                mul(a, _mm512_set1_pd(s.radius * s.radius)),
-                dot(cross, cross),
-            );
-            let oc_len = _mm512_sqrt_pd(dot(oc, oc));
-            let cc = mul(sub(oc_len, r), _mm512_add_pd(oc_len, r));
-            // sqrt(disc) with the sign of h
-            let sign = _mm512_set1_pd(-0.0);
-            let root = _mm512_sqrt_pd(disc);
-            // (as integers: the floating-point forms of these bit operations are AVX-512DQ's)
-            let bits = _mm512_castpd_si512;
-            let signed = _mm512_castsi512_pd(_mm512_or_si512(
-                _mm512_andnot_si512(bits(sign), bits(root)),
-                _mm512_and_si512(bits(sign), bits(h)),
-            ));
-            let q = _mm512_add_pd(h, signed);
-            let k = _mm512_mask_cmp_pd_mask::<_CMP_NEQ_UQ>(k, q, _mm512_setzero_pd());
-            let (t0, t1) = (_mm512_div_pd(cc, q), _mm512_div_pd(q, a));
-            let swap = _mm512_cmp_pd_mask::<_CMP_GT_OQ>(t0, t1);
-            let lo = _mm512_mask_mov_pd(t0, swap, t1);
-            let hi = _mm512_mask_mov_pd(t1, swap, t0);
-            let inside = |t: __m512d| {
-                let m = _mm512_mask_cmp_pd_mask::<_CMP_LT_OQ>(k, min, t);
-                _mm512_mask_cmp_pd_mask::<_CMP_LT_OQ>(m, t, closest)
-            };
-            let (in_lo, in_hi) = (inside(lo), inside(hi));
-            let t = _mm512_mask_mov_pd(hi, in_lo, lo);
-            (in_lo | in_hi, t)
-        }
+        o: V3<W>,
+        dir: V3<W>,
+        min: W,
+        closest: W,
+        k: W::Mask,
+    ) -> (W::Mask, W) {
+        let c = splat3_like(min, s.center);
+        let oc = sub3(c, o);
+        let a = dot(dir, dir);
+        let h = dot(dir, oc);
+        let r = min.splat_like(s.radius);
+        let cr = cross(oc, dir);
+        let disc = a * min.splat_like(s.radius * s.radius) - dot(cr, cr);
+        let oc_len = dot(oc, oc).sqrt();
+        let cc = (oc_len - r) * (oc_len + r);
+        let q = h + disc.sqrt().copysign(h);
+        let k = k & !q.eq(min.zero_like());
+        let (t0, t1) = (cc / q, q / a);
+        let swap = t0.gt(t1);
+        let (lo, hi) = (t0.select(swap, t1), t1.select(swap, t0));
+        let in_lo = k & min.lt(lo) & lo.lt(closest);
+        let in_hi = k & min.lt(hi) & hi.lt(closest);
+        (in_lo | in_hi, hi.select(in_lo, lo))
+    }
+
+    /// [`super::closest_portable`] in AVX-512 instructions: bit-identical results.
+    ///
+    /// # Safety
+    /// Only where the processor has AVX-512F.
+    #[target_feature(enable = "avx512f")]
+    pub unsafe fn closest_avx512(
+        packets: &[Quad4],
+        spheres: &[(Sphere, Aabb)],
+        rays: &Rays8,
+        range: Interval,
+    ) -> Closest8 {
+        // SAFETY: compiled with AVX-512F, run where the processor has it.
+        let (o, dir) = unsafe {
+            (
+                load3::<Avx512>(&rays.origin),
+                load3::<Avx512>(&rays.direction),
+            )
+        };
+        closest(packets, spheres, o, dir, range)
+    }
+
+    /// [`super::closest_portable`] in AVX2 instructions (four lanes to a register): bit-identical
+    /// results.
+    ///
+    /// # Safety
+    /// Only where the processor has AVX2.
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn closest_avx2(
+        packets: &[Quad4],
+        spheres: &[(Sphere, Aabb)],
+        rays: &Rays8,
+        range: Interval,
+    ) -> Closest8 {
+        // SAFETY: compiled with AVX2, run where the processor has it.
+        let (o, dir) = unsafe { (load3::<Avx2>(&rays.origin), load3::<Avx2>(&rays.direction)) };
+        closest(packets, spheres, o, dir, range)
     }
 }

@@ -595,12 +595,12 @@ impl Scene {
         best.record(group, ray, closest)
     }
 
-    /// Whether eight rays can be intersected with group `g` at once ([`Scene::hit8_small_avx512`]):
-    /// a small group (no tree), on a processor whose tier is AVX-512.
+    /// Whether eight rays can be intersected with group `g` at once ([`Scene::hit8_small`]): a
+    /// small group (no tree), on a processor whose tier is AVX2 or AVX-512.
     pub fn hits_eight_at_once(&self, g: GroupId) -> bool {
         let group = &self.groups[g.0 as usize];
         cfg!(target_arch = "x86_64")
-            && HitTier::cached() == HitTier::Avx512
+            && HitTier::cached() != HitTier::Portable
             && group.accel.flat
             && group.objects.len() > 1
     }
@@ -608,18 +608,19 @@ impl Scene {
     /// The closest hit in the small group `g` ([`Accel::small`], [`Scene::hits_eight_at_once`]) of
     /// each ray `rays[i]` whose bit `i` is set in `active`, with `t` in the open interval `range`:
     /// `out[i]`, its record to be built by [`Found::record`] (the other lanes are left as they are);
-    /// `lanes` holds the same rays by coordinate ([`crate::ray8::Rays8`]). The quads are tested for
-    /// all eight rays at once ([`crate::ray8::closest_avx512`]), then each lane's other objects with
-    /// its own `ctxs[i]`, exactly as [`Scene::hit_group`] tests them for one ray: every lane's record
-    /// is the one [`Scene::hit_group`] returns, bit for bit.
+    /// `lanes` holds the same rays by coordinate ([`crate::ray8::Rays8`]). The quads and the static
+    /// spheres are tested for all eight rays at once ([`crate::ray8`], in the instructions of
+    /// `tier`), other objects lane by lane with the lane's own `ctxs[i]`, exactly as
+    /// [`Scene::hit_group`] tests them for one ray: every lane's record is the one
+    /// [`Scene::hit_group`] returns, bit for bit.
     ///
     /// # Safety
-    /// Only where the processor has AVX-512F and VL and AVX2 (the tier [`HitTier::Avx512`]).
+    /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512vl,avx2")]
     #[allow(clippy::too_many_arguments)]
-    pub unsafe fn hit8_small_avx512<'s>(
+    pub unsafe fn hit8_small<'s>(
         &'s self,
+        tier: HitTier,
         g: GroupId,
         rays: &[Ray; 8],
         lanes: &crate::ray8::Rays8,
@@ -632,9 +633,13 @@ impl Scene {
         let accel = &group.accel;
         debug_assert!(accel.flat);
         let spheres = accel.spheres.as_deref();
-        // SAFETY: this function is compiled with AVX-512F and runs where the processor has it.
+        let (packets, spheres8) = (&accel.packets, spheres.unwrap_or(&[]));
+        // SAFETY: the caller runs this where the processor runs `tier`.
         let found = unsafe {
-            crate::ray8::closest_avx512(&accel.packets, spheres.unwrap_or(&[]), lanes, range)
+            match tier {
+                HitTier::Avx512 => crate::ray8::closest_avx512(packets, spheres8, lanes, range),
+                _ => crate::ray8::closest_avx2(packets, spheres8, lanes, range),
+            }
         };
         let mut bits = active;
         while bits != 0 {
@@ -898,10 +903,14 @@ impl<'a> Found<'a> {
         }
     }
 
-    /// The hit's record (`None` if nothing was met); `ray` is the ray that met it.
+    /// The hit's record (`None` if nothing was met); `ray` is the ray that met it. Built inline
+    /// (a sphere's too, unlike [`Scene::hit_group`]'s), where the path reads it.
     #[inline(always)]
     pub fn record(self, ray: &Ray) -> Option<Hit> {
-        self.closest.record(self.group, ray, self.t)
+        match self.closest {
+            Closest::Sphere(s) => Some(s.hit_at(ray, self.t)),
+            c => c.record(self.group, ray, self.t),
+        }
     }
 }
 
