@@ -22,7 +22,6 @@ use crate::ray8::Rays8;
 use crate::render::{Accumulator, Renderer};
 use crate::sampler::{Ctx, Stats};
 use crate::scene::{GroupId, Scene};
-use crate::traversal::Found;
 use crate::vec::{Color, Point3, Vec3};
 
 /// Lanes: paths in flight per thread.
@@ -113,12 +112,13 @@ pub(crate) fn render_row(
     let mut seqs = [0u64; LANES];
     let mut rays = [placeholder; LANES];
     let mut lanes = Rays8::default();
-    let mut found = [Found::nothing(&scene.groups[0]); LANES];
     let mixture = r.mixture_in_lanes();
     let tier = crate::traversal::HitTier::current();
     let mut shading = Shading8::default();
     let mut hits: [Option<crate::hit::Hit>; LANES] = [None; LANES];
     let mut attenuations = [Color::ZERO; LANES];
+    let mut per_lane = [crate::traversal::Found::nothing(&scene.groups[0]); LANES];
+    let mut closest = crate::ray8::Closest8::default();
     let mut active = 0u8;
     let mut next = 0u64;
     loop {
@@ -161,7 +161,7 @@ pub(crate) fn render_row(
         }
         // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
         #[cfg(target_arch = "x86_64")]
-        unsafe {
+        let found = unsafe {
             scene.hit8_small(
                 tier,
                 GroupId(0),
@@ -170,7 +170,8 @@ pub(crate) fn render_row(
                 active,
                 Interval::FORWARD,
                 &mut ctxs,
-                &mut found,
+                &mut closest,
+                &mut per_lane,
             )
         };
         // A path that goes on takes its next ray; one that ends is summed into its pixel.
@@ -201,7 +202,7 @@ pub(crate) fn render_row(
             let l = bits.trailing_zeros() as usize;
             bits &= bits - 1;
             let ray = rays[l];
-            let hit = found[l].record(&ray);
+            let hit = found.record(&closest, &per_lane, l, &ray);
             let next = match paths[l].scatter(scene, &ray, hit.as_ref(), &mut ctxs[l]) {
                 None => None,
                 Some(Bounce::Along(next)) => Some(next),

@@ -56,7 +56,7 @@ pub const SPHERE: u32 = 1 << 31;
 /// Each lane's closest hit: `hit[i]` is its quad's place in the packets' order (packet `hit / 4`,
 /// lane `hit % 4`), or [`SPHERE`] with the sphere's place among the group's spheres, or [`NO_HIT`];
 /// `t` its parameter (the range's maximum if none), `alpha` and `beta` a quad's coordinates.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Closest8 {
     pub hit: [u32; 8],
     pub t: [f64; 8],
@@ -131,7 +131,8 @@ mod wide {
         o: V3<W>,
         dir: V3<W>,
         range: Interval,
-    ) -> Closest8 {
+        out: &mut Closest8,
+    ) {
         let (zero, one) = (o[0].zero_like(), o[0].splat_like(1.0));
         let min = o[0].splat_like(range.min);
         let mut closest = o[0].splat_like(range.max);
@@ -169,18 +170,11 @@ mod wide {
                 which = which.select(k, zero.splat_like((SPHERE | i as u32) as f64));
             }
         }
-        let (t, alpha, beta, which) = (
-            closest.store(),
-            alpha_best.store(),
-            beta_best.store(),
-            which.store(),
-        );
-        Closest8 {
-            hit: which.0.map(|w| w as u32),
-            t: t.0,
-            alpha: alpha.0,
-            beta: beta.0,
-        }
+        // written where the caller reads them (returned, the 224 bytes were copied by `memcpy`)
+        out.t = closest.store().0;
+        out.alpha = alpha_best.store().0;
+        out.beta = beta_best.store().0;
+        out.hit = which.store().0.map(|w| w as u32);
     }
 
     /// Lane `lane` of a packet's field, in every lane.
@@ -246,7 +240,7 @@ mod wide {
         (in_lo | in_hi, hi.select(in_lo, lo))
     }
 
-    /// [`super::closest_portable`] in AVX-512 instructions: bit-identical results.
+    /// [`super::closest_portable`] in AVX-512 instructions, into `out`: bit-identical results.
     ///
     /// # Safety
     /// Only where the processor has AVX-512F.
@@ -256,7 +250,8 @@ mod wide {
         spheres: &[(Sphere, Aabb)],
         rays: &Rays8,
         range: Interval,
-    ) -> Closest8 {
+        out: &mut Closest8,
+    ) {
         // SAFETY: compiled with AVX-512F, run where the processor has it.
         let (o, dir) = unsafe {
             (
@@ -264,11 +259,11 @@ mod wide {
                 load3::<Avx512>(&rays.direction),
             )
         };
-        closest(packets, spheres, o, dir, range)
+        closest(packets, spheres, o, dir, range, out)
     }
 
-    /// [`super::closest_portable`] in AVX2 instructions (four lanes to a register): bit-identical
-    /// results.
+    /// [`super::closest_portable`] in AVX2 instructions (four lanes to a register), into `out`:
+    /// bit-identical results.
     ///
     /// # Safety
     /// Only where the processor has AVX2.
@@ -278,9 +273,10 @@ mod wide {
         spheres: &[(Sphere, Aabb)],
         rays: &Rays8,
         range: Interval,
-    ) -> Closest8 {
+        out: &mut Closest8,
+    ) {
         // SAFETY: compiled with AVX2, run where the processor has it.
         let (o, dir) = unsafe { (load3::<Avx2>(&rays.origin), load3::<Avx2>(&rays.direction)) };
-        closest(packets, spheres, o, dir, range)
+        closest(packets, spheres, o, dir, range, out)
     }
 }

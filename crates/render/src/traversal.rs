@@ -606,13 +606,13 @@ impl Scene {
     }
 
     /// The closest hit in the small group `g` ([`Accel::small`], [`Scene::hits_eight_at_once`]) of
-    /// each ray `rays[i]` whose bit `i` is set in `active`, with `t` in the open interval `range`:
-    /// `out[i]`, its record to be built by [`Found::record`] (the other lanes are left as they are);
-    /// `lanes` holds the same rays by coordinate ([`crate::ray8::Rays8`]). The quads and the static
-    /// spheres are tested for all eight rays at once ([`crate::ray8`], in the instructions of
+    /// each ray `rays[i]` whose bit `i` is set in `active`, with `t` in the open interval `range`;
+    /// `lanes` holds the same rays by coordinate ([`crate::ray8::Rays8`]); `found` receives the
+    /// quads' and static spheres' hits, and `per_lane` the hits of other objects. The quads and the static spheres are tested for all eight rays
+    /// at once ([`crate::ray8`], in the instructions of
     /// `tier`), other objects lane by lane with the lane's own `ctxs[i]`, exactly as
-    /// [`Scene::hit_group`] tests them for one ray: every lane's record is the one
-    /// [`Scene::hit_group`] returns, bit for bit.
+    /// [`Scene::hit_group`] tests them for one ray: every lane's record ([`Hits8::record`]) is the
+    /// one [`Scene::hit_group`] returns, bit for bit.
     ///
     /// # Safety
     /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
@@ -627,63 +627,57 @@ impl Scene {
         active: u8,
         range: Interval,
         ctxs: &mut [Ctx; 8],
-        out: &mut [Found<'s>; 8],
-    ) {
+        found: &mut crate::ray8::Closest8,
+        per_lane: &mut [Found<'s>; 8],
+    ) -> Hits8<'s> {
         let group = &self.groups[g.0 as usize];
         let accel = &group.accel;
         debug_assert!(accel.flat);
         let spheres = accel.spheres.as_deref();
         let (packets, spheres8) = (&accel.packets, spheres.unwrap_or(&[]));
         // SAFETY: the caller runs this where the processor runs `tier`.
-        let found = unsafe {
+        unsafe {
             match tier {
-                HitTier::Avx512 => crate::ray8::closest_avx512(packets, spheres8, lanes, range),
-                _ => crate::ray8::closest_avx2(packets, spheres8, lanes, range),
+                HitTier::Avx512 => {
+                    crate::ray8::closest_avx512(packets, spheres8, lanes, range, found)
+                }
+                _ => crate::ray8::closest_avx2(packets, spheres8, lanes, range, found),
             }
         };
+        let hits = Hits8 {
+            group,
+            per_lane: spheres.is_none(),
+        };
+        if !hits.per_lane {
+            return hits;
+        }
+        // Others that are not all static spheres: one lane at a time, as for one ray (the
+        // records in `per_lane`, which the caller keeps: returned, they were copied each time).
         let mut bits = active;
         while bits != 0 {
             let i = bits.trailing_zeros() as usize;
             bits &= bits - 1;
             let ray = &rays[i];
-            let mut closest = found.t[i];
-            let mut best = match found.hit[i] {
-                crate::ray8::NO_HIT => Closest::Nothing,
-                h if h & crate::ray8::SPHERE != 0 => {
-                    let oi = accel.others[(h & !crate::ray8::SPHERE) as usize];
-                    let Object::Sphere(s) = &group.objects[oi as usize] else {
-                        unreachable!("the group's spheres are its others")
-                    };
-                    Closest::Sphere(s)
+            let (mut closest, mut best) = (found.t[i], hits.closest(found, i));
+            let inv = ray.direction.recip();
+            for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
+                if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
+                    continue;
                 }
-                q => Closest::Quad {
-                    packet: q / PACKET as u32,
-                    lane: q as usize % PACKET,
-                    alpha: found.alpha[i],
-                    beta: found.beta[i],
-                },
-            };
-            if spheres.is_none() {
-                // Others that are not all static spheres: one lane at a time, as for one ray.
-                let inv = ray.direction.recip();
-                for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
-                    if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
-                        continue;
-                    }
-                    let o = &group.objects[oi as usize];
-                    let within = Interval::new(range.min, closest);
-                    if let Some((t, c)) = self.hit_other(o, ray, within, &mut ctxs[i]) {
-                        closest = t;
-                        best = c;
-                    }
+                let o = &group.objects[oi as usize];
+                let within = Interval::new(range.min, closest);
+                if let Some((t, c)) = self.hit_other(o, ray, within, &mut ctxs[i]) {
+                    closest = t;
+                    best = c;
                 }
             }
-            out[i] = Found {
+            per_lane[i] = Found {
                 group,
                 closest: best,
                 t: closest,
             };
         }
+        hits
     }
 
     /// A hit on `o`, an object of a leaf or small group that is not in a quad packet, as the closest
@@ -884,8 +878,61 @@ fn hit_packet<const AVX: bool>(
     packet.hit(ray, range)
 }
 
-/// What a ray met in a group ([`Scene::hit8_small_avx512`]), its record not yet built: built by the
-/// path that reads it ([`Found::record`]), in place, rather than copied out of the traversal.
+/// What eight rays met in a small group ([`Scene::hit8_small`]), their records not yet built: each
+/// built by the path that reads it ([`Hits8::record`]), in place, rather than copied out of the
+/// traversal.
+pub struct Hits8<'a> {
+    group: &'a crate::scene::Group,
+    /// Whether the group's other objects were tested one lane at a time: each lane's closest hit
+    /// is then in the caller's [`Found`]s.
+    per_lane: bool,
+}
+
+impl<'a> Hits8<'a> {
+    /// Lane `i`'s closest quad or static sphere, of those in `found`.
+    #[inline(always)]
+    fn closest(&self, found: &crate::ray8::Closest8, i: usize) -> Closest<'a> {
+        let group = self.group;
+        match found.hit[i] {
+            crate::ray8::NO_HIT => Closest::Nothing,
+            h if h & crate::ray8::SPHERE != 0 => {
+                let oi = group.accel.others[(h & !crate::ray8::SPHERE) as usize];
+                let Object::Sphere(s) = &group.objects[oi as usize] else {
+                    unreachable!("the group's spheres are its others")
+                };
+                Closest::Sphere(s)
+            }
+            q => Closest::Quad {
+                packet: q / PACKET as u32,
+                lane: q as usize % PACKET,
+                alpha: found.alpha[i],
+                beta: found.beta[i],
+            },
+        }
+    }
+
+    /// Lane `i`'s record (`None` if its ray met nothing); `ray` is the lane's ray, `found` and
+    /// `per_lane` what [`Scene::hit8_small`] filled. Built inline (a sphere's too, unlike
+    /// [`Scene::hit_group`]'s), where the path reads it.
+    #[inline(always)]
+    pub fn record(
+        &self,
+        found: &crate::ray8::Closest8,
+        per_lane: &[Found<'a>; 8],
+        i: usize,
+        ray: &Ray,
+    ) -> Option<Hit> {
+        if self.per_lane {
+            return per_lane[i].record(ray);
+        }
+        match self.closest(found, i) {
+            Closest::Sphere(s) => Some(s.hit_at(ray, found.t[i])),
+            c => c.record(self.group, ray, found.t[i]),
+        }
+    }
+}
+
+/// What one ray met in a group, its record not yet built.
 #[derive(Clone, Copy)]
 pub struct Found<'a> {
     group: &'a crate::scene::Group,
@@ -903,10 +950,9 @@ impl<'a> Found<'a> {
         }
     }
 
-    /// The hit's record (`None` if nothing was met); `ray` is the ray that met it. Built inline
-    /// (a sphere's too, unlike [`Scene::hit_group`]'s), where the path reads it.
+    /// The hit's record (`None` if nothing was met); `ray` is the ray that met it.
     #[inline(always)]
-    pub fn record(self, ray: &Ray) -> Option<Hit> {
+    fn record(self, ray: &Ray) -> Option<Hit> {
         match self.closest {
             Closest::Sphere(s) => Some(s.hit_at(ray, self.t)),
             c => c.record(self.group, ray, self.t),
