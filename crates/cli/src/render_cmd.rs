@@ -102,6 +102,11 @@ pub struct RenderArgs {
     /// tiers side by side, or the one a processor without AVX-512 runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
     pub hit_tier: Option<HitTier>,
+    /// Trace one path at a time, where eight would be traced side by side in the vector lanes (the
+    /// book's one-sample strategies in a scene of one small group, on a processor with AVX2). The
+    /// image is the same bit for bit: this is for timing what the lanes buy.
+    #[arg(long)]
+    pub no_lanes: bool,
 }
 
 /// A tier that this processor runs, by its key.
@@ -174,7 +179,7 @@ fn yes_no(on: bool, yes: &str, no: &str) -> String {
     }
 }
 
-fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
+fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64, no_lanes: bool) {
     let f = scene.features;
     println!("scene {}: {}", l.name, l.description);
     println!(
@@ -227,6 +232,33 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64) {
             best.key()
         );
     }
+    let lanes = Renderer::new(scene, *settings);
+    println!(
+        "  paths               : {}",
+        if no_lanes && lanes.paths_in_lanes() {
+            "one at a time (--no-lanes)".to_string()
+        } else if lanes.paths_in_lanes() {
+            format!(
+                "eight side by side in the vector lanes ({}), their rays intersected together{}",
+                HitTier::current().key(),
+                if lanes.mixture_in_lanes().is_some() {
+                    " and the mixture's directions drawn together at Lambertian points"
+                } else {
+                    ""
+                }
+            )
+        } else if settings.strategy.mis_options().is_some() {
+            "one at a time (mis has its own integrator)".to_string()
+        } else if !scene.hits_eight_at_once(rtl_render::scene::GroupId(0)) {
+            if HitTier::current() == HitTier::Portable {
+                "one at a time (no AVX2 tier)".to_string()
+            } else {
+                "one at a time (the scene is not one small group of several objects)".to_string()
+            }
+        } else {
+            "one at a time".to_string()
+        }
+    );
     if f.flattened_instances > 0 {
         println!(
             "  instances           : {} placed in world space at build time (rigid, of non-emitting \
@@ -586,10 +618,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
             scene,
             &job.settings,
             args.spp.unwrap_or(job.loaded.spp),
+            args.no_lanes,
         );
         return Ok(());
     }
     let renderer = Renderer::new(scene, job.settings);
+    let renderer = if args.no_lanes {
+        renderer.one_path_at_a_time()
+    } else {
+        renderer
+    };
     let (w, h) = (renderer.camera.width, renderer.camera.height);
     check_size(&args, w, h)?;
     let identity = Identity::new(&job.loaded.name, scene, &job.settings, w, h);

@@ -200,7 +200,7 @@ fn ratio(s: f64, p: f64) -> Option<f64> {
 /// sample contributes nothing further (`p = 0`, `s = 0` or a non-finite quotient). `u` is the bounce's
 /// material pair ([`Dimension::Material`]); a mixture picks its part with `u.x` and hands the rest on.
 #[inline]
-pub(crate) fn sample_diffuse(
+pub fn sample_diffuse(
     strategy: Strategy,
     mixture_weight: f64,
     pdf: &ScatterPdf,

@@ -79,6 +79,8 @@ struct Row<'a> {
 
 /// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels, eight
 /// paths at a time; `None` if `stop()` (asked before each pixel's first sample) said to stop.
+/// Called only where [`applies`] said so (an AVX tier runs).
+#[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_row(
     r: &Renderer,
@@ -160,7 +162,6 @@ pub(crate) fn render_row(
             break;
         }
         // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
-        #[cfg(target_arch = "x86_64")]
         let found = unsafe {
             scene.hit8_small(
                 tier,
@@ -208,10 +209,9 @@ pub(crate) fn render_row(
                 Some(Bounce::Along(next)) => Some(next),
                 Some(Bounce::Diffuse {
                     attenuation,
-                    pdf: pdf @ ScatterPdf::Cosine(_),
+                    pdf: ScatterPdf::Cosine(_),
                     u,
                 }) if mixture.is_some() => {
-                    let _ = pdf;
                     let hit = hit.expect("a diffuse bounce has a hit");
                     shading.set(l, hit.p, hit.normal, u);
                     (hits[l], attenuations[l]) = (Some(hit), attenuation);
@@ -232,7 +232,6 @@ pub(crate) fn render_row(
             };
             advance!(l, next);
         }
-        #[cfg(target_arch = "x86_64")]
         if let (Some(m), true) = (mixture, waiting != 0) {
             // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
             let (direction, w) = unsafe { shading.mixture(tier, m, waiting) };

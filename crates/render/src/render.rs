@@ -174,6 +174,16 @@ impl<'a> Renderer<'a> {
         self.mixture8.as_ref()
     }
 
+    /// This renderer with `m` as the mixture's density in the lanes (where the paths are traced in
+    /// them): for the tests that show a wrong one is caught.
+    #[doc(hidden)]
+    pub fn with_mixture_in_lanes(mut self, m: Option<crate::mixture8::Mixture8>) -> Self {
+        if self.paths_in_lanes {
+            self.mixture8 = m;
+        }
+        self
+    }
+
     /// Trace one path at a time even where [`Renderer::paths_in_lanes`] would trace eight: the same
     /// image (for tests and for measuring what the lanes buy).
     pub fn one_path_at_a_time(mut self) -> Self {

@@ -1,0 +1,750 @@
+//! Eight paths traced side by side ([`rtl_render::paths8`]) against one path at a time: the same
+//! image bit for bit, for every strategy that takes the lanes, in every tier this processor runs;
+//! and each of the lanes' parts against its scalar twin, bit for bit: the rays' intersection
+//! ([`rtl_render::ray8`]), rtl-pdf's warps ([`rtl_render::warp8`]) and the mixture's density
+//! ([`rtl_render::mixture8`]). Every check is also shown to catch a deliberately wrong lane.
+#![cfg(target_arch = "x86_64")]
+
+use glam::{DVec2, DVec3};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rtl_pdf::{CosinePdf, QuadTarget, SphereTarget};
+use rtl_render::camera::CameraSettings;
+use rtl_render::hit::Hit;
+use rtl_render::integrator::{Strategy, sample_diffuse};
+use rtl_render::lanes::F64x8;
+use rtl_render::lights::{LightTarget, Lights};
+use rtl_render::material::{Albedo, Material, ScatterPdf};
+use rtl_render::mixture8::Mixture8;
+use rtl_render::ray::{Interval, Ray};
+use rtl_render::ray8::{Closest8, Rays8, closest_avx2, closest_avx512, closest_portable};
+use rtl_render::render::{Accumulator, RenderSettings, Renderer};
+use rtl_render::sampler::Ctx;
+use rtl_render::scene::{Background, GroupId, ImportanceTarget, Scene, SceneBuilder, Transform};
+use rtl_render::shapes::Sphere;
+use rtl_render::traversal::{Found, HitTier};
+use rtl_render::vec::{Color, Point3, Vec3};
+use rtl_render::warp8;
+use rtl_render::wide8::{Avx2, Avx512, Wide8};
+
+/// The lane forms this processor runs (AVX2, AVX-512), said on the test's output.
+fn tiers() -> Vec<HitTier> {
+    let run: Vec<HitTier> = [HitTier::Avx2, HitTier::Avx512]
+        .into_iter()
+        .filter(|t| t.available())
+        .collect();
+    eprintln!("lane forms tested: {run:?}");
+    run
+}
+
+fn unit<R: Rng>(rng: &mut R) -> Vec3 {
+    rtl_pdf::warp::sample_uniform_sphere(DVec2::new(rng.random(), rng.random()))
+}
+
+fn point<R: Rng>(rng: &mut R, r: f64) -> Point3 {
+    Point3::new(
+        rng.random_range(-r..r),
+        rng.random_range(-r..r),
+        rng.random_range(-r..r),
+    )
+}
+
+// ---------------------------------------------------------------------------------------------
+// Whole images
+
+/// A small room of random quads (walls, a one- or two-sided lamp, a rotated box flattened into the
+/// room), a glass, a metal or a textured ball and a second sphere, the lamp and the first ball
+/// listed as targets: one small group, as the lanes take it.
+fn small_room(rng: &mut Xoshiro256PlusPlus) -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let wall = b.material(Material::lambertian(Color::new(0.7, 0.6, 0.5)));
+    let red = b.material(Material::lambertian(Color::new(0.65, 0.05, 0.05)));
+    let lamp = b.material(Material::DiffuseLight {
+        emit: Albedo::Constant(Color::splat(rng.random_range(2.0..15.0))),
+        two_sided: rng.random(),
+    });
+    let ball = match rng.random_range(0..3) {
+        0 => Material::Dielectric { ior: 1.5 },
+        1 => Material::Metal {
+            albedo: Color::splat(0.8),
+            fuzz: rng.random_range(0.0..0.5),
+        },
+        _ => {
+            let t = b.texture(rtl_render::texture::Texture::Checker {
+                inv_scale: 1.0 / 0.7,
+                even: Color::splat(0.2),
+                odd: Color::splat(0.9),
+            });
+            Material::Lambertian {
+                albedo: Albedo::Texture(t),
+            }
+        }
+    };
+    let ball = b.material(ball);
+    let s = 4.0;
+    let (x, y, z) = (Vec3::X * 2.0 * s, Vec3::Y * 2.0 * s, Vec3::Z * 2.0 * s);
+    let c = Point3::splat(-s);
+    b.quad(w, c, x, z, wall).unwrap(); // floor
+    b.quad(w, c + y, z, x, wall).unwrap(); // ceiling
+    b.quad(w, c + z, y, x, wall).unwrap(); // back
+    b.quad(w, c, y, z, red).unwrap(); // left
+    let light = (
+        Point3::new(-1.0, s - 1e-3, -1.0),
+        Vec3::X * 2.0,
+        Vec3::Z * 2.0,
+    );
+    b.quad(w, light.0, light.1, light.2, lamp).unwrap();
+    let inner = b
+        .box_group(Point3::ZERO, Point3::new(1.5, 3.0, 1.5), wall)
+        .unwrap();
+    let tr = Transform::rotate_y(rng.random_range(-90.0..90.0))
+        .then(Transform::translate(Point3::new(-2.5, -s, -1.0)));
+    b.instance(w, inner, tr);
+    let centre = Point3::new(1.5, -s + 1.2, 0.5);
+    b.sphere(w, centre, 1.2, ball).unwrap();
+    b.sphere(w, Point3::new(-2.0, 1.0, 2.0), 0.6, red).unwrap();
+    b.targets.push(ImportanceTarget::Quad(
+        rtl_render::shapes::Quad::new(light.0, light.1, light.2, rtl_render::scene::NO_MATERIAL)
+            .unwrap(),
+    ));
+    if rng.random() {
+        b.targets.push(ImportanceTarget::Sphere(Sphere::new(
+            centre,
+            1.2,
+            rtl_render::scene::NO_MATERIAL,
+        )));
+    }
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 0.0, 3.0 * s),
+        lookat: Point3::ZERO,
+        vfov: 50.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::new(0.1, 0.1, 0.2));
+    b.max_depth = 20;
+    b.build().unwrap()
+}
+
+fn builtin(name: &str) -> Scene {
+    (rtl_render::scenes::find(name).unwrap().build)(&Default::default())
+        .unwrap()
+        .scene
+}
+
+fn settings(width: usize, seed: u64, max_depth: u32, strategy: Strategy, w: f64) -> RenderSettings {
+    RenderSettings {
+        width,
+        max_depth,
+        seed,
+        strategy,
+        mixture_weight: w,
+    }
+}
+
+/// The accumulator of passes `passes` (sample ranges) by `r`.
+fn passes(r: &Renderer, ranges: &[(u64, u64)]) -> Accumulator {
+    let mut acc = r.accumulator();
+    for &(k0, k1) in ranges {
+        r.render_pass(&mut acc, k0, k1, &|| {});
+    }
+    acc
+}
+
+/// Whether two accumulators are the same bit for bit (sums, counts, drops).
+fn same(a: &Accumulator, b: &Accumulator) -> bool {
+    let bits = |acc: &Accumulator| -> Vec<u64> {
+        acc.sum
+            .iter()
+            .flat_map(|c| c.to_array().map(f64::to_bits))
+            .collect()
+    };
+    bits(a) == bits(b) && a.count == b.count && a.dropped == b.dropped
+}
+
+/// Renders `scene` with the lanes and one path at a time, in each tier, and says whether every
+/// image agrees bit for bit with the one-path-at-a-time image; `lanes` builds the lanes' renderer
+/// (a deliberately wrong one for the check's own test).
+fn lanes_agree(
+    scene: &Scene,
+    st: RenderSettings,
+    ranges: &[(u64, u64)],
+    lanes: impl for<'s> Fn(&'s Scene, RenderSettings) -> Renderer<'s>,
+) -> bool {
+    let reference = passes(&Renderer::new(scene, st).one_path_at_a_time(), ranges);
+    let before = HitTier::current();
+    let mut agree = true;
+    for tier in tiers() {
+        tier.select().unwrap();
+        let r = lanes(scene, st);
+        assert!(
+            r.paths_in_lanes(),
+            "{tier:?}: the lanes should take this scene"
+        );
+        agree &= same(&passes(&r, ranges), &reference);
+    }
+    before.select().unwrap();
+    agree
+}
+
+/// The renderer as the renderer makes it.
+fn plain(scene: &Scene, st: RenderSettings) -> Renderer<'_> {
+    Renderer::new(scene, st)
+}
+
+#[test]
+fn eight_paths_side_by_side_give_the_image_of_one_at_a_time() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(88);
+    let strategies = [
+        Strategy::Uniform,
+        Strategy::Cosine,
+        Strategy::Light,
+        Strategy::Mixture,
+    ];
+    // The book's Cornell box, book 2's, and random small rooms; sample ranges that start past 0
+    // and passes of one sample, as a progressive render takes them.
+    for (i, name) in ["cornell", "cornell-book2", "quads"]
+        .into_iter()
+        .enumerate()
+    {
+        let scene = builtin(name);
+        for (s, &strategy) in strategies.iter().enumerate() {
+            let st = settings(12, 3 + i as u64, scene.max_depth, strategy, 0.5);
+            let ranges: &[(u64, u64)] = if s % 2 == 0 {
+                &[(0, 5)]
+            } else {
+                &[(2, 3), (3, 9)]
+            };
+            assert!(
+                lanes_agree(&scene, st, ranges, plain),
+                "{name} {strategy:?}"
+            );
+        }
+    }
+    for i in 0..12 {
+        let scene = small_room(&mut rng);
+        let strategy = strategies[i % 4];
+        let w = [0.5, 0.15, 0.85][i % 3];
+        let depth = [20, 1, 2, 0][i % 4];
+        let st = settings(10, i as u64, depth, strategy, w);
+        assert!(
+            lanes_agree(&scene, st, &[(0, 6)], plain),
+            "room {i} {strategy:?}"
+        );
+    }
+}
+
+#[test]
+fn the_image_check_catches_lanes_with_another_mixture_weight() {
+    // Lanes drawing with a weight one ulp above the one the single path uses.
+    let scene = builtin("cornell");
+    let st = settings(10, 1, 50, Strategy::Mixture, 0.5);
+    assert!(lanes_agree(&scene, st, &[(0, 4)], plain));
+    fn wrong(scene: &Scene, st: RenderSettings) -> Renderer<'_> {
+        let r = Renderer::new(scene, st);
+        let m = Mixture8::new(
+            &r.lights.all,
+            f64::from_bits(st.mixture_weight.to_bits() + 1),
+        );
+        r.with_mixture_in_lanes(m)
+    }
+    if !tiers().is_empty() {
+        assert!(!lanes_agree(&scene, st, &[(0, 4)], wrong));
+    }
+}
+
+#[test]
+fn a_stopped_row_of_lanes_gives_up_and_the_rest_is_kept() {
+    let scene = builtin("cornell");
+    let st = settings(16, 2, 50, Strategy::Mixture, 0.5);
+    let r = Renderer::new(&scene, st);
+    let asked = std::sync::atomic::AtomicUsize::new(0);
+    let mut acc = r.accumulator();
+    let stop = || asked.fetch_add(1, std::sync::atomic::Ordering::Relaxed) > 40;
+    assert!(r.render_pass_until(&mut acc, 0, 4, &|| {}, &stop).is_none());
+    // and without stopping, the same counters as one path at a time
+    let mut a = r.accumulator();
+    let sa = r.render_pass(&mut a, 0, 4, &|| {});
+    let one = Renderer::new(&scene, st).one_path_at_a_time();
+    let mut b = one.accumulator();
+    let sb = one.render_pass(&mut b, 0, 4, &|| {});
+    assert_eq!(sa, sb);
+    assert!(same(&a, &b));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The rays' intersection
+
+/// Rays from outside and from inside a scene of size about 6, aimed near its middle or anywhere,
+/// and some aimed at a quad's corner or edge exactly.
+fn rays8<R: Rng>(rng: &mut R, corners: &[Point3]) -> [Ray; 8] {
+    std::array::from_fn(|_| {
+        let o = if rng.random::<bool>() {
+            unit(rng) * 20.0
+        } else {
+            point(rng, 6.0)
+        };
+        let d = match rng.random_range(0..3) {
+            0 => point(rng, 5.0) - o,
+            1 if !corners.is_empty() => corners[rng.random_range(0..corners.len())] - o,
+            _ => unit(rng),
+        };
+        Ray::new(o, d, 0.0)
+    })
+}
+
+/// A small random group (up to twelve quads and two spheres, or a rotated box instance that stays
+/// an instance), as its world.
+fn small_group<R: Rng>(rng: &mut R) -> (Scene, Vec<Point3>) {
+    let mut b = SceneBuilder::new();
+    let m = b.material(Material::lambertian(Color::splat(0.5)));
+    let w = b.world();
+    let mut corners = Vec::new();
+    for _ in 0..rng.random_range(1..=12) {
+        let (q, u, v) = (
+            point(rng, 6.0),
+            unit(rng) * rng.random_range(0.5..6.0),
+            unit(rng) * rng.random_range(0.5..6.0),
+        );
+        // some quads in axis planes, as the Cornell box's
+        let (u, v) = if rng.random::<bool>() {
+            (Vec3::X * u.length(), Vec3::Z * v.length())
+        } else {
+            (u, v)
+        };
+        b.quad(w, q, u, v, m).unwrap();
+        corners.extend([q, q + u, q + v, q + u + v, q + 0.5 * u]);
+    }
+    for _ in 0..rng.random_range(0..=2) {
+        if rng.random_range(0..4) == 0 {
+            let inner = b.box_group(Point3::ZERO, Point3::ONE * 2.0, m).unwrap();
+            b.instance(w, inner, Transform::rotate_y(rng.random_range(-90.0..90.0)));
+        } else {
+            b.sphere(w, point(rng, 5.0), rng.random_range(0.3..3.0), m)
+                .unwrap();
+        }
+    }
+    b.flatten = false;
+    (b.build().unwrap(), corners)
+}
+
+/// Everything of a hit the renderer reads, as bits.
+type Record = (u64, [u64; 3], [u64; 3], bool, u32);
+
+fn record(h: Option<Hit>) -> Option<Record> {
+    h.map(|h| {
+        (
+            h.t.to_bits(),
+            h.p.to_array().map(f64::to_bits),
+            h.normal.to_array().map(f64::to_bits),
+            h.front_face,
+            h.material.0,
+        )
+    })
+}
+
+/// How many lanes `Scene::hit8_small` (in `tier`) finds otherwise than `Scene::hit_group` one ray at
+/// a time, over the batches of rays.
+fn hit8_mismatches(scene: &Scene, tier: HitTier, batches: &[[Ray; 8]]) -> usize {
+    let g = GroupId(0);
+    if !scene.hits_eight_at_once(g) {
+        return 0;
+    }
+    let mut wrong = 0;
+    let mut ctxs: [Ctx; 8] = std::array::from_fn(|_| Ctx::new());
+    let mut ctx = Ctx::new();
+    for rays in batches {
+        let mut lanes = Rays8::default();
+        for (l, r) in rays.iter().enumerate() {
+            lanes.set(l, r);
+        }
+        let mut found = Closest8::default();
+        let mut per_lane = [Found::nothing(&scene.groups[0]); 8];
+        let active = 0b1011_1111; // one lane idle
+        // SAFETY: `tier` is one this processor runs (see `tiers`).
+        let hits = unsafe {
+            scene.hit8_small(
+                tier,
+                g,
+                rays,
+                &lanes,
+                active,
+                Interval::FORWARD,
+                &mut ctxs,
+                &mut found,
+                &mut per_lane,
+            )
+        };
+        for (l, ray) in rays.iter().enumerate() {
+            if active & (1 << l) == 0 {
+                continue;
+            }
+            let one = record(scene.hit_group(g, ray, Interval::FORWARD, &mut ctx));
+            wrong += (record(hits.record(&found, &per_lane, l, ray)) != one) as usize;
+        }
+    }
+    wrong
+}
+
+#[test]
+fn eight_rays_at_once_meet_what_one_ray_at_a_time_meets() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(8);
+    let mut lanes_tested = 0;
+    for _ in 0..150 {
+        let (scene, corners) = small_group(&mut rng);
+        let batches: Vec<[Ray; 8]> = (0..40).map(|_| rays8(&mut rng, &corners)).collect();
+        lanes_tested += scene.hits_eight_at_once(GroupId(0)) as usize;
+        for tier in tiers() {
+            assert_eq!(hit8_mismatches(&scene, tier, &batches), 0, "{tier:?}");
+        }
+    }
+    assert!(lanes_tested > 100, "{lanes_tested}");
+}
+
+/// How many lanes of [`closest_avx512`] or [`closest_avx2`] (`tier`) differ from
+/// [`closest_portable`], over random rays.
+fn closest_mismatches(
+    rng: &mut Xoshiro256PlusPlus,
+    tier: HitTier,
+    scene: &Scene,
+    spheres_for_lanes: &[(Sphere, rtl_render::aabb::Aabb)],
+) -> usize {
+    let accel = &scene.groups[0].accel;
+    let spheres = accel.spheres.as_deref().unwrap_or(&[]);
+    let mut wrong = 0;
+    for _ in 0..60 {
+        let rays = rays8(rng, &[]);
+        let mut lanes = Rays8::default();
+        for (l, r) in rays.iter().enumerate() {
+            lanes.set(l, r);
+        }
+        let want = closest_portable(&accel.packets, spheres, &lanes, Interval::FORWARD);
+        let mut got = Closest8::default();
+        // SAFETY: `tier` is one this processor runs.
+        unsafe {
+            match tier {
+                HitTier::Avx512 => closest_avx512(
+                    &accel.packets,
+                    spheres_for_lanes,
+                    &lanes,
+                    Interval::FORWARD,
+                    &mut got,
+                ),
+                _ => closest_avx2(
+                    &accel.packets,
+                    spheres_for_lanes,
+                    &lanes,
+                    Interval::FORWARD,
+                    &mut got,
+                ),
+            }
+        }
+        for l in 0..8 {
+            wrong += (got.hit[l] != want.hit[l]
+                || got.t[l].to_bits() != want.t[l].to_bits()
+                || got.alpha[l].to_bits() != want.alpha[l].to_bits()
+                || got.beta[l].to_bits() != want.beta[l].to_bits()) as usize;
+        }
+    }
+    wrong
+}
+
+#[test]
+fn the_intersection_check_catches_a_sphere_one_ulp_too_large() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
+    for tier in tiers() {
+        let (mut caught, mut tried) = (0, 0);
+        while tried < 20 {
+            let (scene, _) = small_group(&mut rng);
+            let Some(spheres) = scene.groups[0].accel.spheres.clone() else {
+                continue;
+            };
+            if spheres.is_empty() {
+                continue;
+            }
+            tried += 1;
+            assert_eq!(closest_mismatches(&mut rng, tier, &scene, &spheres), 0);
+            let grown: Vec<_> = spheres
+                .iter()
+                .map(|(s, b)| {
+                    let mut s = *s;
+                    s.radius = f64::from_bits(s.radius.to_bits() + 1) * (1.0 + 1e-9);
+                    (s, *b)
+                })
+                .collect();
+            caught += (closest_mismatches(&mut rng, tier, &scene, &grown) > 0) as usize;
+        }
+        assert!(caught >= 10, "{tier:?}: {caught} of {tried}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The warps
+
+/// Numbers for the warps: random ones, and the ends and middles that take special branches.
+fn numbers(rng: &mut Xoshiro256PlusPlus) -> Vec<[f64; 2]> {
+    let edges = [
+        0.0,
+        1.0 - f64::EPSILON / 2.0,
+        0.5,
+        0.25,
+        0.75,
+        0.125,
+        0.375,
+        0.625,
+        0.875,
+        f64::EPSILON,
+        0.5 - f64::EPSILON / 4.0,
+    ];
+    let mut out = Vec::new();
+    for &a in &edges {
+        for &b in &edges {
+            out.push([a, b]);
+        }
+    }
+    out.extend((0..4000).map(|_| [rng.random(), rng.random()]));
+    out
+}
+
+/// Eight lanes of `x`, from `f(i)`.
+fn lanes_of(f: impl Fn(usize) -> f64) -> F64x8 {
+    F64x8(std::array::from_fn(f))
+}
+
+/// The warps of `W` on `us`, against rtl-pdf's; `wrong` perturbs the lanes' input by one ulp in
+/// lane 3 (a deliberately wrong lane, for the check's own test). Returns the lanes that differ.
+///
+/// # Safety
+/// Only where the processor has `W`'s instructions.
+unsafe fn warp_mismatches<W: Wide8>(us: &[[f64; 2]], wrong: bool) -> usize {
+    let mut bad = 0;
+    for chunk in us.chunks(8) {
+        let u = |i: usize, c: usize| chunk[i % chunk.len()][c];
+        let x = lanes_of(|i| {
+            let v = u(i, 0);
+            if wrong && i == 3 {
+                f64::from_bits(v.to_bits() + 1)
+            } else {
+                v
+            }
+        });
+        let y = lanes_of(|i| u(i, 1));
+        // SAFETY: as this function's.
+        let (ux, uy) = unsafe { (W::load(&x), W::load(&y)) };
+        let cos = warp8::sample_cosine_hemisphere([ux, uy]);
+        let sphere = warp8::sample_uniform_sphere([ux, uy]);
+        let omc = ux.splat_like(0.3) * ux + ux.splat_like(1e-9);
+        let cone = warp8::sample_uniform_cone([ux, uy], omc);
+        let one_minus = warp8::cone_one_minus_cos(ux);
+        let onb = warp8::Onb8::new(sphere).transform(cos);
+        let pdf = warp8::uniform_cone_pdf(omc);
+        let stored = |v: [W; 3]| v.map(|c| c.store());
+        let (cos, sphere, cone, onb) = (stored(cos), stored(sphere), stored(cone), stored(onb));
+        let (omc, one_minus, pdf) = (omc.store(), one_minus.store(), pdf.store());
+        for i in 0..chunk.len() {
+            let uv = DVec2::new(u(i, 0), u(i, 1));
+            let lane = |v: &[F64x8; 3]| DVec3::new(v[0].0[i], v[1].0[i], v[2].0[i]);
+            let s_sphere = rtl_pdf::warp::sample_uniform_sphere(uv);
+            let want = [
+                rtl_pdf::warp::sample_cosine_hemisphere(uv),
+                s_sphere,
+                rtl_pdf::warp::sample_uniform_cone(uv, omc.0[i]),
+                rtl_pdf::Onb::new(s_sphere).transform(rtl_pdf::warp::sample_cosine_hemisphere(uv)),
+            ];
+            let got = [lane(&cos), lane(&sphere), lane(&cone), lane(&onb)];
+            let scalars = [
+                (rtl_pdf::warp::cone_one_minus_cos(u(i, 0)), one_minus.0[i]),
+                (rtl_pdf::warp::uniform_cone_pdf(omc.0[i]), pdf.0[i]),
+            ];
+            let differs = want
+                .iter()
+                .zip(&got)
+                .any(|(w, g)| w.to_array().map(f64::to_bits) != g.to_array().map(f64::to_bits))
+                || scalars.iter().any(|(w, g)| w.to_bits() != g.to_bits());
+            bad += differs as usize;
+        }
+    }
+    bad
+}
+
+#[test]
+fn the_lanes_warps_are_rtl_pdfs_bit_for_bit() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+    let us = numbers(&mut rng);
+    for tier in tiers() {
+        // SAFETY: the processor runs `tier`, whose instructions each form needs.
+        let (right, wrong) = unsafe {
+            match tier {
+                HitTier::Avx512 => (
+                    warp_mismatches::<Avx512>(&us, false),
+                    warp_mismatches::<Avx512>(&us, true),
+                ),
+                _ => (
+                    warp_mismatches::<Avx2>(&us, false),
+                    warp_mismatches::<Avx2>(&us, true),
+                ),
+            }
+        };
+        assert_eq!(right, 0, "{tier:?}");
+        assert!(
+            wrong > us.len() / 16,
+            "{tier:?}: a perturbed lane went unnoticed ({wrong})"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The mixture
+
+/// Target lists: the book's light and glass ball; a one-sided lamp alone; a sphere alone; three
+/// targets (a count that is no power of two); two spheres, one around the origins.
+fn target_lists() -> Vec<Vec<LightTarget>> {
+    let quad = |one_sided| LightTarget::Quad {
+        quad: QuadTarget::new(
+            DVec3::new(-1.0, 4.0, -1.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, 2.0),
+        ),
+        one_sided,
+    };
+    let tilted = LightTarget::Quad {
+        quad: QuadTarget::new(
+            DVec3::new(3.0, 0.0, -2.0),
+            DVec3::new(0.3, 1.5, 0.2),
+            DVec3::new(-0.4, 0.1, 1.8),
+        ),
+        one_sided: true,
+    };
+    let ball = LightTarget::Sphere(SphereTarget::new(DVec3::new(1.0, 0.5, 0.5), 0.9));
+    let tiny = LightTarget::Sphere(SphereTarget::new(DVec3::new(-2.0, 1.0, 3.0), 1e-9));
+    let around = LightTarget::Sphere(SphereTarget::new(DVec3::ZERO, 6.0));
+    vec![
+        vec![quad(false), ball],
+        vec![quad(true)],
+        vec![ball],
+        vec![quad(true), ball, tilted],
+        vec![tiny, around],
+    ]
+}
+
+/// How many of the lanes of [`Mixture8`] (`targets` with `lanes_weight`, in `tier`) differ from
+/// `sample_diffuse` of `mixture` with weight `w` (direction, weight, or whether the path goes on).
+fn mixture_mismatches(
+    rng: &mut Xoshiro256PlusPlus,
+    tier: HitTier,
+    targets: &[LightTarget],
+    w: f64,
+    lanes_weight: f64,
+) -> usize {
+    let lights = Lights {
+        all: targets.to_vec(),
+        ..Lights::default()
+    };
+    let m = Mixture8::new(&lights.all, lanes_weight).expect("the lanes take these targets");
+    let mut wrong = 0;
+    for round in 0..300 {
+        let p: [DVec3; 8] = std::array::from_fn(|i| match (round + i) % 5 {
+            // on the lamp's plane, and exactly below its corner
+            0 => DVec3::new(
+                rng.random_range(-3.0..3.0),
+                4.0,
+                rng.random_range(-3.0..3.0),
+            ),
+            1 => DVec3::new(-1.0, rng.random_range(-3.0..3.0), -1.0),
+            _ => point(rng, 5.0),
+        });
+        let n: [DVec3; 8] = std::array::from_fn(|_| unit(rng));
+        let u: [DVec2; 8] = std::array::from_fn(|i| match (round + i) % 7 {
+            0 => DVec2::new(w, rng.random()),
+            1 => DVec2::new(0.0, 0.0),
+            2 => DVec2::new(1.0 - f64::EPSILON / 2.0, 1.0 - f64::EPSILON / 2.0),
+            _ => DVec2::new(rng.random(), rng.random()),
+        });
+        let coord = |v: &[DVec3; 8], a: usize| lanes_of(|i| v[i][a]);
+        let (pp, nn) = (
+            [coord(&p, 0), coord(&p, 1), coord(&p, 2)],
+            [coord(&n, 0), coord(&n, 1), coord(&n, 2)],
+        );
+        let uu = [lanes_of(|i| u[i].x), lanes_of(|i| u[i].y)];
+        let lanes = 0b1111_0111; // one lane idle
+        // SAFETY: `tier` is one this processor runs.
+        let (d, weight, ok) = unsafe {
+            match tier {
+                HitTier::Avx512 => m.sample_avx512(&pp, &nn, &uu, lanes),
+                _ => m.sample_avx2(&pp, &nn, &uu, lanes),
+            }
+        };
+        for i in 0..8 {
+            if lanes & (1 << i) == 0 {
+                continue;
+            }
+            let pdf = ScatterPdf::Cosine(CosinePdf::new(n[i]));
+            let want = sample_diffuse(Strategy::Mixture, w, &pdf, p[i], n[i], &lights, u[i]);
+            let got = (ok & (1 << i) != 0)
+                .then(|| (DVec3::new(d[0].0[i], d[1].0[i], d[2].0[i]), weight.0[i]));
+            let bits = |x: Option<(DVec3, f64)>| {
+                x.map(|(d, w)| (d.to_array().map(f64::to_bits), w.to_bits()))
+            };
+            wrong += (bits(got) != bits(want)) as usize;
+        }
+    }
+    wrong
+}
+
+#[test]
+fn the_mixture_in_the_lanes_is_sample_diffuse_bit_for_bit() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(10);
+    for tier in tiers() {
+        for targets in target_lists() {
+            for w in [0.5, 0.15, 0.9] {
+                let bad = mixture_mismatches(&mut rng, tier, &targets, w, w);
+                assert_eq!(bad, 0, "{tier:?}, {} targets, w {w}", targets.len());
+            }
+        }
+    }
+}
+
+#[test]
+fn the_mixture_check_catches_a_weight_one_ulp_off() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+    for tier in tiers() {
+        let targets = &target_lists()[0];
+        let off = f64::from_bits(0.5f64.to_bits() + 1);
+        assert!(
+            mixture_mismatches(&mut rng, tier, targets, 0.5, off) > 100,
+            "{tier:?}"
+        );
+    }
+}
+
+#[test]
+fn the_lanes_refuse_what_they_do_not_follow() {
+    let quad = QuadTarget::new(DVec3::ZERO, DVec3::X, DVec3::Z);
+    let by_rectangles = LightTarget::Quad {
+        quad: quad.with_spherical_rectangles(true),
+        one_sided: false,
+    };
+    assert!(Mixture8::new(&[by_rectangles], 0.5).is_none());
+    assert!(Mixture8::new(&[], 0.5).is_none());
+    let plain = LightTarget::Quad {
+        quad,
+        one_sided: false,
+    };
+    assert!(Mixture8::new(&[plain], 0.5).is_some());
+    assert!(Mixture8::new(&vec![plain; rtl_render::mixture8::MAX_TARGETS + 1], 0.5).is_none());
+    // mis has its own integrator; a tree is not one small group
+    let cornell = builtin("cornell");
+    let mis = Renderer::new(&cornell, settings(8, 1, 50, Strategy::default(), 0.5));
+    assert!(!mis.paths_in_lanes());
+    let tree = builtin("book2-final");
+    let r = Renderer::new(&tree, settings(8, 1, 40, Strategy::Mixture, 0.5));
+    assert!(!r.paths_in_lanes());
+    // where an AVX tier runs, the book's Cornell box takes the lanes for mixture
+    let m = Renderer::new(&cornell, settings(8, 1, 50, Strategy::Mixture, 0.5));
+    assert_eq!(
+        m.paths_in_lanes(),
+        HitTier::current() != HitTier::Portable,
+        "{:?}",
+        HitTier::current()
+    );
+}
