@@ -6,7 +6,9 @@
 //! world space ([`flatten`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);
-//! the integrator and its sampling strategies ([`integrator`]);
+//! the integrator and its sampling strategies ([`integrator`]); eight paths traced side by side in the
+//! vector lanes ([`paths8`]: their rays intersected together by [`ray8`], the mixture's directions
+//! drawn together by [`mixture8`] and [`warp8`], all written once over [`wide8`]'s lanes);
 //! prefix-stable per-sample randomness ([`sampler`]); progressive rendering into an accumulation buffer
 //! ([`render`]); checkpoints and parts of long renders ([`checkpoint`]); image files ([`output`]).
 //!

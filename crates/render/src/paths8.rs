@@ -123,6 +123,8 @@ pub(crate) fn render_row(
     let mut closest = crate::ray8::Closest8::default();
     let mut active = 0u8;
     let mut next = 0u64;
+    // the scramble key of the pixel whose samples are being started, made at its first
+    let mut key = 0;
     loop {
         // Each idle lane takes the row's next sample, if the ring has room for it.
         for l in 0..LANES {
@@ -131,11 +133,14 @@ pub(crate) fn render_row(
             }
             while next < total && next - ring.commit < RING as u64 {
                 let (i, k) = ((next / spp) as usize, k0 + next % spp);
-                if k == k0 && stop() {
-                    return None;
+                if k == k0 {
+                    if stop() {
+                        return None;
+                    }
+                    key = r.pixel_key_of(i, j);
                 }
                 let ctx = &mut ctxs[l];
-                let ray = r.start_sample(i, j, k, ctx);
+                let ray = r.start_sample_keyed(i, j, k, key, ctx);
                 let seq = next;
                 next += 1;
                 if max_depth > 0 {

@@ -223,10 +223,29 @@ impl<'a> Renderer<'a> {
     #[inline]
     pub(crate) fn start_sample(&self, i: usize, j: usize, k: u64, ctx: &mut Ctx) -> Ray {
         let pixel = (j * self.camera.width + i) as u64;
+        self.start_sample_keyed(i, j, k, self.pixel_key(pixel), ctx)
+    }
+
+    /// [`Renderer::start_sample`] with the pixel's scramble key already made (once per pixel).
+    #[inline]
+    pub(crate) fn start_sample_keyed(
+        &self,
+        i: usize,
+        j: usize,
+        k: u64,
+        pixel_key: u64,
+        ctx: &mut Ctx,
+    ) -> Ray {
+        let pixel = (j * self.camera.width + i) as u64;
         ctx.rng = SampleRng::for_sample(self.settings.seed, pixel, k);
-        let pixel_key = self.pixel_key(pixel);
         ctx.sampler = Sampler::new(self.low_discrepancy, pixel_key, k);
         self.camera.ray(i, j, pixel_key, k, ctx)
+    }
+
+    /// The scramble key of pixel `(i, j)`'s sub-pixel sequence.
+    #[inline]
+    pub(crate) fn pixel_key_of(&self, i: usize, j: usize) -> u64 {
+        self.pixel_key((j * self.camera.width + i) as u64)
     }
 
     /// The counters of a sample whose path has ended.
