@@ -559,3 +559,33 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn no_lanes_changes_nothing_but_the_speed_and_explain_says_how_paths_go() {
+    let d = dir("no-lanes");
+    // The book's mixture with eight paths side by side (where the processor runs them) and one at a
+    // time: the same image, bit for bit.
+    let mixture = |extra: &[&'static str]| {
+        let mut v = render(&["--strategy", "mixture"]);
+        v.extend_from_slice(extra);
+        v
+    };
+    ok(&d, &mixture(&["--linear", "lanes.pfm"]));
+    ok(&d, &mixture(&["--no-lanes", "--linear", "one.pfm"]));
+    let read = |f: &str| std::fs::read(d.join(f)).unwrap();
+    assert_eq!(read("lanes.pfm"), read("one.pfm"));
+    let paths = |args: &[&str]| {
+        let out = rtl(&d, args);
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        text.lines()
+            .find(|l| l.trim_start().starts_with("paths"))
+            .unwrap_or_else(|| panic!("no paths line: {text}"))
+            .to_string()
+    };
+    let avx = rtl_render::traversal::HitTier::current() != rtl_render::traversal::HitTier::Portable;
+    let line = paths(&mixture(&["--explain"]));
+    assert_eq!(line.contains("eight side by side"), avx, "{line}");
+    assert!(paths(&mixture(&["--explain", "--no-lanes"])).contains("--no-lanes"));
+    assert!(paths(&render(&["--explain"])).contains("mis has its own integrator"));
+    let _ = std::fs::remove_dir_all(&d);
+}
