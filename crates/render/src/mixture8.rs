@@ -92,6 +92,9 @@ mod wide {
     use crate::wide8::*;
     use rtl_pdf::ONE_MINUS_EPSILON;
 
+    /// The directions, the weights and the lanes where the path goes on, stored.
+    pub type Stored = ([F64x8; 3], F64x8, u8);
+
     /// A direction and its density in each lane, and the lanes where the sampler succeeded.
     struct Sampled<W: Wide8> {
         direction: V3<W>,
@@ -408,7 +411,7 @@ mod wide {
             normal: &[F64x8; 3],
             u: &[F64x8; 2],
             lanes: u8,
-        ) -> ([F64x8; 3], F64x8, u8) {
+        ) -> Stored {
             // SAFETY: as the caller's.
             let (p, normal, u) = unsafe {
                 (
@@ -426,37 +429,38 @@ mod wide {
         }
 
         /// `sample_diffuse` of `mixture` for the Lambertian points `p` (unit normals `normal`,
-        /// numbers `u`) in the lanes of `lanes`, in AVX-512 instructions: the directions, their
-        /// weights `s / p`, and the lanes where the path goes on.
+        /// numbers `u`) in the lanes of `lanes`, in the instructions of `tier` (AVX-512, else
+        /// AVX2): the directions, their weights `s / p`, and the lanes where the path goes on.
         ///
         /// # Safety
-        /// Only where the processor has AVX-512F.
-        #[target_feature(enable = "avx512f")]
-        pub unsafe fn sample_avx512(
+        /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
+        pub unsafe fn sample(
             &self,
+            tier: crate::traversal::HitTier,
             p: &[F64x8; 3],
             normal: &[F64x8; 3],
             u: &[F64x8; 2],
             lanes: u8,
-        ) -> ([F64x8; 3], F64x8, u8) {
-            // SAFETY: compiled with AVX-512F, run where the processor has it.
-            unsafe { self.sample_stored::<Avx512>(p, normal, u, lanes) }
+        ) -> Stored {
+            // SAFETY: as this function's.
+            unsafe {
+                match tier {
+                    crate::traversal::HitTier::Avx512 => self.avx512(p, normal, u, lanes),
+                    _ => self.avx2(p, normal, u, lanes),
+                }
+            }
         }
 
-        /// [`Mixture8::sample_avx512`] in AVX2 instructions (four lanes to a register).
-        ///
-        /// # Safety
-        /// Only where the processor has AVX2.
+        #[target_feature(enable = "avx512f")]
+        unsafe fn avx512(&self, p: &[F64x8; 3], n: &[F64x8; 3], u: &[F64x8; 2], l: u8) -> Stored {
+            // SAFETY: compiled with AVX-512F, run where the processor has it.
+            unsafe { self.sample_stored::<Avx512>(p, n, u, l) }
+        }
+
         #[target_feature(enable = "avx2")]
-        pub unsafe fn sample_avx2(
-            &self,
-            p: &[F64x8; 3],
-            normal: &[F64x8; 3],
-            u: &[F64x8; 2],
-            lanes: u8,
-        ) -> ([F64x8; 3], F64x8, u8) {
+        unsafe fn avx2(&self, p: &[F64x8; 3], n: &[F64x8; 3], u: &[F64x8; 2], l: u8) -> Stored {
             // SAFETY: compiled with AVX2, run where the processor has it.
-            unsafe { self.sample_stored::<Avx2>(p, normal, u, lanes) }
+            unsafe { self.sample_stored::<Avx2>(p, n, u, l) }
         }
     }
 }

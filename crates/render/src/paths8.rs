@@ -291,14 +291,7 @@ impl Shading8 {
         lanes: u8,
     ) -> ([Vec3; LANES], [Option<f64>; LANES]) {
         // SAFETY: as this function's.
-        let (d, weight, ok) = unsafe {
-            match tier {
-                crate::traversal::HitTier::Avx512 => {
-                    m.sample_avx512(&self.p, &self.normal, &self.u, lanes)
-                }
-                _ => m.sample_avx2(&self.p, &self.normal, &self.u, lanes),
-            }
-        };
+        let (d, weight, ok) = unsafe { m.sample(tier, &self.p, &self.normal, &self.u, lanes) };
         (
             std::array::from_fn(|l| Vec3::new(d[0].0[l], d[1].0[l], d[2].0[l])),
             std::array::from_fn(|l| (ok & (1 << l) != 0).then_some(weight.0[l])),

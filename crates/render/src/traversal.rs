@@ -580,19 +580,36 @@ impl Scene {
         if accel.others.is_empty() {
             return best.record(group, ray, closest);
         }
+        let (closest, best) = self.others_in_turn(group, ray, range.min, (closest, best), ctx);
+        best.record(group, ray, closest)
+    }
+
+    /// A small group's other objects after its quads: each, in order, if the ray enters its box
+    /// before the closest hit so far (`so_far`, its parameter and what it is), and the closest hit
+    /// after them.
+    #[inline(always)]
+    fn others_in_turn<'a>(
+        &self,
+        group: &'a crate::scene::Group,
+        ray: &Ray,
+        min: f64,
+        so_far: (f64, Closest<'a>),
+        ctx: &mut Ctx,
+    ) -> (f64, Closest<'a>) {
+        let (mut closest, mut best) = so_far;
+        let accel = &group.accel;
         let inv = ray.direction.recip();
         for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
-            if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
+            if bounds.hit(ray.origin, inv, min, closest).is_none() {
                 continue;
             }
             let o = &group.objects[oi as usize];
-            let within = Interval::new(range.min, closest);
-            if let Some((t, c)) = self.hit_other(o, ray, within, ctx) {
+            if let Some((t, c)) = self.hit_other(o, ray, Interval::new(min, closest), ctx) {
                 closest = t;
                 best = c;
             }
         }
-        best.record(group, ray, closest)
+        (closest, best)
     }
 
     /// Whether eight rays can be intersected with group `g` at once ([`Scene::hit8_small`]): a
@@ -657,20 +674,9 @@ impl Scene {
         while bits != 0 {
             let i = bits.trailing_zeros() as usize;
             bits &= bits - 1;
-            let ray = &rays[i];
-            let (mut closest, mut best) = (found.t[i], hits.closest(found, i));
-            let inv = ray.direction.recip();
-            for (&oi, bounds) in accel.others.iter().zip(&accel.other_bounds) {
-                if bounds.hit(ray.origin, inv, range.min, closest).is_none() {
-                    continue;
-                }
-                let o = &group.objects[oi as usize];
-                let within = Interval::new(range.min, closest);
-                if let Some((t, c)) = self.hit_other(o, ray, within, &mut ctxs[i]) {
-                    closest = t;
-                    best = c;
-                }
-            }
+            let so_far = (found.t[i], hits.closest(found, i));
+            let (closest, best) =
+                self.others_in_turn(group, &rays[i], range.min, so_far, &mut ctxs[i]);
             per_lane[i] = Found {
                 group,
                 closest: best,

@@ -10,7 +10,8 @@ use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_pdf::{CosinePdf, QuadTarget, SphereTarget};
 use rtl_render::camera::CameraSettings;
-use rtl_render::hit::Hit;
+mod hit_bits;
+use hit_bits::record;
 use rtl_render::integrator::{Strategy, sample_diffuse};
 use rtl_render::lanes::F64x8;
 use rtl_render::lights::{LightTarget, Lights};
@@ -326,21 +327,6 @@ fn small_group<R: Rng>(rng: &mut R) -> (Scene, Vec<Point3>) {
     }
     b.flatten = false;
     (b.build().unwrap(), corners)
-}
-
-/// Everything of a hit the renderer reads, as bits.
-type Record = (u64, [u64; 3], [u64; 3], bool, u32);
-
-fn record(h: Option<Hit>) -> Option<Record> {
-    h.map(|h| {
-        (
-            h.t.to_bits(),
-            h.p.to_array().map(f64::to_bits),
-            h.normal.to_array().map(f64::to_bits),
-            h.front_face,
-            h.material.0,
-        )
-    })
 }
 
 /// How many lanes `Scene::hit8_small` (in `tier`) finds otherwise than `Scene::hit_group` one ray at
@@ -668,12 +654,7 @@ fn mixture_mismatches(
         let uu = [lanes_of(|i| u[i].x), lanes_of(|i| u[i].y)];
         let lanes = 0b1111_0111; // one lane idle
         // SAFETY: `tier` is one this processor runs.
-        let (d, weight, ok) = unsafe {
-            match tier {
-                HitTier::Avx512 => m.sample_avx512(&pp, &nn, &uu, lanes),
-                _ => m.sample_avx2(&pp, &nn, &uu, lanes),
-            }
-        };
+        let (d, weight, ok) = unsafe { m.sample(tier, &pp, &nn, &uu, lanes) };
         for i in 0..8 {
             if lanes & (1 << i) == 0 {
                 continue;

@@ -110,24 +110,11 @@ fn refused_shares() {
 
 // ---- The flat small-group traversal on hostile rays -------------------------------------------
 
-use rtl_render::hit::Hit;
+mod hit_bits;
+use hit_bits::{Record, record};
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
 use rtl_render::scene::{GroupId, Object, Transform};
-
-type Record = (u64, [u64; 3], [u64; 3], bool, u32);
-
-fn record(h: Option<Hit>) -> Option<Record> {
-    h.map(|h| {
-        (
-            h.t.to_bits(),
-            h.p.to_array().map(f64::to_bits),
-            h.normal.to_array().map(f64::to_bits),
-            h.front_face,
-            h.material.0,
-        )
-    })
-}
 
 /// Axis-aligned rays whose origins lie on the objects' planes, box faces and edges, with direction
 /// components exactly 0 (the slab test's 0 * inf), and a few oblique ones.

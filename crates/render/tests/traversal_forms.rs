@@ -6,7 +6,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use rtl_render::hit::Hit;
+mod hit_bits;
+use hit_bits::record;
 use rtl_render::material::{Albedo, Material};
 use rtl_render::ray::{Interval, Ray};
 use rtl_render::sampler::Ctx;
@@ -24,21 +25,6 @@ fn point<R: Rng>(rng: &mut R, r: f64) -> Point3 {
         rng.random_range(-r..r),
         rng.random_range(-r..r),
     )
-}
-
-/// Everything of a hit that the renderer reads, as bits.
-type Record = (u64, [u64; 3], [u64; 3], bool, u32);
-
-fn record(h: Option<Hit>) -> Option<Record> {
-    h.map(|h| {
-        (
-            h.t.to_bits(),
-            h.p.to_array().map(f64::to_bits),
-            h.normal.to_array().map(f64::to_bits),
-            h.front_face,
-            h.material.0,
-        )
-    })
 }
 
 /// A small random group `g` (up to twelve quads and up to two other objects: spheres, a rotated box
