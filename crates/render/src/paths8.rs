@@ -1,7 +1,8 @@
 //! Eight paths side by side: the book's one-sample estimator ([`OneSamplePath`]) traced for eight
-//! samples at once, their rays intersected together in the lanes of AVX-512 registers
-//! ([`crate::ray8`]), each path's vertex (its material, its direction, its weight) then computed on
-//! its own as one path at a time would.
+//! samples at once, their rays intersected together in the lanes of vector registers
+//! ([`crate::ray8`]: one AVX-512 register, or two AVX2 ones), each path's vertex (its emission, its
+//! material) then computed on its own as one path at a time would, and for `mixture` the directions
+//! of the Lambertian bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
 //!
 //! A scene as small as book 3's Cornell box (twelve quads and a sphere, no tree) spends most of a
 //! path's intersection on work that does not depend on the ray: with one ray, the quads fill the
@@ -33,7 +34,7 @@ const RING: usize = 256;
 
 /// Whether a render of `scene` by `strategy` traces eight paths side by side: the book's
 /// one-sample strategies (`mis` has its own integrator), when the scene's rays meet a small group on
-/// a processor with AVX-512 ([`Scene::hits_eight_at_once`]).
+/// a processor with AVX2 or AVX-512 ([`Scene::hits_eight_at_once`]).
 pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
     !matches!(strategy, Strategy::Mis(_)) && scene.hits_eight_at_once(GroupId(0))
 }
@@ -47,8 +48,8 @@ struct Ring {
 }
 
 impl Ring {
-    /// Keep sample `seq`'s value, then sum every finished sample from `commit` on, in order, into
-    /// pixel `seq / spp` of the row.
+    /// Keep sample `seq`'s value (sample `seq` of the row is one of pixel `seq / spp`), then sum
+    /// every finished sample from `commit` on, in order, into its pixel.
     #[inline]
     fn finish(&mut self, seq: u64, value: Color, spp: u64, row: &mut Row<'_>, stats: &mut Stats) {
         let slot = (seq % RING as u64) as usize;
