@@ -367,12 +367,13 @@ impl OneSamplePath {
             self.l += self.throughput * material.emitted(hit, &scene.textures, ctx);
         }
         if let Material::Lambertian { albedo } = material {
-            // `Material::scatter`'s Lambertian answer, made here: through its `Scatter` the albedo
+            // `Material::scatter`'s Lambertian answer, without its `Scatter`: through it the albedo
             // was copied to the stack and read back across the copy's stores, a stall the store
             // cannot forward (3% of `mixture` traced eight paths at a time).
+            let (attenuation, pdf) = Material::lambertian_at(albedo, hit, &scene.textures, ctx);
             return Some(Bounce::Diffuse {
-                attenuation: albedo.value(hit, &scene.textures, ctx),
-                pdf: ScatterPdf::Cosine(rtl_pdf::CosinePdf::new(hit.normal)),
+                attenuation,
+                pdf,
                 u: ctx.sample_2d(Dimension::Material(depth)),
             });
         }

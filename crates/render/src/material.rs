@@ -134,6 +134,21 @@ impl Material {
         }
     }
 
+    /// What a Lambertian surface of `albedo` scatters at `hit`: the attenuation, and the cosine
+    /// density about the normal.
+    #[inline(always)]
+    pub fn lambertian_at(
+        albedo: &Albedo,
+        hit: &Hit,
+        textures: &[Texture],
+        ctx: &mut Ctx,
+    ) -> (Color, ScatterPdf) {
+        (
+            albedo.value(hit, textures, ctx),
+            ScatterPdf::Cosine(CosinePdf::new(hit.normal)),
+        )
+    }
+
     /// How the ray scatters at the hit; `None` if it is absorbed. A metal's fuzz and a dielectric's
     /// coin come from [`Dimension::Material`] of bounce `ctx.bounce`.
     #[inline]
@@ -145,10 +160,10 @@ impl Material {
         ctx: &mut Ctx,
     ) -> Option<Scatter> {
         match self {
-            Material::Lambertian { albedo } => Some(Scatter::Diffuse {
-                attenuation: albedo.value(hit, textures, ctx),
-                pdf: ScatterPdf::Cosine(CosinePdf::new(hit.normal)),
-            }),
+            Material::Lambertian { albedo } => {
+                let (attenuation, pdf) = Self::lambertian_at(albedo, hit, textures, ctx);
+                Some(Scatter::Diffuse { attenuation, pdf })
+            }
             Material::Isotropic { albedo } => Some(Scatter::Diffuse {
                 attenuation: albedo.value(hit, textures, ctx),
                 pdf: ScatterPdf::Sphere(SpherePdf),

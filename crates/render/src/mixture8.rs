@@ -50,7 +50,10 @@ impl Mixture8 {
     /// if there are no targets (the strategy then samples the material alone) or a quad samples by
     /// spherical rectangles, which the lanes do not.
     pub fn new(lights: &[LightTarget], weight: f64) -> Option<Mixture8> {
-        if lights.is_empty() || lights.len() > MAX_TARGETS || !(weight > 0.0 && weight < 1.0) {
+        if lights.is_empty()
+            || lights.len() > MAX_TARGETS
+            || crate::render::check_mixture_weight(weight).is_err()
+        {
             return None;
         }
         let targets = lights
@@ -240,7 +243,10 @@ mod wide {
                     let r2 = zero.splat_like(radius * radius);
                     let missed = dot(to_center, direction).le(zero) | dot(c, c).gt(r2);
                     let cone = cone_pdf.zero_unless(omc.gt(zero) & !missed);
-                    cone.select(surrounding, zero.splat_like(UNIFORM_SPHERE_PDF))
+                    cone.select(
+                        surrounding,
+                        zero.splat_like(rtl_pdf::warp::uniform_sphere_pdf()),
+                    )
                 }
                 _ => unreachable!("a target's view is of its own kind"),
             }
@@ -301,7 +307,10 @@ mod wide {
                     // or all around, from inside
                     if !surrounding.is_empty() {
                         s.direction = select3(s.direction, surrounding, sample_uniform_sphere(u));
-                        s.pdf = s.pdf.select(surrounding, d2.splat_like(UNIFORM_SPHERE_PDF));
+                        s.pdf = s.pdf.select(
+                            surrounding,
+                            d2.splat_like(rtl_pdf::warp::uniform_sphere_pdf()),
+                        );
                         s.ok = s.ok | surrounding;
                     }
                     s

@@ -120,7 +120,7 @@ pub(crate) fn render_row(
     let mut shading = Shading8::default();
     let mut hits: [Option<crate::hit::Hit>; LANES] = [None; LANES];
     let mut attenuations = [Color::ZERO; LANES];
-    let mut per_lane = [crate::traversal::Found::nothing(&scene.groups[0]); LANES];
+    let mut per_lane = [crate::traversal::Found::NOTHING; LANES];
     let mut closest = crate::ray8::Closest8::default();
     let mut active = 0u8;
     let mut next = 0u64;

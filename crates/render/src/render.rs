@@ -163,7 +163,8 @@ impl<'a> Renderer<'a> {
     }
 
     /// Whether eight paths are traced side by side ([`crate::paths8`]): for the book's one-sample
-    /// strategies in a scene whose rays meet a small group (no tree), on a processor with AVX-512.
+    /// strategies in a scene whose rays meet a small group (no tree), on a processor with AVX2 or
+    /// AVX-512.
     pub fn paths_in_lanes(&self) -> bool {
         self.paths_in_lanes
     }

@@ -678,7 +678,6 @@ impl Scene {
             let (closest, best) =
                 self.others_in_turn(group, &rays[i], range.min, so_far, &mut ctxs[i]);
             per_lane[i] = Found {
-                group,
                 closest: best,
                 t: closest,
             };
@@ -928,42 +927,31 @@ impl<'a> Hits8<'a> {
         i: usize,
         ray: &Ray,
     ) -> Option<Hit> {
-        if self.per_lane {
-            return per_lane[i].record(ray);
-        }
-        match self.closest(found, i) {
-            Closest::Sphere(s) => Some(s.hit_at(ray, found.t[i])),
-            c => c.record(self.group, ray, found.t[i]),
+        let (closest, t) = if self.per_lane {
+            (per_lane[i].closest, per_lane[i].t)
+        } else {
+            (self.closest(found, i), found.t[i])
+        };
+        match closest {
+            Closest::Sphere(s) => Some(s.hit_at(ray, t)),
+            c => c.record(self.group, ray, t),
         }
     }
 }
 
-/// What one ray met in a group, its record not yet built.
+/// What one ray met in a small group, its record not yet built ([`Hits8::record`] builds it).
 #[derive(Clone, Copy)]
 pub struct Found<'a> {
-    group: &'a crate::scene::Group,
     closest: Closest<'a>,
     t: f64,
 }
 
-impl<'a> Found<'a> {
-    /// Nothing met, in `group`.
-    pub fn nothing(group: &'a crate::scene::Group) -> Self {
-        Found {
-            group,
-            closest: Closest::Nothing,
-            t: f64::INFINITY,
-        }
-    }
-
-    /// The hit's record (`None` if nothing was met); `ray` is the ray that met it.
-    #[inline(always)]
-    fn record(self, ray: &Ray) -> Option<Hit> {
-        match self.closest {
-            Closest::Sphere(s) => Some(s.hit_at(ray, self.t)),
-            c => c.record(self.group, ray, self.t),
-        }
-    }
+impl Found<'_> {
+    /// Nothing met.
+    pub const NOTHING: Found<'static> = Found {
+        closest: Closest::Nothing,
+        t: f64::INFINITY,
+    };
 }
 
 /// The closest hit found so far in a group, its record built only at the end where it can be

@@ -12,7 +12,7 @@
 
 use crate::wide8::{V3, Wide8, add3, scale3};
 use rtl_pdf::warp::{CONCENTRIC_MAX, CONE_U_MAX, MIN_COS_THETA};
-use std::f64::consts::{FRAC_1_PI, FRAC_PI_4, PI, TAU};
+use std::f64::consts::{FRAC_1_PI, FRAC_PI_4, TAU};
 
 /// `(sin x, cos x)` for `|x| <= pi / 4`: rtl-pdf's Taylor polynomials, Horner from the smallest term.
 #[inline(always)]
@@ -141,9 +141,6 @@ pub fn sample_uniform_sphere<W: Wide8>(u: [W; 2]) -> V3<W> {
     let (sin_phi, cos_phi) = sin_cos_turns(u[1]);
     [r * cos_phi, r * sin_phi, z]
 }
-
-/// rtl-pdf's `uniform_sphere_pdf`, `1 / (4 pi)`.
-pub const UNIFORM_SPHERE_PDF: f64 = 1.0 / (4.0 * PI);
 
 /// [`rtl_pdf::Onb`] in the lanes: the basis `(u, v, w)` of Duff et al. from the unit `w`.
 #[derive(Clone, Copy)]

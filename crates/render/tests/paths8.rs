@@ -345,7 +345,7 @@ fn hit8_mismatches(scene: &Scene, tier: HitTier, batches: &[[Ray; 8]]) -> usize 
             lanes.set(l, r);
         }
         let mut found = Closest8::default();
-        let mut per_lane = [Found::nothing(&scene.groups[0]); 8];
+        let mut per_lane = [Found::NOTHING; 8];
         let active = 0b1011_1111; // one lane idle
         // SAFETY: `tier` is one this processor runs (see `tiers`).
         let hits = unsafe {
