@@ -54,6 +54,7 @@ pub mod texture;
 pub mod transform;
 pub mod traversal;
 pub mod vec;
+pub mod vertex8;
 pub mod warp8;
 pub mod wide8;
 

@@ -332,7 +332,7 @@ mod wide {
         /// own, one that sampled the cosine lobe takes them all, in the targets' order, as the
         /// scalar code adds them.
         #[inline(always)]
-        fn sample_in<W: Wide8>(
+        pub(crate) fn sample_in<W: Wide8>(
             &self,
             p: V3<W>,
             normal: V3<W>,

@@ -21,7 +21,7 @@ use crate::mixture8::Mixture8;
 use crate::ray::{Interval, Ray};
 use crate::ray8::Rays8;
 use crate::render::{Accumulator, Renderer};
-use crate::sampler::{Ctx, Stats};
+use crate::sampler::{Ctx, Dimension, Stats};
 use crate::scene::{GroupId, Scene};
 use crate::vec::{Color, Point3, Vec3};
 
@@ -122,6 +122,13 @@ pub(crate) fn render_row(
     let mut attenuations = [Color::ZERO; LANES];
     let mut per_lane = [crate::traversal::Found::NOTHING; LANES];
     let mut closest = crate::ray8::Closest8::default();
+    // The Lambertian vertex in the lanes ([`crate::vertex8`]): the paths' throughputs kept
+    // there too (lane by lane in `paths` only around a vertex computed one path at a time), and the
+    // lanes' rays in `lanes` (`rays` keeps each ray's time, and its origin and direction are
+    // brought up to date before a vertex is computed one path at a time).
+    let surfaces = r.lambertian_vertex_in_lanes();
+    let mut throughput = [F64x8::ZERO; 3];
+    let mut bounce_u = [F64x8::ZERO; 2];
     let mut active = 0u8;
     let mut next = 0u64;
     // the scramble key of the pixel whose samples are being started, made at its first
@@ -153,6 +160,9 @@ pub(crate) fn render_row(
                     path.throughput = Color::ONE;
                     path.l = Color::ZERO;
                     path.depth = 0;
+                    for t in &mut throughput {
+                        t.0[l] = 1.0;
+                    }
                     seqs[l] = seq;
                     rays[l] = ray;
                     lanes.set(l, &ray);
@@ -192,6 +202,9 @@ pub(crate) fn render_row(
                         ctx.bounce = path.depth;
                         rays[l] = next;
                         lanes.set(l, &next);
+                        for (a, t) in throughput.iter_mut().enumerate() {
+                            t.0[l] = path.throughput[a];
+                        }
                     }
                     _ => {
                         active &= !(1 << l);
@@ -204,11 +217,64 @@ pub(crate) fn render_row(
         // Each path's vertex up to its diffuse direction; Lambertian bounces of `mixture` wait for
         // the lanes.
         let mut waiting = 0u8;
-        let mut bits = active;
+        // The lanes whose vertex is Lambertian on a quad of constant albedo, with their bounce's
+        // numbers (drawn, as `OneSamplePath::scatter` draws them, after the depth is counted).
+        let mut in_lanes = 0u8;
+        if let Some(s) = surfaces {
+            let mut bits = active;
+            while bits != 0 {
+                let l = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                if s.lambertian(closest.hit[l]) {
+                    let depth = paths[l].depth;
+                    paths[l].depth += 1;
+                    let u = ctxs[l].sample_2d(Dimension::Material(depth));
+                    (bounce_u[0].0[l], bounce_u[1].0[l]) = (u.x, u.y);
+                    in_lanes |= 1 << l;
+                }
+            }
+        }
+        if let (Some(s), Some(m)) = (surfaces, mixture) {
+            // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+            let go = unsafe {
+                crate::vertex8::lambertian(
+                    tier,
+                    s,
+                    m,
+                    &closest,
+                    &mut lanes,
+                    &mut throughput,
+                    &bounce_u,
+                    in_lanes,
+                )
+            };
+            let mut bits = in_lanes;
+            while bits != 0 {
+                let l = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let (path, ctx) = (&paths[l], &mut ctxs[l]);
+                if go & (1 << l) != 0 && path.depth < max_depth {
+                    ctx.stats.rays += 1;
+                    ctx.bounce = path.depth;
+                } else {
+                    active &= !(1 << l);
+                    Renderer::finish_sample(ctx);
+                    ring.finish(seqs[l], path.l, spp, &mut row, &mut stats);
+                }
+            }
+        }
+        let mut bits = active & !in_lanes;
         while bits != 0 {
             let l = bits.trailing_zeros() as usize;
             bits &= bits - 1;
-            let ray = rays[l];
+            let ray = if surfaces.is_some() {
+                // the lanes hold the ray and the throughput (`rays[l]` the ray's time)
+                paths[l].throughput =
+                    Color::new(throughput[0].0[l], throughput[1].0[l], throughput[2].0[l]);
+                lanes.ray(l, rays[l].time)
+            } else {
+                rays[l]
+            };
             let hit = found.record(&closest, &per_lane, l, &ray);
             let next = match paths[l].scatter(scene, &ray, hit.as_ref(), &mut ctxs[l]) {
                 None => None,

@@ -35,6 +35,17 @@ impl Default for Rays8 {
 }
 
 impl Rays8 {
+    /// The ray in lane `lane`, at `time`.
+    #[inline(always)]
+    pub fn ray(&self, lane: usize, time: f64) -> Ray {
+        let (o, d) = (&self.origin, &self.direction);
+        Ray::new(
+            crate::vec::Point3::new(o[0].0[lane], o[1].0[lane], o[2].0[lane]),
+            crate::vec::Vec3::new(d[0].0[lane], d[1].0[lane], d[2].0[lane]),
+            time,
+        )
+    }
+
     /// Put `ray` in lane `lane`.
     #[inline(always)]
     pub fn set(&mut self, lane: usize, ray: &Ray) {

@@ -133,6 +133,8 @@ pub struct Renderer<'a> {
     paths_in_lanes: bool,
     /// The `mixture` strategy's density in the lanes, where the paths are traced in them.
     mixture8: Option<crate::mixture8::Mixture8>,
+    /// The quads whose Lambertian vertex `mixture` computes in the lanes ([`crate::vertex8`]).
+    quad_surfaces: Option<crate::vertex8::QuadSurfaces>,
 }
 
 impl<'a> Renderer<'a> {
@@ -151,6 +153,9 @@ impl<'a> Renderer<'a> {
         let mixture8 = (paths_in_lanes && settings.strategy == Strategy::Mixture)
             .then(|| crate::mixture8::Mixture8::new(&lights.all, settings.mixture_weight))
             .flatten();
+        let quad_surfaces = mixture8
+            .as_ref()
+            .and_then(|_| crate::vertex8::QuadSurfaces::new(scene, crate::scene::GroupId(0)));
         Renderer {
             scene,
             camera,
@@ -159,6 +164,7 @@ impl<'a> Renderer<'a> {
             low_discrepancy: options.is_some_and(|o| o.low_discrepancy),
             paths_in_lanes,
             mixture8,
+            quad_surfaces,
         }
     }
 
@@ -173,6 +179,24 @@ impl<'a> Renderer<'a> {
     /// the paths are traced in them and the targets allow it.
     pub fn mixture_in_lanes(&self) -> Option<&crate::mixture8::Mixture8> {
         self.mixture8.as_ref()
+    }
+
+    /// The quads whose Lambertian vertex is computed in the lanes, whole ([`crate::vertex8`]): for
+    /// `mixture` where its density is in the lanes and the scene's small group has Lambertian quads
+    /// of a constant albedo.
+    pub fn lambertian_vertex_in_lanes(&self) -> Option<&crate::vertex8::QuadSurfaces> {
+        self.quad_surfaces
+            .as_ref()
+            .filter(|_| self.mixture8.is_some())
+    }
+
+    /// This renderer with the Lambertian vertex built lane by lane after the traversal (only the
+    /// mixture's directions in the lanes): the same image, for tests and for measuring what the
+    /// vertex in the lanes buys.
+    #[doc(hidden)]
+    pub fn without_lambertian_vertex_in_lanes(mut self) -> Self {
+        self.quad_surfaces = None;
+        self
     }
 
     /// This renderer with `m` as the mixture's density in the lanes (where the paths are traced in
@@ -190,6 +214,7 @@ impl<'a> Renderer<'a> {
     pub fn one_path_at_a_time(mut self) -> Self {
         self.paths_in_lanes = false;
         self.mixture8 = None;
+        self.quad_surfaces = None;
         self
     }
 

@@ -215,7 +215,7 @@ pub struct Quad {
     /// Plane offset `normal . Q`.
     pub(crate) d: f64,
     /// Error bound of a hit point, from the quad's own magnitude.
-    err: f64,
+    pub(crate) err: f64,
     pub material: MaterialId,
 }
 

@@ -51,6 +51,17 @@ pub trait Wide8:
     /// # Safety
     /// As [`Wide8::splat`].
     unsafe fn load(x: &F64x8) -> Self;
+    /// The lanes of `x`, at any alignment.
+    ///
+    /// # Safety
+    /// As [`Wide8::splat`].
+    unsafe fn load_unaligned(x: &[f64; 8]) -> Self;
+    /// Eight rows of sixteen numbers as sixteen columns: lane `i` of column `j` is `rows[i][j]`
+    /// (the rows transposed in registers, by shuffles, not by stores that a load reads back).
+    ///
+    /// # Safety
+    /// As [`Wide8::splat`].
+    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16];
     /// The lanes, stored.
     fn store(self) -> F64x8;
     /// The lanes whose bit is set in `bits`.
@@ -191,6 +202,12 @@ pub fn splat3_like<W: Wide8>(like: W, v: glam::DVec3) -> V3<W> {
     ]
 }
 
+/// Three coordinates, stored.
+#[inline(always)]
+pub fn store3<W: Wide8>(v: V3<W>) -> [F64x8; 3] {
+    [v[0].store(), v[1].store(), v[2].store()]
+}
+
 /// Three coordinates of eight lanes each, loaded.
 ///
 /// # Safety
@@ -199,6 +216,37 @@ pub fn splat3_like<W: Wide8>(like: W, v: glam::DVec3) -> V3<W> {
 pub unsafe fn load3<W: Wide8>(v: &[F64x8; 3]) -> V3<W> {
     // SAFETY: as this function's.
     unsafe { [W::load(&v[0]), W::load(&v[1]), W::load(&v[2])] }
+}
+
+/// Numbers `at..at + 4` of four rows as four columns: lane `i` of column `j` is `rows[i][at + j]`
+/// (a 4 x 4 transpose: pairs interleaved, then halves exchanged).
+///
+/// # Safety
+/// Only where the processor has AVX; `at + 4 <= 16`.
+#[inline(always)]
+unsafe fn columns4(rows: [&[f64; 16]; 4], at: usize) -> [__m256d; 4] {
+    debug_assert!(at + 4 <= 16);
+    // SAFETY: as this function's; each load reads `rows[i][at..at + 4]`, inside the row.
+    unsafe {
+        // (written out: in a closure the loads would not be compiled with the caller's AVX)
+        let r = [
+            _mm256_loadu_pd(rows[0].as_ptr().add(at)),
+            _mm256_loadu_pd(rows[1].as_ptr().add(at)),
+            _mm256_loadu_pd(rows[2].as_ptr().add(at)),
+            _mm256_loadu_pd(rows[3].as_ptr().add(at)),
+        ];
+        // (r0[0] r1[0] r0[2] r1[2]), (r0[1] r1[1] r0[3] r1[3]), and the same of r2 and r3
+        let t0 = _mm256_unpacklo_pd(r[0], r[1]);
+        let t1 = _mm256_unpackhi_pd(r[0], r[1]);
+        let t2 = _mm256_unpacklo_pd(r[2], r[3]);
+        let t3 = _mm256_unpackhi_pd(r[2], r[3]);
+        [
+            _mm256_permute2f128_pd::<0x20>(t0, t2),
+            _mm256_permute2f128_pd::<0x20>(t1, t3),
+            _mm256_permute2f128_pd::<0x31>(t0, t2),
+            _mm256_permute2f128_pd::<0x31>(t1, t3),
+        ]
+    }
 }
 
 /// The AVX-512 form: one 512-bit register, comparisons to a bit mask.
@@ -312,6 +360,28 @@ impl Wide8 for Avx512 {
     unsafe fn load(x: &F64x8) -> Self {
         // `F64x8` is eight f64 aligned to 64 bytes, as the aligned load requires.
         avx512!(Avx512(_mm512_load_pd(x.0.as_ptr())))
+    }
+    #[inline(always)]
+    unsafe fn load_unaligned(x: &[f64; 8]) -> Self {
+        avx512!(Avx512(_mm512_loadu_pd(x.as_ptr())))
+    }
+    #[inline(always)]
+    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
+        let mut out = [avx512!(Avx512(_mm512_setzero_pd())); 16];
+        for block in 0..4 {
+            // (AVX-512F implies the AVX that `columns4` takes)
+            let (lo, hi) = avx512!((
+                columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
+                columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),
+            ));
+            for j in 0..4 {
+                out[4 * block + j] = avx512!(Avx512(_mm512_insertf64x4::<1>(
+                    _mm512_castpd256_pd512(lo[j]),
+                    hi[j]
+                )));
+            }
+        }
+        out
     }
     #[inline(always)]
     fn store(self) -> F64x8 {
@@ -528,6 +598,27 @@ impl Wide8 for Avx2 {
             _mm256_load_pd(x.0.as_ptr()),
             _mm256_load_pd(x.0.as_ptr().add(4))
         ]))
+    }
+    #[inline(always)]
+    unsafe fn load_unaligned(x: &[f64; 8]) -> Self {
+        avx2!(Avx2([
+            _mm256_loadu_pd(x.as_ptr()),
+            _mm256_loadu_pd(x.as_ptr().add(4))
+        ]))
+    }
+    #[inline(always)]
+    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
+        let mut out = [avx2!(Avx2([_mm256_setzero_pd(); 2])); 16];
+        for block in 0..4 {
+            let (lo, hi) = avx2!((
+                columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
+                columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),
+            ));
+            for j in 0..4 {
+                out[4 * block + j] = Avx2([lo[j], hi[j]]);
+            }
+        }
+        out
     }
     #[inline(always)]
     fn store(self) -> F64x8 {

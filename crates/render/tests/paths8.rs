@@ -220,6 +220,25 @@ fn eight_paths_side_by_side_give_the_image_of_one_at_a_time() {
                 lanes_agree(&scene, st, ranges, plain),
                 "{name} {strategy:?}"
             );
+            if strategy == Strategy::Mixture {
+                // the Lambertian vertex in the lanes (every wall of these rooms), and without it
+                assert!(
+                    lanes_agree(&scene, st, ranges, |s, st| {
+                        let r = Renderer::new(s, st);
+                        // (only the book 3 box lists targets: elsewhere no mixture in the lanes)
+                        let lambertian = r.lambertian_vertex_in_lanes().is_some();
+                        assert_eq!(lambertian, r.mixture_in_lanes().is_some(), "{name}");
+                        assert!(lambertian || name != "cornell", "{name}");
+                        r
+                    }),
+                    "{name}: the vertex in the lanes"
+                );
+                assert!(
+                    lanes_agree(&scene, st, ranges, |s, st| Renderer::new(s, st)
+                        .without_lambertian_vertex_in_lanes()),
+                    "{name}: the vertex built lane by lane"
+                );
+            }
         }
     }
     for i in 0..12 {

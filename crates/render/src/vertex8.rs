@@ -1,0 +1,216 @@
+//! The Lambertian vertex of eight paths in the lanes: where a lane's ray met a quad of constant
+//! albedo (most vertices of the Cornell box), everything from the hit to the next ray is computed
+//! eight lanes at a time, with nothing built per lane:
+//!
+//! - the hit point `p = Q + alpha u + beta v` and the normal turned against the ray
+//!   ([`crate::shapes::Quad::hit_at`], [`crate::hit::Hit::face`]);
+//! - the `mixture` strategy's direction `omega` and weight `s(omega) / p(omega)`
+//!   ([`crate::mixture8::Mixture8`]);
+//! - the throughput times `albedo * s / p` ([`crate::integrator::OneSamplePath::diffuse`]);
+//! - the next ray, from `p` pushed off the surface by four times the quad's error bound to the side
+//!   `omega` leaves on ([`crate::hit::Hit::spawn_origin`]).
+//!
+//! The quads' numbers are kept one row per quad ([`QuadSurfaces`]), and the eight rows the lanes
+//! met are transposed into columns in registers ([`Wide8::columns16`]). Each lane computes the same
+//! `f64` operations in the same order as the one-path code, so the paths, and the image, are
+//! bit-identical to tracing one path at a time (tested in `crates/render/tests/paths8.rs`).
+//! Only the bounce's two numbers are drawn lane by lane, each from its own sample's sequence.
+
+use crate::material::{Albedo, Material};
+use crate::scene::{GroupId, Object, Scene};
+
+/// A quad's numbers: `Q`, `u`, `v`, the unit outward normal, the error bound of a hit point, the
+/// albedo.
+type Row = [f64; 16];
+
+/// The quads of a small group in the order of its packets (quad `k` is lane `k % 4` of packet
+/// `k / 4`, the numbering of [`crate::ray8::Closest8::hit`]), for the vertex in the lanes.
+pub struct QuadSurfaces {
+    rows: Vec<Row>,
+    /// Whether quad `k`'s material is Lambertian of a constant albedo.
+    lambertian: Vec<bool>,
+}
+
+impl QuadSurfaces {
+    /// The quads of group `g` if its rays are intersected eight at a time with every answer in the
+    /// lanes (its objects other than quads are all static spheres) and some quad is Lambertian of
+    /// a constant albedo; else `None`.
+    pub fn new(scene: &Scene, g: GroupId) -> Option<QuadSurfaces> {
+        let group = &scene.groups[g.0 as usize];
+        group.accel.spheres.as_ref()?;
+        let mut rows = Vec::new();
+        let mut lambertian = Vec::new();
+        for packet in &group.accel.packets {
+            for &index in &packet.index {
+                let quad = match group.objects.get(index as usize) {
+                    Some(Object::Quad(q)) => Some(q),
+                    _ => None,
+                };
+                let albedo = quad.and_then(|q| match scene.materials[q.material.index()] {
+                    Material::Lambertian {
+                        albedo: Albedo::Constant(c),
+                    } => Some(c),
+                    _ => None,
+                });
+                let mut row = [0.0; 16];
+                if let (Some(q), Some(a)) = (quad, albedo) {
+                    let parts = [q.q, q.u, q.v, q.normal];
+                    for (k, v) in parts.iter().enumerate() {
+                        row[3 * k..3 * k + 3].copy_from_slice(&v.to_array());
+                    }
+                    row[12] = q.err;
+                    row[13..16].copy_from_slice(&a.to_array());
+                }
+                rows.push(row);
+                lambertian.push(albedo.is_some());
+            }
+        }
+        lambertian
+            .contains(&true)
+            .then_some(QuadSurfaces { rows, lambertian })
+    }
+
+    /// Whether a lane's hit `h` (as [`crate::ray8::Closest8::hit`] numbers it) is on a Lambertian
+    /// quad of constant albedo: a sphere's, or no hit, is not.
+    #[inline(always)]
+    pub fn lambertian(&self, h: u32) -> bool {
+        self.lambertian.get(h as usize).copied().unwrap_or(false)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+pub use wide::lambertian;
+
+#[cfg(target_arch = "x86_64")]
+mod wide {
+    use super::{QuadSurfaces, Row};
+    use crate::lanes::F64x8;
+    use crate::mixture8::Mixture8;
+    use crate::ray8::{Closest8, Rays8};
+    use crate::traversal::HitTier;
+    use crate::wide8::*;
+
+    /// The Lambertian vertex of the lanes of `lanes`, whose rays (`rays`) met Lambertian quads of
+    /// constant albedo (`found`, numbered as `surfaces`), with the bounce's numbers `u` and the
+    /// `mixture` strategy's density `m`: each of these lanes' `throughput` takes `albedo * s / p`
+    /// and its ray in `rays` becomes the next one. Returns the lanes whose path goes on (the
+    /// others' paths end here: no usable direction, or a throughput of zero).
+    ///
+    /// # Safety
+    /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
+    #[allow(clippy::too_many_arguments)]
+    pub unsafe fn lambertian(
+        tier: HitTier,
+        surfaces: &QuadSurfaces,
+        m: &Mixture8,
+        found: &Closest8,
+        rays: &mut Rays8,
+        throughput: &mut [F64x8; 3],
+        u: &[F64x8; 2],
+        lanes: u8,
+    ) -> u8 {
+        if lanes == 0 {
+            return 0;
+        }
+        // SAFETY: as this function's.
+        unsafe {
+            match tier {
+                HitTier::Avx512 => avx512(surfaces, m, found, rays, throughput, u, lanes),
+                _ => avx2(surfaces, m, found, rays, throughput, u, lanes),
+            }
+        }
+    }
+
+    #[target_feature(enable = "avx512f")]
+    unsafe fn avx512(
+        s: &QuadSurfaces,
+        m: &Mixture8,
+        found: &Closest8,
+        rays: &mut Rays8,
+        throughput: &mut [F64x8; 3],
+        u: &[F64x8; 2],
+        lanes: u8,
+    ) -> u8 {
+        // SAFETY: compiled with AVX-512F, run where the processor has it.
+        unsafe { vertex::<Avx512>(s, m, found, rays, throughput, u, lanes) }
+    }
+
+    #[target_feature(enable = "avx2")]
+    unsafe fn avx2(
+        s: &QuadSurfaces,
+        m: &Mixture8,
+        found: &Closest8,
+        rays: &mut Rays8,
+        throughput: &mut [F64x8; 3],
+        u: &[F64x8; 2],
+        lanes: u8,
+    ) -> u8 {
+        // SAFETY: compiled with AVX2, run where the processor has it.
+        unsafe { vertex::<Avx2>(s, m, found, rays, throughput, u, lanes) }
+    }
+
+    /// [`lambertian`] in the instructions of `W`.
+    ///
+    /// # Safety
+    /// As [`Wide8::splat`]; `lanes` is not empty and names only lanes whose hit is a Lambertian
+    /// quad of `s`.
+    #[inline(always)]
+    unsafe fn vertex<W: Wide8>(
+        s: &QuadSurfaces,
+        m: &Mixture8,
+        found: &Closest8,
+        rays: &mut Rays8,
+        throughput: &mut [F64x8; 3],
+        u: &[F64x8; 2],
+        lanes: u8,
+    ) -> u8 {
+        // each lane's quad (the first lane's where a lane takes no part)
+        let first = &s.rows[found.hit[lanes.trailing_zeros() as usize] as usize];
+        let mut rows: [&Row; 8] = [first; 8];
+        for (i, row) in rows.iter_mut().enumerate() {
+            if lanes & (1 << i) != 0 {
+                *row = &s.rows[found.hit[i] as usize];
+            }
+        }
+        // SAFETY: as this function's.
+        let (c, alpha, beta, o, dir, tp, u) = unsafe {
+            (
+                W::columns16(&rows),
+                W::load_unaligned(&found.alpha),
+                W::load_unaligned(&found.beta),
+                load3::<W>(&rays.origin),
+                load3::<W>(&rays.direction),
+                load3::<W>(throughput),
+                [W::load(&u[0]), W::load(&u[1])],
+            )
+        };
+        let zero = alpha.zero_like();
+        let (q, e1, e2) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
+        let (outward, err, albedo) = ([c[9], c[10], c[11]], c[12], [c[13], c[14], c[15]]);
+        // `Quad::hit_at`: p = Q + alpha u + beta v, the normal against the ray
+        let p = add3(add3(q, scale3(alpha, e1)), scale3(beta, e2));
+        let front = dot(dir, outward).lt(zero);
+        let normal = select3([-outward[0], -outward[1], -outward[2]], front, outward);
+        // the mixture's direction and `s / p`
+        let (d, w, ok) = m.sample_in(p, normal, u, lanes);
+        // `OneSamplePath::diffuse`: the throughput times `albedo * (s / p)`
+        let times = [
+            tp[0] * (albedo[0] * w),
+            tp[1] * (albedo[1] * w),
+            tp[2] * (albedo[2] * w),
+        ];
+        let go = zero.mask(lanes) & ok;
+        let tp = select3(tp, go, times);
+        let black = times[0].eq(zero) & times[1].eq(zero) & times[2].eq(zero);
+        let go = go & !black;
+        // `Hit::spawn_origin`: p pushed off by 4 err along the normal, to the side `d` leaves on
+        let push = zero.splat_like(4.0) * err;
+        let offset = [normal[0] * push, normal[1] * push, normal[2] * push];
+        let out = dot(d, normal).ge(zero);
+        let origin = select3(sub3(p, offset), out, add3(p, offset));
+        *throughput = store3(tp);
+        rays.origin = store3(select3(o, go, origin));
+        rays.direction = store3(select3(dir, go, d));
+        go.bits()
+    }
+}
