@@ -123,21 +123,90 @@ pub fn closest_portable(
     out
 }
 
+/// How the lanes intersect one quad of a small group ([`QuadForm::of`]): the numbers of
+/// [`Quad4::hit`], bit for bit, in fewer operations where the quad lies in an axis plane, as the
+/// Cornell box's walls and light do.
+///
+/// With a normal `n = s e_k` (`s = ±1`, the other coordinates zero), the products with the zeros
+/// add only zeros, so `n . o = s o_k` and `n . d = s d_k` exactly, and `t = (d - s o_k) / (s d_k)`;
+/// where the two differ, in the sign of a zero, the parameter is `±0`, `±inf` or NaN, which no
+/// range with `min >= 0` holds. If also `du` and `dv` have one non-zero coordinate each (`a` and `b`),
+/// then `alpha = planar_a du_a` and `beta = planar_b dv_b`; these can differ from the full dot
+/// products only in the sign of a zero, so the lanes where a hit has `alpha` or `beta` zero take
+/// the full products.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuadForm {
+    /// An unused lane of its packet (a zero normal: never hit).
+    Unused,
+    /// The dot products in full.
+    General,
+    /// Normal `±e_k` (`neg`: `-e_k`), and the axes of `du` and `dv` where each has one non-zero
+    /// coordinate.
+    Axis {
+        k: u8,
+        neg: bool,
+        plane: Option<(u8, u8)>,
+    },
+}
+
+impl QuadForm {
+    /// The form of lane `lane` of packet `p`.
+    pub fn of(p: &Quad4, lane: usize) -> QuadForm {
+        if p.index[lane] == u32::MAX {
+            return QuadForm::Unused;
+        }
+        let get = |v: &[crate::lanes::F64x4; 3]| [v[0].0[lane], v[1].0[lane], v[2].0[lane]];
+        // the one non-zero coordinate of `v`, if it has only one
+        let axis = |v: [f64; 3]| {
+            let mut nonzero = (0..3).filter(|&i| v[i] != 0.0);
+            match (nonzero.next(), nonzero.next()) {
+                (Some(i), None) => Some(i),
+                _ => None,
+            }
+        };
+        let n = get(&p.normal);
+        match axis(n) {
+            Some(k) if n[k].abs() == 1.0 => {
+                let plane = match (axis(get(&p.du)), axis(get(&p.dv))) {
+                    (Some(a), Some(b)) if a != k && b != k && a != b => Some((a as u8, b as u8)),
+                    _ => None,
+                };
+                QuadForm::Axis {
+                    k: k as u8,
+                    neg: n[k] < 0.0,
+                    plane,
+                }
+            }
+            _ => QuadForm::General,
+        }
+    }
+
+    /// The forms of the quads of `packets`, four to a packet.
+    pub fn all(packets: &[Quad4]) -> Vec<QuadForm> {
+        packets
+            .iter()
+            .flat_map(|p| (0..4).map(move |lane| QuadForm::of(p, lane)))
+            .collect()
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 pub use wide::{closest_avx2, closest_avx512};
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
-    use super::{Closest8, NO_HIT, Rays8, SPHERE};
+    use super::{Closest8, NO_HIT, QuadForm, Rays8, SPHERE};
     use crate::aabb::Aabb;
     use crate::ray::Interval;
     use crate::shapes::{Quad4, Sphere};
     use crate::wide8::*;
 
-    /// [`super::closest_portable`] in the lanes, written once for both instruction sets.
+    /// [`super::closest_portable`] in the lanes, written once for both instruction sets; `forms`
+    /// the quads' [`QuadForm`]s (any quad without one is taken in full).
     #[inline(always)]
     fn closest<W: Wide8>(
         packets: &[Quad4],
+        forms: &[QuadForm],
         spheres: &[(Sphere, Aabb)],
         o: V3<W>,
         dir: V3<W>,
@@ -150,14 +219,46 @@ mod wide {
         let (mut alpha_best, mut beta_best) = (zero, zero);
         // which: the quad's place, or SPHERE | the sphere's, as a number (exact below 2^53)
         let mut which = o[0].splat_like(NO_HIT as f64);
+        // (the axis forms hold for ranges that exclude every zero and negative parameter)
+        let axis_forms = range.min >= 0.0;
+        let neg_dir = [-dir[0], -dir[1], -dir[2]];
         for (i, p) in packets.iter().enumerate() {
             for lane in 0..4 {
-                let n = lane3(zero, &p.normal, lane);
-                // As `Quad::hit`: t = (d - n . o) / (n . dir), planar = o + t dir - q.
-                let t = (zero.splat_like(p.d.0[lane]) - dot(n, o)) / dot(n, dir);
-                let planar = sub3(add3(o, scale3(t, dir)), lane3(zero, &p.q, lane));
-                let alpha = dot(planar, lane3(zero, &p.du, lane));
-                let beta = dot(planar, lane3(zero, &p.dv, lane));
+                let form = forms
+                    .get(4 * i + lane)
+                    .copied()
+                    .unwrap_or(QuadForm::General);
+                let (t, alpha, beta, in_plane) = match form {
+                    QuadForm::Unused => continue,
+                    QuadForm::Axis { k, neg, plane } if axis_forms => {
+                        let (d, ku) = (zero.splat_like(p.d.0[lane]), k as usize);
+                        let t = if neg {
+                            (d + o[ku]) / neg_dir[ku]
+                        } else {
+                            (d - o[ku]) / dir[ku]
+                        };
+                        match plane {
+                            Some((a, b)) => {
+                                let (au, bu) = (a as usize, b as usize);
+                                let pa = (o[au] + t * dir[au]) - zero.splat_like(p.q[au].0[lane]);
+                                let pb = (o[bu] + t * dir[bu]) - zero.splat_like(p.q[bu].0[lane]);
+                                let alpha = pa * zero.splat_like(p.du[au].0[lane]);
+                                (t, alpha, pb * zero.splat_like(p.dv[bu].0[lane]), true)
+                            }
+                            None => {
+                                let (alpha, beta) = coordinates(p, lane, o, dir, t);
+                                (t, alpha, beta, false)
+                            }
+                        }
+                    }
+                    _ => {
+                        // As `Quad::hit`: t = (d - n . o) / (n . dir).
+                        let n = lane3(zero, &p.normal, lane);
+                        let t = (zero.splat_like(p.d.0[lane]) - dot(n, o)) / dot(n, dir);
+                        let (alpha, beta) = coordinates(p, lane, o, dir, t);
+                        (t, alpha, beta, false)
+                    }
+                };
                 // Inside the range, shrunk to each lane's closest hit so far, and the quad.
                 let k = min.lt(t)
                     & t.lt(closest)
@@ -165,6 +266,13 @@ mod wide {
                     & alpha.le(one)
                     & zero.le(beta)
                     & beta.le(one);
+                // a hit on an edge line of an axis-plane quad: the zero's sign of the full products
+                let (alpha, beta) =
+                    if in_plane && !(k & (alpha.eq(zero) | beta.eq(zero))).is_empty() {
+                        coordinates(p, lane, o, dir, t)
+                    } else {
+                        (alpha, beta)
+                    };
                 closest = closest.select(k, t);
                 alpha_best = alpha_best.select(k, alpha);
                 beta_best = beta_best.select(k, beta);
@@ -186,6 +294,16 @@ mod wide {
         out.alpha = alpha_best.store().0;
         out.beta = beta_best.store().0;
         out.hit = which.store().0.map(|w| w as u32);
+    }
+
+    /// As `Quad::hit`: the plane coordinates `(alpha, beta)` of `o + t dir` in lane `lane`'s quad
+    /// of `p` (`planar = o + t dir - q`, then its dot products with the dual basis).
+    #[inline(always)]
+    fn coordinates<W: Wide8>(p: &Quad4, lane: usize, o: V3<W>, dir: V3<W>, t: W) -> (W, W) {
+        let zero = t.zero_like();
+        let planar = sub3(add3(o, scale3(t, dir)), lane3(zero, &p.q, lane));
+        let alpha = dot(planar, lane3(zero, &p.du, lane));
+        (alpha, dot(planar, lane3(zero, &p.dv, lane)))
     }
 
     /// Lane `lane` of a packet's field, in every lane.
@@ -258,6 +376,7 @@ mod wide {
     #[target_feature(enable = "avx512f")]
     pub unsafe fn closest_avx512(
         packets: &[Quad4],
+        forms: &[QuadForm],
         spheres: &[(Sphere, Aabb)],
         rays: &Rays8,
         range: Interval,
@@ -270,7 +389,7 @@ mod wide {
                 load3::<Avx512>(&rays.direction),
             )
         };
-        closest(packets, spheres, o, dir, range, out)
+        closest(packets, forms, spheres, o, dir, range, out)
     }
 
     /// [`super::closest_portable`] in AVX2 instructions (four lanes to a register), into `out`:
@@ -281,6 +400,7 @@ mod wide {
     #[target_feature(enable = "avx2")]
     pub unsafe fn closest_avx2(
         packets: &[Quad4],
+        forms: &[QuadForm],
         spheres: &[(Sphere, Aabb)],
         rays: &Rays8,
         range: Interval,
@@ -288,6 +408,6 @@ mod wide {
     ) {
         // SAFETY: compiled with AVX2, run where the processor has it.
         let (o, dir) = unsafe { (load3::<Avx2>(&rays.origin), load3::<Avx2>(&rays.direction)) };
-        closest(packets, spheres, o, dir, range, out)
+        closest(packets, forms, spheres, o, dir, range, out)
     }
 }

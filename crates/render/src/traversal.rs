@@ -39,6 +39,9 @@ pub struct Accel {
     /// For a small group whose `others` are all static spheres: those spheres with their boxes, in
     /// the order of `others`, so that eight rays test them in the lanes too ([`crate::ray8`]).
     pub spheres: Option<Vec<(Sphere, Aabb)>>,
+    /// For a small group: how eight rays at once intersect each quad of `packets`
+    /// ([`crate::ray8::QuadForm`]), four to a packet.
+    pub forms: Vec<crate::ray8::QuadForm>,
 }
 
 /// [`HitTier::cached`]'s store: 0 before the first traversal, then the detected tier plus one.
@@ -270,8 +273,10 @@ impl Accel {
                 _ => None,
             })
             .collect();
+        let packets: Vec<Quad4> = quads.chunks(PACKET).map(Quad4::new).collect();
         Accel {
-            packets: quads.chunks(PACKET).map(Quad4::new).collect(),
+            forms: crate::ray8::QuadForm::all(&packets),
+            packets,
             packets8,
             tail4: held < plain.len(),
             spheres,
@@ -652,13 +657,14 @@ impl Scene {
         debug_assert!(accel.flat);
         let spheres = accel.spheres.as_deref();
         let (packets, spheres8) = (&accel.packets, spheres.unwrap_or(&[]));
+        let forms = &accel.forms;
         // SAFETY: the caller runs this where the processor runs `tier`.
         unsafe {
             match tier {
                 HitTier::Avx512 => {
-                    crate::ray8::closest_avx512(packets, spheres8, lanes, range, found)
+                    crate::ray8::closest_avx512(packets, forms, spheres8, lanes, range, found)
                 }
-                _ => crate::ray8::closest_avx2(packets, spheres8, lanes, range, found),
+                _ => crate::ray8::closest_avx2(packets, forms, spheres8, lanes, range, found),
             }
         };
         let hits = Hits8 {

@@ -304,9 +304,20 @@ fn rays8<R: Rng>(rng: &mut R, corners: &[Point3]) -> [Ray; 8] {
         } else {
             point(rng, 6.0)
         };
-        let d = match rng.random_range(0..3) {
+        let d = match rng.random_range(0..4) {
             0 => point(rng, 5.0) - o,
             1 if !corners.is_empty() => corners[rng.random_range(0..corners.len())] - o,
+            3 if !corners.is_empty() => {
+                // in an axis plane through a corner `c`: hits on the edge lines of the quads
+                // in axis planes, where `alpha` or `beta` is exactly zero (of either sign)
+                let c = corners[rng.random_range(0..corners.len())];
+                let axis = rng.random_range(0..3);
+                let mut o = o;
+                o[axis] = c[axis];
+                let mut d = point(rng, 5.0) - o;
+                d[axis] = if rng.random() { 0.0 } else { -0.0 };
+                return Ray::new(o, d, 0.0);
+            }
             _ => unit(rng),
         };
         Ray::new(o, d, 0.0)
@@ -326,9 +337,16 @@ fn small_group<R: Rng>(rng: &mut R) -> (Scene, Vec<Point3>) {
             unit(rng) * rng.random_range(0.5..6.0),
             unit(rng) * rng.random_range(0.5..6.0),
         );
-        // some quads in axis planes, as the Cornell box's
+        // some quads in axis planes, as the Cornell box's, their sides either way along the axes
         let (u, v) = if rng.random::<bool>() {
-            (Vec3::X * u.length(), Vec3::Z * v.length())
+            let axes = [Vec3::X, Vec3::Y, Vec3::Z];
+            let a = rng.random_range(0..3);
+            let b = (a + rng.random_range(1..3)) % 3;
+            let sign = |rng: &mut R| if rng.random() { 1.0 } else { -1.0 };
+            (
+                axes[a] * u.length() * sign(rng),
+                axes[b] * v.length() * sign(rng),
+            )
         } else {
             (u, v)
         };
@@ -430,6 +448,7 @@ fn closest_mismatches(
             match tier {
                 HitTier::Avx512 => closest_avx512(
                     &accel.packets,
+                    &accel.forms,
                     spheres_for_lanes,
                     &lanes,
                     Interval::FORWARD,
@@ -437,6 +456,7 @@ fn closest_mismatches(
                 ),
                 _ => closest_avx2(
                     &accel.packets,
+                    &accel.forms,
                     spheres_for_lanes,
                     &lanes,
                     Interval::FORWARD,
@@ -452,6 +472,65 @@ fn closest_mismatches(
         }
     }
     wrong
+}
+
+#[test]
+fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
+    // Rays in axis planes through the quads' corners hit edge lines, where `alpha` or `beta` is a
+    // zero whose sign the full dot products decide (`ray8::QuadForm`); both signs must come out.
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(10);
+    for tier in tiers() {
+        let mut zeros = [0usize; 2];
+        for _ in 0..150 {
+            let (scene, corners) = small_group(&mut rng);
+            let accel = &scene.groups[0].accel;
+            let spheres = accel.spheres.as_deref().unwrap_or(&[]);
+            for _ in 0..40 {
+                let lanes = rays8(&mut rng, &corners);
+                let mut rays = Rays8::default();
+                for (l, r) in lanes.iter().enumerate() {
+                    rays.set(l, r);
+                }
+                let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
+                let mut got = Closest8::default();
+                // SAFETY: `tier` is one this processor runs.
+                unsafe {
+                    match tier {
+                        HitTier::Avx512 => closest_avx512(
+                            &accel.packets,
+                            &accel.forms,
+                            spheres,
+                            &rays,
+                            Interval::FORWARD,
+                            &mut got,
+                        ),
+                        _ => closest_avx2(
+                            &accel.packets,
+                            &accel.forms,
+                            spheres,
+                            &rays,
+                            Interval::FORWARD,
+                            &mut got,
+                        ),
+                    }
+                }
+                for l in 0..8 {
+                    let bits = |c: &Closest8| {
+                        (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
+                    };
+                    assert_eq!(bits(&got), bits(&want), "{tier:?} lane {l}");
+                    if want.hit[l] < rtl_render::ray8::SPHERE {
+                        for x in [want.alpha[l], want.beta[l]] {
+                            if x == 0.0 {
+                                zeros[x.is_sign_negative() as usize] += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(zeros[0] > 50 && zeros[1] > 50, "{tier:?}: edge hits {zeros:?}");
+    }
 }
 
 #[test]
