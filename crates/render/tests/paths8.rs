@@ -529,7 +529,10 @@ fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
                 }
             }
         }
-        assert!(zeros[0] > 50 && zeros[1] > 50, "{tier:?}: edge hits {zeros:?}");
+        assert!(
+            zeros[0] > 50 && zeros[1] > 50,
+            "{tier:?}: edge hits {zeros:?}"
+        );
     }
 }
 
