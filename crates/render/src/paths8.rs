@@ -221,17 +221,19 @@ pub(crate) fn render_row(
         // numbers (drawn, as `OneSamplePath::scatter` draws them, after the depth is counted).
         let mut in_lanes = 0u8;
         if let Some(s) = surfaces {
-            let mut bits = active;
+            // (the set made without a branch per lane: which kind a lane met is a coin toss)
+            for (l, &h) in closest.hit.iter().enumerate() {
+                in_lanes |= (s.lambertian(h) as u8) << l;
+            }
+            in_lanes &= active;
+            let mut bits = in_lanes;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
-                if s.lambertian(closest.hit[l]) {
-                    let depth = paths[l].depth;
-                    paths[l].depth += 1;
-                    let u = ctxs[l].sample_2d(Dimension::Material(depth));
-                    (bounce_u[0].0[l], bounce_u[1].0[l]) = (u.x, u.y);
-                    in_lanes |= 1 << l;
-                }
+                let depth = paths[l].depth;
+                paths[l].depth += 1;
+                let u = ctxs[l].sample_2d(Dimension::Material(depth));
+                (bounce_u[0].0[l], bounce_u[1].0[l]) = (u.x, u.y);
             }
         }
         if let (Some(s), Some(m)) = (surfaces, mixture) {
