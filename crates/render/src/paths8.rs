@@ -1,8 +1,10 @@
 //! Eight paths side by side: the book's one-sample estimator ([`OneSamplePath`]) traced for eight
 //! samples at once, their rays intersected together in the lanes of vector registers
-//! ([`crate::ray8`]: one AVX-512 register, or two AVX2 ones), each path's vertex (its emission, its
-//! material) then computed on its own as one path at a time would, and for `mixture` the directions
-//! of the Lambertian bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
+//! ([`crate::ray8`]: one AVX-512 register, or two AVX2 ones). For `mixture`, a vertex on a Lambertian
+//! quad of constant albedo is then computed whole in the lanes too ([`crate::vertex8`]: the point,
+//! the mixture's direction and weight, the throughput, the next ray), and any other vertex (glass,
+//! a light, the sky, a texture) on its own as one path at a time would, the directions of its
+//! Lambertian bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
 //!
 //! A scene as small as book 3's Cornell box (twelve quads and a sphere, no tree) spends most of a
 //! path's intersection on work that does not depend on the ray: with one ray, the quads fill the

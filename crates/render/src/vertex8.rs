@@ -11,7 +11,7 @@
 //!   `omega` leaves on ([`crate::hit::Hit::spawn_origin`]).
 //!
 //! The quads' numbers are kept one row per quad ([`QuadSurfaces`]), and the eight rows the lanes
-//! met are transposed into columns in registers ([`Wide8::columns16`]). Each lane computes the same
+//! met are transposed into columns in registers ([`crate::wide8::Wide8::columns16`]). Each lane computes the same
 //! `f64` operations in the same order as the one-path code, so the paths, and the image, are
 //! bit-identical to tracing one path at a time (tested in `crates/render/tests/paths8.rs`).
 //! Only the bounce's two numbers are drawn lane by lane, each from its own sample's sequence.
