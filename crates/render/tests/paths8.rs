@@ -424,6 +424,26 @@ fn eight_rays_at_once_meet_what_one_ray_at_a_time_meets() {
     assert!(lanes_tested > 100, "{lanes_tested}");
 }
 
+/// [`closest_avx512`] or [`closest_avx2`] (`tier`) of the small group `accel` with the spheres
+/// `spheres`, for the rays `lanes`, over [`Interval::FORWARD`].
+fn closest_in(
+    tier: HitTier,
+    accel: &rtl_render::traversal::Accel,
+    spheres: &[(Sphere, rtl_render::aabb::Aabb)],
+    lanes: &Rays8,
+) -> Closest8 {
+    let mut got = Closest8::default();
+    let (packets, forms, range) = (&accel.packets, &accel.forms, Interval::FORWARD);
+    // SAFETY: the tests pass only tiers this processor runs (see `tiers`).
+    unsafe {
+        match tier {
+            HitTier::Avx512 => closest_avx512(packets, forms, spheres, lanes, range, &mut got),
+            _ => closest_avx2(packets, forms, spheres, lanes, range, &mut got),
+        }
+    }
+    got
+}
+
 /// How many lanes of [`closest_avx512`] or [`closest_avx2`] (`tier`) differ from
 /// [`closest_portable`], over random rays.
 fn closest_mismatches(
@@ -442,28 +462,7 @@ fn closest_mismatches(
             lanes.set(l, r);
         }
         let want = closest_portable(&accel.packets, spheres, &lanes, Interval::FORWARD);
-        let mut got = Closest8::default();
-        // SAFETY: `tier` is one this processor runs.
-        unsafe {
-            match tier {
-                HitTier::Avx512 => closest_avx512(
-                    &accel.packets,
-                    &accel.forms,
-                    spheres_for_lanes,
-                    &lanes,
-                    Interval::FORWARD,
-                    &mut got,
-                ),
-                _ => closest_avx2(
-                    &accel.packets,
-                    &accel.forms,
-                    spheres_for_lanes,
-                    &lanes,
-                    Interval::FORWARD,
-                    &mut got,
-                ),
-            }
-        }
+        let got = closest_in(tier, accel, spheres_for_lanes, &lanes);
         for l in 0..8 {
             wrong += (got.hit[l] != want.hit[l]
                 || got.t[l].to_bits() != want.t[l].to_bits()
@@ -492,28 +491,7 @@ fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
                     rays.set(l, r);
                 }
                 let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
-                let mut got = Closest8::default();
-                // SAFETY: `tier` is one this processor runs.
-                unsafe {
-                    match tier {
-                        HitTier::Avx512 => closest_avx512(
-                            &accel.packets,
-                            &accel.forms,
-                            spheres,
-                            &rays,
-                            Interval::FORWARD,
-                            &mut got,
-                        ),
-                        _ => closest_avx2(
-                            &accel.packets,
-                            &accel.forms,
-                            spheres,
-                            &rays,
-                            Interval::FORWARD,
-                            &mut got,
-                        ),
-                    }
-                }
+                let got = closest_in(tier, accel, spheres, &rays);
                 for l in 0..8 {
                     let bits = |c: &Closest8| {
                         (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
