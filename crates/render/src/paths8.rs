@@ -1,10 +1,12 @@
-//! Eight paths side by side: the book's one-sample estimator ([`OneSamplePath`]) traced for eight
-//! samples at once, their rays intersected together in the lanes of vector registers
-//! ([`crate::ray8`]: one AVX-512 register, or two AVX2 ones). For `mixture`, a vertex on a Lambertian
-//! quad of constant albedo is then computed whole in the lanes too ([`crate::vertex8`]: the point,
-//! the mixture's direction and weight, the throughput, the next ray), and any other vertex (glass,
-//! a light, the sky, a texture) on its own as one path at a time would, the directions of its
-//! Lambertian bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
+//! Sixteen paths side by side, in two packets of eight: the book's one-sample estimator
+//! ([`OneSamplePath`]) traced for sixteen samples at once, each packet's rays intersected together
+//! in the lanes of vector registers ([`crate::ray8`]: one AVX-512 register, or two AVX2 ones). For
+//! `mixture`, a vertex on a Lambertian quad of constant albedo is then computed whole in the lanes
+//! too ([`crate::vertex8`]: the point, the mixture's direction and weight, the throughput, the next
+//! ray), in batches of eight gathered from both packets (about half a packet's rays meet such a
+//! quad, so with one packet the batch ran half empty); any other vertex (glass, a light, the sky,
+//! a texture) is computed on its own as one path at a time would, the directions of its Lambertian
+//! bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
 //!
 //! A scene as small as book 3's Cornell box (twelve quads and a sphere, no tree) spends most of a
 //! path's intersection on work that does not depend on the ray: with one ray, the quads fill the
@@ -27,14 +29,25 @@ use crate::sampler::{Ctx, Dimension, Stats};
 use crate::scene::{GroupId, Scene};
 use crate::vec::{Color, Point3, Vec3};
 
-/// Lanes: paths in flight per thread.
+/// Lanes of a packet: rays intersected at once.
 pub const LANES: usize = 8;
+
+/// Packets of paths in flight per thread: with sixteen paths, the Lambertian vertices of both
+/// packets fill the eight lanes of [`crate::vertex8`] about as fully as their rays fill
+/// [`crate::ray8`]'s.
+const PACKETS: usize = 2;
+
+/// The fewest waiting Lambertian vertices worth a second batch in one round: fewer wait for the
+/// next, each leaving its lane of a packet's intersection idle for a round. A batch of the
+/// Cornell box's vertex costs about what four idle lanes of its intersection do (measured with
+/// 1 to 9 here, `rtl render cornell --strategy mixture`, both tiers).
+const SECOND_BATCH: u32 = 4;
 
 /// How many samples may be finished but not yet summed into their pixel (waiting for an earlier
 /// sample of the row, still in flight, to end). A lane whose next sample would go beyond waits.
 const RING: usize = 256;
 
-/// Whether a render of `scene` by `strategy` traces eight paths side by side: the book's
+/// Whether a render of `scene` by `strategy` traces paths side by side in the lanes: the book's
 /// one-sample strategies (`mis` has its own integrator), when the scene's rays meet a small group on
 /// a processor with AVX2 or AVX-512 ([`Scene::hits_eight_at_once`]).
 pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
@@ -80,8 +93,8 @@ struct Row<'a> {
     dropped: &'a mut [u64],
 }
 
-/// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels, eight
-/// paths at a time; `None` if `stop()` (asked before each pixel's first sample) said to stop.
+/// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels,
+/// sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample) said to stop.
 /// Called only where [`applies`] said so (an AVX tier runs).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
@@ -111,221 +124,332 @@ pub(crate) fn render_row(
         done: [false; RING],
         commit: 0,
     };
-    let mut ctxs: [Ctx; LANES] = std::array::from_fn(|_| Ctx::new());
+    // Everything per path is indexed `[g][l]`: packet `g`, lane `l`.
+    let mut ctxs: [[Ctx; LANES]; PACKETS] =
+        std::array::from_fn(|_| std::array::from_fn(|_| Ctx::new()));
     let placeholder = Ray::new(Point3::ZERO, Vec3::X, 0.0);
-    let mut paths = [OneSamplePath::default(); LANES];
-    let mut seqs = [0u64; LANES];
-    let mut rays = [placeholder; LANES];
-    let mut lanes = Rays8::default();
+    let mut paths = [[OneSamplePath::default(); LANES]; PACKETS];
+    let mut seqs = [[0u64; LANES]; PACKETS];
+    let mut rays = [[placeholder; LANES]; PACKETS];
+    let mut lanes = [Rays8::default(); PACKETS];
     let mixture = r.mixture_in_lanes();
     let tier = crate::traversal::HitTier::current();
     let mut shading = Shading8::default();
     let mut hits: [Option<crate::hit::Hit>; LANES] = [None; LANES];
     let mut attenuations = [Color::ZERO; LANES];
-    let mut per_lane = [crate::traversal::Found::NOTHING; LANES];
-    let mut closest = crate::ray8::Closest8::default();
+    let mut per_lane = [[crate::traversal::Found::NOTHING; LANES]; PACKETS];
+    let mut closest = [crate::ray8::Closest8::default(); PACKETS];
     // The Lambertian vertex in the lanes ([`crate::vertex8`]): the paths' throughputs kept
     // there too (lane by lane in `paths` only around a vertex computed one path at a time), and the
     // lanes' rays in `lanes` (`rays` keeps each ray's time, and its origin and direction are
     // brought up to date before a vertex is computed one path at a time).
     let surfaces = r.lambertian_vertex_in_lanes();
-    let mut throughput = [F64x8::ZERO; 3];
-    let mut bounce_u = [F64x8::ZERO; 2];
-    let mut active = 0u8;
+    let mut throughput = [[F64x8::ZERO; 3]; PACKETS];
+    let mut active = [0u8; PACKETS];
+    // The paths whose ray met a Lambertian quad, waiting for the vertex in the lanes (their
+    // quads' numbers kept in `met`), and the batch of up to eight of them gathered for it.
+    let mut pending = [0u8; PACKETS];
+    let mut met = [crate::ray8::Closest8::default(); PACKETS];
+    let mut batch = Batch::default();
     let mut next = 0u64;
     // the scramble key of the pixel whose samples are being started, made at its first
     let mut key = 0;
     loop {
-        // Each idle lane takes the row's next sample, if the ring has room for it.
-        for l in 0..LANES {
-            if active & (1 << l) != 0 {
-                continue;
-            }
-            while next < total && next - ring.commit < RING as u64 {
-                let (i, k) = ((next / spp) as usize, k0 + next % spp);
-                if k == k0 {
-                    if stop() {
-                        return None;
+        // Each idle path takes the row's next sample, if the ring has room for it.
+        for g in 0..PACKETS {
+            let mut idle = !active[g];
+            while idle != 0 && next < total {
+                let l = idle.trailing_zeros() as usize;
+                idle &= idle - 1;
+                while next < total && next - ring.commit < RING as u64 {
+                    let (i, k) = ((next / spp) as usize, k0 + next % spp);
+                    if k == k0 {
+                        if stop() {
+                            return None;
+                        }
+                        key = r.pixel_key_of(i, j);
                     }
-                    key = r.pixel_key_of(i, j);
-                }
-                let ctx = &mut ctxs[l];
-                let ray = r.start_sample_keyed(i, j, k, key, ctx);
-                let seq = next;
-                next += 1;
-                if max_depth > 0 {
-                    ctx.stats.rays += 1;
-                    ctx.bounce = 0;
-                    // (field by field: a whole new path written at once was read back across
-                    // its stores, which cannot forward to the load)
-                    let path = &mut paths[l];
-                    path.throughput = Color::ONE;
-                    path.l = Color::ZERO;
-                    path.depth = 0;
-                    for t in &mut throughput {
-                        t.0[l] = 1.0;
+                    let ctx = &mut ctxs[g][l];
+                    let ray = r.start_sample_keyed(i, j, k, key, ctx);
+                    let seq = next;
+                    next += 1;
+                    if max_depth > 0 {
+                        ctx.stats.rays += 1;
+                        ctx.bounce = 0;
+                        // (field by field: a whole new path written at once was read back across
+                        // its stores, which cannot forward to the load)
+                        let path = &mut paths[g][l];
+                        path.throughput = Color::ONE;
+                        path.l = Color::ZERO;
+                        path.depth = 0;
+                        for t in &mut throughput[g] {
+                            t.0[l] = 1.0;
+                        }
+                        seqs[g][l] = seq;
+                        rays[g][l] = ray;
+                        lanes[g].set(l, &ray);
+                        active[g] |= 1 << l;
+                        break;
                     }
-                    seqs[l] = seq;
-                    rays[l] = ray;
-                    lanes.set(l, &ray);
-                    active |= 1 << l;
-                    break;
+                    // No intersection allowed at all: the sample is black.
+                    Renderer::finish_sample(ctx);
+                    ring.finish(seq, Color::ZERO, spp, &mut row, &mut stats);
                 }
-                // No intersection allowed at all: the sample is black.
-                Renderer::finish_sample(ctx);
-                ring.finish(seq, Color::ZERO, spp, &mut row, &mut stats);
             }
         }
-        if active == 0 {
+        if active == [0; PACKETS] {
             break;
         }
-        // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
-        let found = unsafe {
-            scene.hit8_small(
-                tier,
-                GroupId(0),
-                &rays,
-                &lanes,
-                active,
-                Interval::FORWARD,
-                &mut ctxs,
-                &mut closest,
-                &mut per_lane,
-            )
-        };
-        // A path that goes on takes its next ray; one that ends is summed into its pixel.
-        macro_rules! advance {
-            ($l:expr, $next:expr) => {{
-                let l = $l;
-                let (path, ctx) = (&paths[l], &mut ctxs[l]);
-                match $next {
-                    Some(next) if path.depth < max_depth => {
-                        ctx.stats.rays += 1;
-                        ctx.bounce = path.depth;
-                        rays[l] = next;
-                        lanes.set(l, &next);
-                        for (a, t) in throughput.iter_mut().enumerate() {
-                            t.0[l] = path.throughput[a];
+        // the paths left waiting by the last batch, which go first in this one
+        let waited = pending;
+        for g in 0..PACKETS {
+            // (a path waiting for its Lambertian vertex has no new ray to trace)
+            let traced = active[g] & !pending[g];
+            if traced == 0 {
+                continue;
+            }
+            // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+            let found = unsafe {
+                scene.hit8_small(
+                    tier,
+                    GroupId(0),
+                    &rays[g],
+                    &lanes[g],
+                    traced,
+                    Interval::FORWARD,
+                    &mut ctxs[g],
+                    &mut closest[g],
+                    &mut per_lane[g],
+                )
+            };
+            let (lanes, throughput) = (&mut lanes[g], &mut throughput[g]);
+            let (ctxs, paths, rays) = (&mut ctxs[g], &mut paths[g], &mut rays[g]);
+            let (closest, active, seqs) = (&closest[g], &mut active[g], &seqs[g]);
+            // A path that goes on takes its next ray; one that ends is summed into its pixel.
+            macro_rules! advance {
+                ($l:expr, $next:expr) => {{
+                    let l = $l;
+                    let (path, ctx) = (&paths[l], &mut ctxs[l]);
+                    match $next {
+                        Some(next) if path.depth < max_depth => {
+                            ctx.stats.rays += 1;
+                            ctx.bounce = path.depth;
+                            rays[l] = next;
+                            lanes.set(l, &next);
+                            for (a, t) in throughput.iter_mut().enumerate() {
+                                t.0[l] = path.throughput[a];
+                            }
+                        }
+                        _ => {
+                            *active &= !(1 << l);
+                            Renderer::finish_sample(ctx);
+                            ring.finish(seqs[l], path.l, spp, &mut row, &mut stats);
                         }
                     }
-                    _ => {
-                        active &= !(1 << l);
-                        Renderer::finish_sample(ctx);
-                        ring.finish(seqs[l], path.l, spp, &mut row, &mut stats);
-                    }
-                }
-            }};
-        }
-        // Each path's vertex up to its diffuse direction; Lambertian bounces of `mixture` wait for
-        // the lanes.
-        let mut waiting = 0u8;
-        // The lanes whose vertex is Lambertian on a quad of constant albedo, with their bounce's
-        // numbers (drawn, as `OneSamplePath::scatter` draws them, after the depth is counted).
-        let mut in_lanes = 0u8;
-        if let Some(s) = surfaces {
-            // (the set made without a branch per lane: which kind a lane met is a coin toss)
-            for (l, &h) in closest.hit.iter().enumerate() {
-                in_lanes |= (s.lambertian(h) as u8) << l;
+                }};
             }
-            in_lanes &= active;
-            let mut bits = in_lanes;
+            // The paths whose vertex is Lambertian on a quad of constant albedo wait for the
+            // batch, with their quads' numbers.
+            let mut lambertian = 0u8;
+            if let Some(s) = surfaces {
+                // (the set made without a branch per lane: which kind a lane met is a coin toss)
+                for (l, &h) in closest.hit.iter().enumerate() {
+                    lambertian |= (s.lambertian(h) as u8) << l;
+                }
+                lambertian &= traced;
+                let met = &mut met[g];
+                let mut bits = lambertian;
+                while bits != 0 {
+                    let l = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    met.hit[l] = closest.hit[l];
+                    met.alpha[l] = closest.alpha[l];
+                    met.beta[l] = closest.beta[l];
+                }
+                pending[g] |= lambertian;
+            }
+            // Every other path's vertex up to its diffuse direction; Lambertian bounces of
+            // `mixture` wait for the lanes.
+            let mut waiting = 0u8;
+            let mut bits = traced & !lambertian;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
-                let depth = paths[l].depth;
-                paths[l].depth += 1;
-                let u = ctxs[l].sample_2d(Dimension::Material(depth));
-                (bounce_u[0].0[l], bounce_u[1].0[l]) = (u.x, u.y);
+                let ray = if surfaces.is_some() {
+                    // the lanes hold the ray and the throughput (`rays[l]` the ray's time)
+                    paths[l].throughput =
+                        Color::new(throughput[0].0[l], throughput[1].0[l], throughput[2].0[l]);
+                    lanes.ray(l, rays[l].time)
+                } else {
+                    rays[l]
+                };
+                let hit = found.record(closest, &per_lane[g], l, &ray);
+                let next = match paths[l].scatter(scene, &ray, hit.as_ref(), &mut ctxs[l]) {
+                    None => None,
+                    Some(Bounce::Along(next)) => Some(next),
+                    Some(Bounce::Diffuse {
+                        attenuation,
+                        pdf: ScatterPdf::Cosine(_),
+                        u,
+                    }) if mixture.is_some() => {
+                        let hit = hit.expect("a diffuse bounce has a hit");
+                        shading.set(l, hit.p, hit.normal, u);
+                        (hits[l], attenuations[l]) = (Some(hit), attenuation);
+                        waiting |= 1 << l;
+                        continue;
+                    }
+                    Some(Bounce::Diffuse {
+                        attenuation,
+                        pdf,
+                        u,
+                    }) => {
+                        let hit = hit.expect("a diffuse bounce has a hit");
+                        let lights = &r.lights;
+                        sample_diffuse(strategy, weight, &pdf, hit.p, hit.normal, lights, u)
+                            .and_then(|(direction, w)| {
+                                paths[l].diffuse(&hit, &ray, attenuation, direction, w)
+                            })
+                    }
+                };
+                advance!(l, next);
+            }
+            if let (Some(m), true) = (mixture, waiting != 0) {
+                // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+                let (direction, w) = unsafe { shading.mixture(tier, m, waiting) };
+                let mut bits = waiting;
+                while bits != 0 {
+                    let l = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    let next = match (w[l], &hits[l]) {
+                        (Some(w), Some(hit)) => {
+                            paths[l].diffuse(hit, &rays[l], attenuations[l], direction[l], w)
+                        }
+                        _ => None,
+                    };
+                    advance!(l, next);
+                }
             }
         }
-        if let (Some(s), Some(m)) = (surfaces, mixture) {
+        let (Some(s), Some(m)) = (surfaces, mixture) else {
+            continue;
+        };
+        // Batches of up to eight waiting paths (those that waited already first), their bounce's
+        // numbers drawn (as `OneSamplePath::scatter` draws them, after the depth is counted),
+        // until fewer than `DEFER` are left: those wait for the next round.
+        let mut waited = waited;
+        let mut least = 1;
+        loop {
+            let left: u32 = pending.iter().map(|p| p.count_ones()).sum();
+            if left < least {
+                break;
+            }
+            least = SECOND_BATCH;
+            let mut n = 0;
+            for from in [waited, pending] {
+                for g in 0..PACKETS {
+                    let mut bits = from[g] & pending[g];
+                    while bits != 0 && n < LANES {
+                        let l = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        pending[g] &= !(1 << l);
+                        let depth = paths[g][l].depth;
+                        paths[g][l].depth += 1;
+                        let u = ctxs[g][l].sample_2d(Dimension::Material(depth));
+                        batch.gather(n, (g, l), u, &met[g], &lanes[g], &throughput[g]);
+                        n += 1;
+                    }
+                }
+            }
+            waited = [0; PACKETS];
             // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
             let go = unsafe {
                 crate::vertex8::lambertian(
                     tier,
                     s,
                     m,
-                    &closest,
-                    &mut lanes,
-                    &mut throughput,
-                    &bounce_u,
-                    in_lanes,
+                    &batch.met,
+                    &mut batch.rays,
+                    &mut batch.throughput,
+                    &batch.u,
+                    ((1u16 << n) - 1) as u8,
                 )
             };
-            let mut bits = in_lanes;
-            while bits != 0 {
-                let l = bits.trailing_zeros() as usize;
-                bits &= bits - 1;
-                let (path, ctx) = (&paths[l], &mut ctxs[l]);
-                if go & (1 << l) != 0 && path.depth < max_depth {
+            for (b, &(g, l)) in batch.from.iter().enumerate().take(n) {
+                let (path, ctx) = (&paths[g][l], &mut ctxs[g][l]);
+                if go & (1 << b) != 0 && path.depth < max_depth {
                     ctx.stats.rays += 1;
                     ctx.bounce = path.depth;
+                    batch.scatter(b, &mut lanes[g], &mut throughput[g], l);
                 } else {
-                    active &= !(1 << l);
+                    active[g] &= !(1 << l);
                     Renderer::finish_sample(ctx);
-                    ring.finish(seqs[l], path.l, spp, &mut row, &mut stats);
+                    ring.finish(seqs[g][l], path.l, spp, &mut row, &mut stats);
                 }
-            }
-        }
-        let mut bits = active & !in_lanes;
-        while bits != 0 {
-            let l = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
-            let ray = if surfaces.is_some() {
-                // the lanes hold the ray and the throughput (`rays[l]` the ray's time)
-                paths[l].throughput =
-                    Color::new(throughput[0].0[l], throughput[1].0[l], throughput[2].0[l]);
-                lanes.ray(l, rays[l].time)
-            } else {
-                rays[l]
-            };
-            let hit = found.record(&closest, &per_lane, l, &ray);
-            let next = match paths[l].scatter(scene, &ray, hit.as_ref(), &mut ctxs[l]) {
-                None => None,
-                Some(Bounce::Along(next)) => Some(next),
-                Some(Bounce::Diffuse {
-                    attenuation,
-                    pdf: ScatterPdf::Cosine(_),
-                    u,
-                }) if mixture.is_some() => {
-                    let hit = hit.expect("a diffuse bounce has a hit");
-                    shading.set(l, hit.p, hit.normal, u);
-                    (hits[l], attenuations[l]) = (Some(hit), attenuation);
-                    waiting |= 1 << l;
-                    continue;
-                }
-                Some(Bounce::Diffuse {
-                    attenuation,
-                    pdf,
-                    u,
-                }) => {
-                    let hit = hit.expect("a diffuse bounce has a hit");
-                    let lights = &r.lights;
-                    sample_diffuse(strategy, weight, &pdf, hit.p, hit.normal, lights, u).and_then(
-                        |(direction, w)| paths[l].diffuse(&hit, &ray, attenuation, direction, w),
-                    )
-                }
-            };
-            advance!(l, next);
-        }
-        if let (Some(m), true) = (mixture, waiting != 0) {
-            // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
-            let (direction, w) = unsafe { shading.mixture(tier, m, waiting) };
-            let mut bits = waiting;
-            while bits != 0 {
-                let l = bits.trailing_zeros() as usize;
-                bits &= bits - 1;
-                let next = match (w[l], &hits[l]) {
-                    (Some(w), Some(hit)) => {
-                        paths[l].diffuse(hit, &rays[l], attenuations[l], direction[l], w)
-                    }
-                    _ => None,
-                };
-                advance!(l, next);
             }
         }
     }
-    Some(ctxs.iter().fold(stats, |s, c| s + c.stats))
+    Some(ctxs.iter().flatten().fold(stats, |s, c| s + c.stats))
+}
+
+/// A batch of Lambertian vertices for [`crate::vertex8`], gathered lane by lane from the paths
+/// that wait for one: batch lane `b` is the path `from[b]` (packet, lane), with its quad's numbers,
+/// its ray, its throughput and its bounce's two numbers.
+struct Batch {
+    from: [(usize, usize); LANES],
+    met: crate::ray8::Closest8,
+    rays: Rays8,
+    throughput: [F64x8; 3],
+    u: [F64x8; 2],
+}
+
+impl Default for Batch {
+    fn default() -> Self {
+        Batch {
+            from: [(0, 0); LANES],
+            met: crate::ray8::Closest8::default(),
+            rays: Rays8::default(),
+            throughput: [F64x8::ZERO; 3],
+            u: [F64x8::ZERO; 2],
+        }
+    }
+}
+
+impl Batch {
+    /// Batch lane `b` takes path `(g, l)`: its quad's numbers from `met`, its ray from `rays`, its
+    /// throughput, and the bounce's numbers `u`.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // (three arrays, one coordinate at a time)
+    fn gather(
+        &mut self,
+        b: usize,
+        (g, l): (usize, usize),
+        u: glam::DVec2,
+        met: &crate::ray8::Closest8,
+        rays: &Rays8,
+        throughput: &[F64x8; 3],
+    ) {
+        self.from[b] = (g, l);
+        self.met.hit[b] = met.hit[l];
+        self.met.alpha[b] = met.alpha[l];
+        self.met.beta[b] = met.beta[l];
+        for a in 0..3 {
+            self.rays.origin[a].0[b] = rays.origin[a].0[l];
+            self.rays.direction[a].0[b] = rays.direction[a].0[l];
+            self.throughput[a].0[b] = throughput[a].0[l];
+        }
+        (self.u[0].0[b], self.u[1].0[b]) = (u.x, u.y);
+    }
+
+    /// Batch lane `b`'s next ray and throughput back to lane `l` of its packet.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // (three arrays, one coordinate at a time)
+    fn scatter(&self, b: usize, rays: &mut Rays8, throughput: &mut [F64x8; 3], l: usize) {
+        for a in 0..3 {
+            rays.origin[a].0[l] = self.rays.origin[a].0[b];
+            rays.direction[a].0[l] = self.rays.direction[a].0[b];
+            throughput[a].0[l] = self.throughput[a].0[b];
+        }
+    }
 }
 
 /// The Lambertian points waiting for the mixture's directions, by coordinate: point, unit normal,

@@ -194,7 +194,7 @@ fn plain(scene: &Scene, st: RenderSettings) -> Renderer<'_> {
 }
 
 #[test]
-fn eight_paths_side_by_side_give_the_image_of_one_at_a_time() {
+fn paths_side_by_side_give_the_image_of_one_at_a_time() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(88);
     let strategies = [
         Strategy::Uniform,
