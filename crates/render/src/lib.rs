@@ -29,6 +29,7 @@ pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
 pub mod flatten;
+pub mod glass8;
 pub mod hit;
 pub mod ids;
 pub mod integrator;

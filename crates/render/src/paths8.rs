@@ -151,6 +151,12 @@ pub(crate) fn render_row(
     let mut pending = [0u8; PACKETS];
     let mut met = [crate::ray8::Closest8::default(); PACKETS];
     let mut batch = Batch::default();
+    // The glass vertex in the lanes ([`crate::glass8`]): the paths whose ray met a glass sphere,
+    // gathered from both packets (`glass_from[i]` is batch lane `i % 8` of `glass_batch[i / 8]`).
+    let glass = r.glass_vertex_in_lanes();
+    let mut glass_batch = [crate::glass8::Glass8::default(); PACKETS];
+    let mut glass_from = [(0usize, 0usize); PACKETS * LANES];
+    let mut glass_n = 0;
     let mut next = 0u64;
     // the scramble key of the pixel whose samples are being started, made at its first
     let mut key = 0;
@@ -268,10 +274,42 @@ pub(crate) fn render_row(
                 }
                 pending[g] |= lambertian;
             }
+            // The paths whose ray met a glass sphere go to the glass batch, with the uniform
+            // numbers of their vertex (drawn after the batch, where the vertex asked for them),
+            // where the lanes take them (`GlassSpheres::error`).
+            let mut glassy = 0u8;
+            if let Some(gs) = glass {
+                for (l, &h) in closest.hit.iter().enumerate() {
+                    glassy |= (gs.is_glass(h) as u8) << l;
+                }
+                glassy &= traced & !lambertian;
+                let mut bits = glassy;
+                while bits != 0 {
+                    let l = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    let h = closest.hit[l];
+                    let sphere = gs.sphere(h).expect("a glass lane's sphere");
+                    let (ray, t) = (lanes.ray(l, rays[l].time), closest.t[l]);
+                    let Some(err) = crate::glass8::GlassSpheres::error(sphere, &ray, t) else {
+                        glassy &= !(1 << l);
+                        continue;
+                    };
+                    let u = ctxs[l].peek_1d(Dimension::Material(ctxs[l].bounce));
+                    // (`OneSamplePath::scatter` counts the depth first)
+                    paths[l].depth += 1;
+                    let (b, i) = (glass_n / LANES, glass_n % LANES);
+                    let batch = &mut glass_batch[b];
+                    (batch.sphere[i], batch.t[i]) = (h & !crate::ray8::SPHERE, t);
+                    (batch.err[i], batch.u[i]) = (err, u);
+                    batch.rays.set(i, &ray);
+                    glass_from[glass_n] = (g, l);
+                    glass_n += 1;
+                }
+            }
             // Every other path's vertex up to its diffuse direction; Lambertian bounces of
             // `mixture` wait for the lanes.
             let mut waiting = 0u8;
-            let mut bits = traced & !lambertian;
+            let mut bits = traced & !lambertian & !glassy;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
@@ -329,6 +367,38 @@ pub(crate) fn render_row(
                     advance!(l, next);
                 }
             }
+        }
+        // The glass batches: each path goes on with its next ray (its throughput unchanged).
+        if let Some(gs) = glass {
+            for (b, batch) in glass_batch.iter_mut().enumerate() {
+                let n = glass_n.saturating_sub(b * LANES).min(LANES);
+                if n == 0 {
+                    break;
+                }
+                // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+                let asked =
+                    unsafe { crate::glass8::dielectric(tier, gs, batch, ((1u16 << n) - 1) as u8) };
+                for (i, &(g, l)) in glass_from[b * LANES..b * LANES + n].iter().enumerate() {
+                    let (path, ctx) = (&paths[g][l], &mut ctxs[g][l]);
+                    if asked & (1 << i) != 0 {
+                        ctx.take_1d(Dimension::Material(ctx.bounce));
+                    }
+                    if path.depth < max_depth {
+                        ctx.stats.rays += 1;
+                        ctx.bounce = path.depth;
+                        let lanes = &mut lanes[g];
+                        for a in 0..3 {
+                            lanes.origin[a].0[l] = batch.rays.origin[a].0[i];
+                            lanes.direction[a].0[l] = batch.rays.direction[a].0[i];
+                        }
+                    } else {
+                        active[g] &= !(1 << l);
+                        Renderer::finish_sample(ctx);
+                        ring.finish(seqs[g][l], path.l, spp, &mut row, &mut stats);
+                    }
+                }
+            }
+            glass_n = 0;
         }
         let (Some(s), Some(m)) = (surfaces, mixture) else {
             continue;

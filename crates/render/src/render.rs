@@ -135,6 +135,8 @@ pub struct Renderer<'a> {
     mixture8: Option<crate::mixture8::Mixture8>,
     /// The quads whose Lambertian vertex `mixture` computes in the lanes ([`crate::vertex8`]).
     quad_surfaces: Option<crate::vertex8::QuadSurfaces>,
+    /// The glass spheres whose vertex is computed in the lanes ([`crate::glass8`]).
+    glass_spheres: Option<crate::glass8::GlassSpheres>,
 }
 
 impl<'a> Renderer<'a> {
@@ -156,6 +158,9 @@ impl<'a> Renderer<'a> {
         let quad_surfaces = mixture8
             .as_ref()
             .and_then(|_| crate::vertex8::QuadSurfaces::new(scene, crate::scene::GroupId(0)));
+        let glass_spheres = quad_surfaces
+            .as_ref()
+            .and_then(|_| crate::glass8::GlassSpheres::new(scene, crate::scene::GroupId(0)));
         Renderer {
             scene,
             camera,
@@ -165,6 +170,7 @@ impl<'a> Renderer<'a> {
             paths_in_lanes,
             mixture8,
             quad_surfaces,
+            glass_spheres,
         }
     }
 
@@ -196,6 +202,32 @@ impl<'a> Renderer<'a> {
     #[doc(hidden)]
     pub fn without_lambertian_vertex_in_lanes(mut self) -> Self {
         self.quad_surfaces = None;
+        self.glass_spheres = None;
+        self
+    }
+
+    /// The glass spheres whose vertex is computed in the lanes, whole ([`crate::glass8`]): where
+    /// the Lambertian vertex is ([`Renderer::lambertian_vertex_in_lanes`]: the lanes then hold the
+    /// paths' rays and throughputs) and the scene's small group has static spheres of a dielectric.
+    pub fn glass_vertex_in_lanes(&self) -> Option<&crate::glass8::GlassSpheres> {
+        self.glass_spheres
+            .as_ref()
+            .filter(|_| self.lambertian_vertex_in_lanes().is_some())
+    }
+
+    /// This renderer with the glass vertex computed one path at a time: the same image, for tests
+    /// and for measuring what the glass vertex in the lanes buys.
+    #[doc(hidden)]
+    pub fn without_glass_vertex_in_lanes(mut self) -> Self {
+        self.glass_spheres = None;
+        self
+    }
+
+    /// This renderer with `g` as the glass spheres of the vertex in the lanes: for the tests that
+    /// show a wrong one is caught.
+    #[doc(hidden)]
+    pub fn with_glass_vertex_in_lanes(mut self, g: Option<crate::glass8::GlassSpheres>) -> Self {
+        self.glass_spheres = g;
         self
     }
 
@@ -215,6 +247,7 @@ impl<'a> Renderer<'a> {
         self.paths_in_lanes = false;
         self.mixture8 = None;
         self.quad_surfaces = None;
+        self.glass_spheres = None;
         self
     }
 

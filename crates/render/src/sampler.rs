@@ -533,6 +533,25 @@ impl Ctx {
         }
     }
 
+    /// The number [`Ctx::sample_1d`] would return for dimension `d`, without drawing it:
+    /// [`Ctx::take_1d`] then draws it, if it is used. (A vertex computed in the lanes,
+    /// [`crate::glass8`], learns whether it needs its number only after the lanes have used it.)
+    #[inline(always)]
+    pub fn peek_1d(&self, d: Dimension) -> f64 {
+        if self.sampler.low_discrepancy {
+            unit(self.sampler.padded.point_1d(d.pair()))
+        } else {
+            unit(self.rng.rng.clone().next_u64())
+        }
+    }
+
+    /// Draw the number [`Ctx::peek_1d`] gave for `d`, as [`Ctx::sample_1d`] would: the same
+    /// number, the same counts, the generator moved on.
+    #[inline(always)]
+    pub fn take_1d(&mut self, d: Dimension) {
+        self.sample_1d(d);
+    }
+
     #[inline]
     fn low_discrepancy_2d(&mut self, d: Dimension) -> DVec2 {
         self.stats.random_numbers += 2;
@@ -828,5 +847,38 @@ mod tests {
             seen[cell as usize] = true;
         }
         assert!(clash);
+    }
+
+    /// `peek_1d` gives the number `sample_1d` would, and leaves the sample as it was; `take_1d`
+    /// then leaves it as `sample_1d` would have (the next numbers and the counts), in both modes.
+    #[test]
+    fn a_number_looked_at_then_taken_is_the_number_drawn() {
+        for low_discrepancy in [false, true] {
+            let ctx = |i: u64| {
+                let mut c = Ctx::new();
+                c.rng = SampleRng::for_sample(7, i, i * 3);
+                c.sampler = Sampler::new(low_discrepancy, mix64(i), i);
+                c
+            };
+            for i in 0..200u64 {
+                let (mut drawn, mut taken) = (ctx(i), ctx(i));
+                let d = Dimension::Material((i % 5) as u32);
+                let peeked = taken.peek_1d(d);
+                assert_eq!(taken.peek_1d(d), peeked, "looking draws nothing");
+                assert_eq!(drawn.sample_1d(d), peeked);
+                taken.take_1d(d);
+                assert_eq!(taken.stats, drawn.stats);
+                assert_eq!(taken.rng.drawn, drawn.rng.drawn);
+                let next = Dimension::Material((i % 5) as u32 + 1);
+                assert_eq!(taken.sample_2d(next), drawn.sample_2d(next));
+            }
+        }
+        // (the check can fail: a look that draws moves the independent stream on)
+        let (mut a, mut b) = (Ctx::new(), Ctx::new());
+        a.rng = SampleRng::for_sample(7, 1, 1);
+        b.rng = SampleRng::for_sample(7, 1, 1);
+        let d = Dimension::Material(0);
+        a.sample_1d(d);
+        assert_ne!(a.peek_1d(d), b.peek_1d(d));
     }
 }

@@ -238,6 +238,16 @@ fn paths_side_by_side_give_the_image_of_one_at_a_time() {
                         .without_lambertian_vertex_in_lanes()),
                     "{name}: the vertex built lane by lane"
                 );
+                assert!(
+                    lanes_agree(&scene, st, ranges, |s, st| {
+                        let r = Renderer::new(s, st);
+                        // (book 3's box has a glass ball)
+                        let glass = r.glass_vertex_in_lanes().is_some();
+                        assert!(glass || name != "cornell", "{name}");
+                        r.without_glass_vertex_in_lanes()
+                    }),
+                    "{name}: the glass vertex built lane by lane"
+                );
             }
         }
     }
@@ -268,6 +278,65 @@ fn the_image_check_catches_lanes_with_another_mixture_weight() {
         );
         r.with_mixture_in_lanes(m)
     }
+    if !tiers().is_empty() {
+        assert!(!lanes_agree(&scene, st, &[(0, 4)], wrong));
+    }
+}
+
+/// Small rooms whose ball is glass, traced by `mixture` to depths from 1 to 50, with the glass
+/// vertex in the lanes (every tier) and without.
+#[test]
+fn the_glass_vertex_in_the_lanes_gives_the_image_of_one_path_at_a_time() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1616);
+    let mut rooms = 0;
+    while rooms < 6 {
+        let scene = small_room(&mut rng);
+        let glass = scene
+            .materials
+            .iter()
+            .any(|m| matches!(m, Material::Dielectric { .. }));
+        if !glass {
+            continue;
+        }
+        let depth = [50, 1, 3][rooms % 3];
+        let st = settings(
+            10,
+            rooms as u64,
+            depth,
+            Strategy::Mixture,
+            [0.5, 0.2][rooms % 2],
+        );
+        let r = Renderer::new(&scene, st);
+        if !tiers().is_empty() {
+            assert!(r.glass_vertex_in_lanes().is_some(), "room {rooms}");
+        }
+        assert!(lanes_agree(&scene, st, &[(0, 6)], plain), "room {rooms}");
+        assert!(
+            lanes_agree(&scene, st, &[(0, 6)], |s, st| Renderer::new(s, st)
+                .without_glass_vertex_in_lanes()),
+            "room {rooms}"
+        );
+        rooms += 1;
+    }
+}
+
+#[test]
+fn the_image_check_catches_a_glass_vertex_with_another_index() {
+    // The lanes' glass one ulp denser than the scene's.
+    let scene = builtin("cornell");
+    let st = settings(10, 1, 50, Strategy::Mixture, 0.5);
+    fn wrong(scene: &Scene, st: RenderSettings) -> Renderer<'_> {
+        let mut denser = scene.clone();
+        for m in &mut denser.materials {
+            if let Material::Dielectric { ior } = m {
+                *ior = f64::from_bits(ior.to_bits() + 1);
+            }
+        }
+        let g = rtl_render::glass8::GlassSpheres::new(&denser, GroupId(0));
+        assert!(g.is_some());
+        Renderer::new(scene, st).with_glass_vertex_in_lanes(g)
+    }
+    assert!(lanes_agree(&scene, st, &[(0, 4)], plain));
     if !tiers().is_empty() {
         assert!(!lanes_agree(&scene, st, &[(0, 4)], wrong));
     }
@@ -807,4 +876,118 @@ fn the_lanes_refuse_what_they_do_not_follow() {
         "{:?}",
         HitTier::current()
     );
+}
+
+// ---------------------------------------------------------------------------------------------
+// The glass vertex
+
+/// How many of `n` rays at book 3's glass ball (from outside, and from inside at every angle, so
+/// that some reflect totally) get from [`rtl_render::glass8::dielectric`], with the glass spheres
+/// `glass`, another next ray than `Material::scatter` and `Hit::spawn` give, or another answer to
+/// whether the vertex asked for its uniform number; and how many asked for it.
+fn glass_mismatches(glass: &rtl_render::glass8::GlassSpheres, n: usize) -> (usize, usize) {
+    use rtl_render::glass8::{Glass8, GlassSpheres, dielectric};
+    use rtl_render::sampler::{Dimension, SampleRng};
+    let scene = builtin("cornell");
+    let spheres = scene.groups[0]
+        .accel
+        .spheres
+        .as_ref()
+        .expect("static spheres");
+    let (i, (ball, _)) = spheres
+        .iter()
+        .enumerate()
+        .find(|(i, _)| glass.sphere(rtl_render::ray8::SPHERE | *i as u32).is_some())
+        .expect("a glass ball");
+    let material = scene.materials[ball.material.index()];
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(99);
+    let (mut mismatches, mut asked_for) = (0, 0);
+    let mut done = 0;
+    while done < n {
+        // eight rays that meet the ball, with the scalar answers
+        let mut g = Glass8::default();
+        let mut want = Vec::new();
+        while want.len() < 8 {
+            let inside = rng.random::<bool>();
+            let origin = if inside {
+                ball.center + unit(&mut rng) * ball.radius * rng.random_range(0.0..0.999)
+            } else {
+                point(&mut rng, 270.0) + Vec3::splat(277.0)
+            };
+            let aim = ball.center + unit(&mut rng) * ball.radius * 1.1;
+            let direction = if inside {
+                unit(&mut rng) * rng.random_range(0.5..3.0)
+            } else {
+                aim - origin
+            };
+            let ray = Ray::new(origin, direction, rng.random());
+            let Some(t) = ball.hit_t(&ray, Interval::FORWARD) else {
+                continue;
+            };
+            let Some(err) = GlassSpheres::error(ball, &ray, t) else {
+                continue;
+            };
+            let mut ctx = Ctx::new();
+            ctx.rng = SampleRng::for_sample(5, want.len() as u64, done as u64);
+            ctx.bounce = 2;
+            let u = ctx.peek_1d(Dimension::Material(2));
+            let hit = ball.hit_at(&ray, t);
+            let before = ctx.rng.drawn;
+            let Some(rtl_render::material::Scatter::Specular { direction, .. }) =
+                material.scatter(&ray, &hit, &[], &mut ctx)
+            else {
+                panic!("glass scatters")
+            };
+            let lane = want.len();
+            (g.sphere[lane], g.t[lane], g.err[lane], g.u[lane]) = (i as u32, t, err, u);
+            g.rays.set(lane, &ray);
+            want.push((hit.spawn(direction, ray.time), ctx.rng.drawn > before));
+        }
+        for tier in tiers() {
+            let mut lanes = g;
+            // SAFETY: the tier runs here.
+            let asked = unsafe { dielectric(tier, glass, &mut lanes, 0xff) };
+            for (lane, (next, asks)) in want.iter().enumerate() {
+                let got = lanes.rays.ray(lane, next.time);
+                let same = got.origin.to_array().map(f64::to_bits)
+                    == next.origin.to_array().map(f64::to_bits)
+                    && got.direction.to_array().map(f64::to_bits)
+                        == next.direction.to_array().map(f64::to_bits);
+                mismatches += (!same || (asked & (1 << lane) != 0) != *asks) as usize;
+                asked_for += *asks as usize;
+            }
+        }
+        done += 8;
+    }
+    (mismatches, asked_for)
+}
+
+#[test]
+fn the_glass_vertex_in_the_lanes_is_the_dielectrics_bit_for_bit() {
+    let scene = builtin("cornell");
+    let glass = rtl_render::glass8::GlassSpheres::new(&scene, GroupId(0)).expect("a glass ball");
+    let n = 4000;
+    let (mismatches, asked) = glass_mismatches(&glass, n);
+    assert_eq!(mismatches, 0);
+    // both answers were tested: reflections without the number (total internal reflection), and
+    // vertices that asked for it
+    let runs = n * tiers().len();
+    assert!(
+        tiers().is_empty() || (asked > 0 && asked < runs),
+        "{asked} of {runs}"
+    );
+}
+
+#[test]
+fn the_glass_check_catches_glass_one_ulp_denser() {
+    let mut denser = builtin("cornell");
+    for m in &mut denser.materials {
+        if let Material::Dielectric { ior } = m {
+            *ior = f64::from_bits(ior.to_bits() + 1);
+        }
+    }
+    let glass = rtl_render::glass8::GlassSpheres::new(&denser, GroupId(0)).expect("a glass ball");
+    if !tiers().is_empty() {
+        assert!(glass_mismatches(&glass, 400).0 > 0);
+    }
 }
