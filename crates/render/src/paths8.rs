@@ -306,10 +306,27 @@ pub(crate) fn render_row(
                     glass_n += 1;
                 }
             }
+            // The paths whose ray met a light of constant radiance gather it and end there
+            // (`OneSamplePath::scatter` without the hit's record).
+            let mut lit = 0u8;
+            if let Some(s) = surfaces {
+                let mut bits = traced & !lambertian & !glassy;
+                while bits != 0 {
+                    let l = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    if let Some(light) = s.light(closest.hit[l]) {
+                        lit |= 1 << l;
+                        let at = |v: &[F64x8; 3]| Vec3::new(v[0].0[l], v[1].0[l], v[2].0[l]);
+                        let emitted = light.emitted(at(&lanes.direction));
+                        paths[l].l += at(throughput) * emitted;
+                        advance!(l, Option::<Ray>::None);
+                    }
+                }
+            }
             // Every other path's vertex up to its diffuse direction; Lambertian bounces of
             // `mixture` wait for the lanes.
             let mut waiting = 0u8;
-            let mut bits = traced & !lambertian & !glassy;
+            let mut bits = traced & !lambertian & !glassy & !lit;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
                 bits &= bits - 1;

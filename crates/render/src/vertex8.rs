@@ -29,6 +29,31 @@ pub struct QuadSurfaces {
     rows: Vec<Row>,
     /// Whether quad `k`'s material is Lambertian of a constant albedo.
     lambertian: Vec<bool>,
+    /// Quad `k`'s light, if its material is a light of constant radiance.
+    lights: Vec<Option<QuadLight>>,
+}
+
+/// A quad that emits a constant radiance: what a path that meets it gathers
+/// ([`crate::material::Material::emitted`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QuadLight {
+    pub emit: crate::vec::Color,
+    pub two_sided: bool,
+    /// The quad's unit outward normal (its front is the side the normal points to).
+    pub normal: crate::vec::Vec3,
+}
+
+impl QuadLight {
+    /// The radiance a ray of direction `d` gathers from the light: `emit` from the front (where
+    /// `d . n < 0`, [`crate::hit::Hit::face`]) or from either side of a two-sided light, else 0.
+    #[inline(always)]
+    pub fn emitted(&self, d: crate::vec::Vec3) -> crate::vec::Color {
+        if self.two_sided || d.dot(self.normal) < 0.0 {
+            self.emit
+        } else {
+            crate::vec::Color::ZERO
+        }
+    }
 }
 
 impl QuadSurfaces {
@@ -40,6 +65,7 @@ impl QuadSurfaces {
         group.accel.spheres.as_ref()?;
         let mut rows = Vec::new();
         let mut lambertian = Vec::new();
+        let mut lights = Vec::new();
         for packet in &group.accel.packets {
             for &index in &packet.index {
                 let quad = match group.objects.get(index as usize) {
@@ -63,11 +89,26 @@ impl QuadSurfaces {
                 }
                 rows.push(row);
                 lambertian.push(albedo.is_some());
+                lights.push(
+                    quad.and_then(|q| match scene.materials[q.material.index()] {
+                        Material::DiffuseLight {
+                            emit: Albedo::Constant(emit),
+                            two_sided,
+                        } => Some(QuadLight {
+                            emit,
+                            two_sided,
+                            normal: q.normal,
+                        }),
+                        _ => None,
+                    }),
+                );
             }
         }
-        lambertian
-            .contains(&true)
-            .then_some(QuadSurfaces { rows, lambertian })
+        lambertian.contains(&true).then_some(QuadSurfaces {
+            rows,
+            lambertian,
+            lights,
+        })
     }
 
     /// Whether a lane's hit `h` (as [`crate::ray8::Closest8::hit`] numbers it) is on a Lambertian
@@ -75,6 +116,12 @@ impl QuadSurfaces {
     #[inline(always)]
     pub fn lambertian(&self, h: u32) -> bool {
         self.lambertian.get(h as usize).copied().unwrap_or(false)
+    }
+
+    /// The light of constant radiance a lane's hit `h` is on, if it is on one.
+    #[inline(always)]
+    pub fn light(&self, h: u32) -> Option<&QuadLight> {
+        self.lights.get(h as usize).and_then(Option::as_ref)
     }
 }
 
