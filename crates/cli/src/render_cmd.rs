@@ -102,7 +102,7 @@ pub struct RenderArgs {
     /// tiers side by side, or the one a processor without AVX-512 runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
     pub hit_tier: Option<HitTier>,
-    /// Trace one path at a time, where eight would be traced side by side in the vector lanes (the
+    /// Trace one path at a time, where sixteen would be traced side by side in the vector lanes (the
     /// book's one-sample strategies in a scene of one small group, on a processor with AVX2). The
     /// image is the same bit for bit: this is for timing what the lanes buy.
     #[arg(long)]
@@ -239,12 +239,26 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64, no_la
             "one at a time (--no-lanes)".to_string()
         } else if lanes.paths_in_lanes() {
             format!(
-                "eight side by side in the vector lanes ({}), their rays intersected together{}",
+                "sixteen side by side in the vector lanes ({}), in two packets of eight whose rays \
+                 are intersected together{}",
                 HitTier::current().key(),
-                if lanes.mixture_in_lanes().is_some() {
-                    " and the mixture's directions drawn together at Lambertian points"
-                } else {
-                    ""
+                match (
+                    lanes.lambertian_vertex_in_lanes().is_some(),
+                    lanes.glass_vertex_in_lanes().is_some(),
+                    lanes.mixture_in_lanes().is_some(),
+                ) {
+                    (true, true, _) => {
+                        "; the vertices on Lambertian quads (with the mixture's directions) and \
+                         on glass spheres computed whole in the lanes, eight at a time"
+                    }
+                    (true, false, _) => {
+                        "; the vertices on Lambertian quads (with the mixture's directions) \
+                         computed whole in the lanes, eight at a time"
+                    }
+                    (false, _, true) => {
+                        " and the mixture's directions drawn together at Lambertian points"
+                    }
+                    _ => "",
                 }
             )
         } else if settings.strategy.mis_options().is_some() {

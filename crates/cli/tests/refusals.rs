@@ -584,7 +584,7 @@ fn no_lanes_changes_nothing_but_the_speed_and_explain_says_how_paths_go() {
     };
     let avx = rtl_render::traversal::HitTier::current() != rtl_render::traversal::HitTier::Portable;
     let line = paths(&mixture(&["--explain"]));
-    assert_eq!(line.contains("eight side by side"), avx, "{line}");
+    assert_eq!(line.contains("sixteen side by side"), avx, "{line}");
     assert!(paths(&mixture(&["--explain", "--no-lanes"])).contains("--no-lanes"));
     assert!(paths(&render(&["--explain"])).contains("mis has its own integrator"));
     let _ = std::fs::remove_dir_all(&d);

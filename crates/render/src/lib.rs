@@ -6,9 +6,11 @@
 //! world space ([`flatten`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);
-//! the integrator and its sampling strategies ([`integrator`]); eight paths traced side by side in the
-//! vector lanes ([`paths8`]: their rays intersected together by [`ray8`], the mixture's directions
-//! drawn together by [`mixture8`] and [`warp8`], all written once over [`wide8`]'s lanes);
+//! the integrator and its sampling strategies ([`integrator`]); sixteen paths traced side by side in
+//! the vector lanes ([`paths8`]: their rays intersected eight at a time by [`ray8`], their vertices
+//! on Lambertian quads and glass spheres computed in the lanes by [`vertex8`] and [`glass8`], the
+//! mixture's directions drawn together by [`mixture8`] and [`warp8`], all written once over
+//! [`wide8`]'s lanes);
 //! prefix-stable per-sample randomness ([`sampler`]); progressive rendering into an accumulation buffer
 //! ([`render`]); checkpoints and parts of long renders ([`checkpoint`]); image files ([`output`]).
 //!

@@ -128,8 +128,8 @@ pub struct Renderer<'a> {
     /// Whether every dimension after the pixel position is low-discrepancy (`mis`'s option, resolved
     /// once here rather than per sample).
     low_discrepancy: bool,
-    /// Whether eight paths are traced side by side, their rays intersected together
-    /// ([`crate::paths8`]): the same image, sooner.
+    /// Whether paths are traced side by side in the vector lanes, their rays intersected eight at
+    /// a time ([`crate::paths8`]): the same image, sooner.
     paths_in_lanes: bool,
     /// The `mixture` strategy's density in the lanes, where the paths are traced in them.
     mixture8: Option<crate::mixture8::Mixture8>,
@@ -174,7 +174,7 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    /// Whether eight paths are traced side by side ([`crate::paths8`]): for the book's one-sample
+    /// Whether paths are traced side by side in the lanes ([`crate::paths8`]): for the book's one-sample
     /// strategies in a scene whose rays meet a small group (no tree), on a processor with AVX2 or
     /// AVX-512.
     pub fn paths_in_lanes(&self) -> bool {
@@ -241,7 +241,7 @@ impl<'a> Renderer<'a> {
         self
     }
 
-    /// Trace one path at a time even where [`Renderer::paths_in_lanes`] would trace eight: the same
+    /// Trace one path at a time even where [`Renderer::paths_in_lanes`] would trace sixteen: the same
     /// image (for tests and for measuring what the lanes buy).
     pub fn one_path_at_a_time(mut self) -> Self {
         self.paths_in_lanes = false;
