@@ -4,9 +4,11 @@
 //! `mixture`, a vertex on a Lambertian quad of constant albedo is then computed whole in the lanes
 //! too ([`crate::vertex8`]: the point, the mixture's direction and weight, the throughput, the next
 //! ray), in batches of eight gathered from both packets (about half a packet's rays meet such a
-//! quad, so with one packet the batch ran half empty); any other vertex (glass, a light, the sky,
-//! a texture) is computed on its own as one path at a time would, the directions of its Lambertian
-//! bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
+//! quad, so with one packet the batch ran half empty), and so is a vertex on a glass sphere
+//! ([`crate::glass8`]: the record, the dielectric, the next ray); a path that meets a light of
+//! constant radiance gathers it without building the hit's record; any other vertex (the sky, a
+//! texture, metal) is computed on its own as one path at a time would, the directions of its
+//! Lambertian bounces drawn and weighted in the lanes again ([`crate::mixture8`]).
 //!
 //! A scene as small as book 3's Cornell box (twelve quads and a sphere, no tree) spends most of a
 //! path's intersection on work that does not depend on the ray: with one ray, the quads fill the
@@ -39,8 +41,8 @@ const PACKETS: usize = 2;
 
 /// The fewest waiting Lambertian vertices worth a second batch in one round: fewer wait for the
 /// next, each leaving its lane of a packet's intersection idle for a round. A batch of the
-/// Cornell box's vertex costs about what four idle lanes of its intersection do (measured with
-/// 1 to 9 here, `rtl render cornell --strategy mixture`, both tiers).
+/// Cornell box's vertex costs about what four idle lanes of its intersection do (1, 2, 4, 8 and 9
+/// measured, `rtl render cornell --strategy mixture`, both tiers: none better than 4 beyond noise).
 const SECOND_BATCH: u32 = 4;
 
 /// How many samples may be finished but not yet summed into their pixel (waiting for an earlier
