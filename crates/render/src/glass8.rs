@@ -25,7 +25,7 @@
 use crate::material::Material;
 use crate::ray::Ray;
 use crate::ray8::{Rays8, SPHERE};
-use crate::scene::{GroupId, Object, Scene};
+use crate::scene::{GroupId, Scene};
 use crate::shapes::{Sphere, UNIT_NORMAL};
 
 /// A glass sphere's numbers: its centre, `1 / r`, its index of refraction and the index's
@@ -60,12 +60,6 @@ impl GlassSpheres {
                 _ => None,
             })
             .collect();
-        debug_assert!(
-            group
-                .objects
-                .iter()
-                .all(|o| matches!(o, Object::Quad(_) | Object::Sphere(_)))
-        );
         spheres
             .iter()
             .any(Option::is_some)
@@ -85,14 +79,10 @@ impl GlassSpheres {
         }
     }
 
-    /// Whether a lane's hit `h` is on a glass sphere, without a branch on the answer.
+    /// Whether a lane's hit `h` is on a glass sphere.
     #[inline(always)]
     pub fn is_glass(&self, h: u32) -> bool {
-        h & SPHERE != 0
-            && self
-                .spheres
-                .get((h & !SPHERE) as usize)
-                .is_some_and(Option::is_some)
+        self.sphere(h).is_some()
     }
 
     /// The error bound of the hit of `ray` at `t` on `s` ([`Sphere::point_error`]), if the lanes
@@ -159,18 +149,6 @@ mod wide {
         unsafe { vertex::<Avx2>(spheres, g, lanes) }
     }
 
-    /// `-v`, coordinate by coordinate.
-    #[inline(always)]
-    fn neg3<W: Wide8>(v: V3<W>) -> V3<W> {
-        [-v[0], -v[1], -v[2]]
-    }
-
-    /// `v * s` (glam's `DVec3 * f64`).
-    #[inline(always)]
-    fn times<W: Wide8>(v: V3<W>, s: W) -> V3<W> {
-        [v[0] * s, v[1] * s, v[2] * s]
-    }
-
     /// [`dielectric`] in the instructions of `W`.
     ///
     /// # Safety
@@ -205,14 +183,15 @@ mod wide {
         let (center, inv_r, ior, inv_ior) = ([c[0], c[1], c[2]], c[3], c[4], c[5]);
         let zero = t.zero_like();
         let one = zero.splat_like(1.0);
+        // (glam's `v * s` as `s * v`: a product rounds the same either way)
         // `Sphere::hit_at`: p = o + t d, the normal (p - c) / r against the ray
         let p = add3(o, scale3(t, d));
-        let outward = times(sub3(p, center), inv_r);
+        let outward = scale3(inv_r, sub3(p, center));
         let front = dot(d, outward).lt(zero);
         let normal = select3(neg3(outward), front, outward);
         // `Material::scatter` for a dielectric
         let eta = ior.select(front, inv_ior);
-        let unit = times(d, one / dot(d, d).sqrt());
+        let unit = scale3(one / dot(d, d).sqrt(), d);
         let cos = dot(neg3(unit), normal).min(one);
         let sin = (one - cos * cos).max(zero).sqrt();
         let total = (eta * sin).gt(one);
@@ -232,7 +211,7 @@ mod wide {
         let parallel = scale3(-(one - dot(perp, perp)).abs().sqrt(), normal);
         let direction = select3(add3(perp, parallel), reflects, reflected);
         // `Hit::spawn_origin`: p pushed off by 4 err along the normal, to the side it leaves on
-        let offset = times(normal, zero.splat_like(4.0) * err);
+        let offset = scale3(zero.splat_like(4.0) * err, normal);
         let out = dot(direction, normal).ge(zero);
         let origin = select3(sub3(p, offset), out, add3(p, offset));
         let these = zero.mask(lanes);

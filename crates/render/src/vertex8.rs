@@ -237,7 +237,7 @@ mod wide {
         // `Quad::hit_at`: p = Q + alpha u + beta v, the normal against the ray
         let p = add3(add3(q, scale3(alpha, e1)), scale3(beta, e2));
         let front = dot(dir, outward).lt(zero);
-        let normal = select3([-outward[0], -outward[1], -outward[2]], front, outward);
+        let normal = select3(neg3(outward), front, outward);
         // the mixture's direction and `s / p`
         let (d, w, ok) = m.sample_in(p, normal, u, lanes);
         // `OneSamplePath::diffuse`: the throughput times `albedo * (s / p)`

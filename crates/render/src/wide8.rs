@@ -160,6 +160,12 @@ pub fn sub3<W: Wide8>(a: V3<W>, b: V3<W>) -> V3<W> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// `-a`, coordinate by coordinate (each sign flipped).
+#[inline(always)]
+pub fn neg3<W: Wide8>(a: V3<W>) -> V3<W> {
+    [-a[0], -a[1], -a[2]]
+}
+
 /// `s * a` (glam's `f64 * DVec3`, the scalar first).
 #[inline(always)]
 pub fn scale3<W: Wide8>(s: W, a: V3<W>) -> V3<W> {

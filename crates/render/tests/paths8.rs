@@ -991,3 +991,53 @@ fn the_glass_check_catches_glass_one_ulp_denser() {
         assert!(glass_mismatches(&glass, 400).0 > 0);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The light met without a record
+
+/// What a path gathers from a light quad without its record (`QuadLight::emitted`) is what
+/// `Material::emitted` gives on the record, from the front and from behind, for book 3's one-sided
+/// ceiling light and a two-sided copy of it.
+#[test]
+fn a_light_met_without_its_record_gives_what_the_material_emits() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(17);
+    for two_sided in [false, true] {
+        let mut scene = builtin("cornell");
+        for m in &mut scene.materials {
+            if let Material::DiffuseLight { two_sided: t, .. } = m {
+                *t = two_sided;
+            }
+        }
+        let surfaces =
+            rtl_render::vertex8::QuadSurfaces::new(&scene, GroupId(0)).expect("the room's quads");
+        let group = &scene.groups[0];
+        let (mut lights, mut dark) = (0, 0);
+        for h in 0..4 * group.accel.packets.len() as u32 {
+            let Some(light) = surfaces.light(h) else {
+                continue;
+            };
+            lights += 1;
+            let index = group.accel.packets[h as usize / 4].index[h as usize % 4];
+            let rtl_render::scene::Object::Quad(quad) = &group.objects[index as usize] else {
+                panic!("a light quad")
+            };
+            let material = scene.materials[quad.material.index()];
+            for _ in 0..200 {
+                // from either side of the light's plane, at a point inside it
+                let at = quad.q + rng.random::<f64>() * quad.u + rng.random::<f64>() * quad.v;
+                let side = if rng.random() { 1.0 } else { -1.0 };
+                let from = at + side * quad.normal * rng.random_range(1.0..50.0) + unit(&mut rng);
+                let ray = Ray::new(from, at - from, 0.0);
+                let Some(hit) = quad.hit(&ray, Interval::FORWARD) else {
+                    continue;
+                };
+                let want = material.emitted(&hit, &scene.textures, &mut Ctx::new());
+                assert_eq!(light.emitted(ray.direction), want, "two-sided {two_sided}");
+                dark += (want == Color::ZERO) as usize;
+            }
+        }
+        assert_eq!(lights, 1);
+        // (the check can fail: from behind, the one-sided light gives nothing, the other its light)
+        assert_eq!(dark > 0, !two_sided);
+    }
+}
