@@ -13,6 +13,7 @@ use crate::metal_pdf::FuzzyMetalPdf;
 use crate::ray::{Interval, Ray};
 use crate::sampler::{Ctx, Dimension, MediaCrossed, MediumMode};
 use crate::scene::{GroupId, Scene};
+use crate::traversal::free_point_surely_beyond;
 use crate::vec::{Color, Point3, Vec3};
 use rtl_pdf::{DirectionSample, HemispherePdf, HittablePdf, MixturePdf, Pdf, power_heuristic};
 
@@ -701,8 +702,14 @@ fn trace_through_media(
     for ((t0, t1, density), m) in crossed.stretches() {
         let t1 = t1.min(t_surface);
         if t0 < t1 {
+            let u = ctx.uniform();
+            // `-ln(1 - u) >= u`: a `u` that reaches past the stretch or the closest point so far
+            // decides without the logarithm, exactly as it would with it.
+            if free_point_surely_beyond(u, t0, density, t1.min(closest)) {
+                continue;
+            }
             // 1 - u lies in (0, 1], so the logarithm is finite.
-            let t = t0 - (1.0 - ctx.uniform()).ln() / density;
+            let t = t0 - (1.0 - u).ln() / density;
             if t < t1 && t < closest {
                 closest = t;
                 phase = Some(m);

@@ -44,6 +44,29 @@ pub struct Accel {
     pub forms: Vec<crate::ray8::QuadForm>,
 }
 
+/// The smallest uniform number `u` for which a free path `-ln(1 - u) / sigma` is taken to be at least
+/// `u / sigma` in floating point as it is in exact arithmetic, so that a path that cannot end
+/// before a limit is known without its logarithm (`Scene::hit_medium`, the `mis` integrator's
+/// distance sampling). Then `1 - u` is exact (`u` a multiple of 2^-53), and `-ln(1 - u)` exceeds `u`
+/// by `u^2 / 2 >= 2^-41`, far more than the logarithm's rounding; the division or product by the
+/// density and the sum with a start are monotonic, so the bound survives them too.
+pub(crate) const SURE_PASS_MIN_U: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// Whether the free path `mean * -ln(1 - u)` (computed as `-mean * ln(1 - u)`) is at least `limit`,
+/// known from `u` alone: `u >= SURE_PASS_MIN_U` and `u * mean >= limit`. Never says so of a path
+/// that, computed, is shorter (test `a_sure_pass_is_a_pass`).
+#[inline(always)]
+pub(crate) fn free_path_surely_reaches(u: f64, mean: f64, limit: f64) -> bool {
+    u >= SURE_PASS_MIN_U && u * mean >= limit
+}
+
+/// Whether the point `t0 - ln(1 - u) / density` (computed as such) lies at or beyond `limit`, known
+/// from `u` alone: `u >= SURE_PASS_MIN_U` and `t0 + u / density >= limit`.
+#[inline(always)]
+pub(crate) fn free_point_surely_beyond(u: f64, t0: f64, density: f64, limit: f64) -> bool {
+    u >= SURE_PASS_MIN_U && t0 + u / density >= limit
+}
+
 /// [`HitTier::cached`]'s store: 0 before the first traversal, then the detected tier plus one.
 static TIER: AtomicU8 = AtomicU8::new(0);
 
@@ -792,8 +815,15 @@ impl Scene {
                 .push_medium(t0, t1, len / -m.neg_inv_density, m.phase.0);
             return None;
         }
+        // The distance is `-ln(1 - u) / sigma >= u / sigma`: a `u` at least as large as the
+        // stretch's optical depth passes without its logarithm (most rays through thin fog), the
+        // same decision, bit for bit ([`SURE_PASS_MIN_U`]).
+        let u = ctx.uniform();
+        if free_path_surely_reaches(u, -m.neg_inv_density, inside) {
+            return None;
+        }
         // 1 - u lies in (0, 1], so the logarithm is finite.
-        let distance = m.neg_inv_density * (1.0 - ctx.uniform()).ln();
+        let distance = m.neg_inv_density * (1.0 - u).ln();
         if distance >= inside {
             return None;
         }
@@ -1019,4 +1049,73 @@ impl Closest<'_> {
 #[inline(never)]
 fn sphere_record(s: &Sphere, ray: &Ray, t: f64) -> Option<Hit> {
     Some(s.hit_at(ray, t))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// The uniform numbers to try: the extremes, the bound and its neighbours, and random ones (all
+    /// multiples of 2^-53, as the sampler's are).
+    fn us() -> Vec<f64> {
+        let e = f64::EPSILON / 2.0; // 2^-53
+        let mut v = vec![
+            SURE_PASS_MIN_U,
+            SURE_PASS_MIN_U + e,
+            SURE_PASS_MIN_U - e,
+            e,
+            2.0 * e,
+            1e-10,
+            0.5,
+            1.0 - e,
+            1.0 - 2.0 * e,
+        ];
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(7);
+        v.extend((0..20_000).map(|_| rng.random::<f64>()));
+        v.extend((0..20_000).map(|_| rng.random::<f64>() * 1e-4));
+        v
+    }
+
+    /// How often a sure-pass test says a free path reaches a limit that, computed with its
+    /// logarithm, it falls short of: `path(u, mean, limit)` in [`free_path_surely_reaches`]'s form,
+    /// `point(u, t0, density, limit)` in [`free_point_surely_beyond`]'s. Each limit is the next number
+    /// above the computed path or point, the nearest one it does not reach.
+    fn false_passes(
+        path: impl Fn(f64, f64, f64) -> bool,
+        point: impl Fn(f64, f64, f64, f64) -> bool,
+    ) -> usize {
+        let mut bad = 0;
+        for u in us() {
+            for mean in [1e-30, 1e-3, 0.7, 1.0, 3.0, 1e4, 1e30] {
+                let computed = -mean * (1.0 - u).ln();
+                bad += usize::from(path(u, mean, computed.next_up()));
+                let density = 1.0 / mean;
+                for t0 in [0.0, 1e-3, 1.0, 250.0, 1e6] {
+                    let t = t0 - (1.0 - u).ln() / density;
+                    bad += usize::from(point(u, t0, density, t.next_up()));
+                }
+            }
+        }
+        bad
+    }
+
+    #[test]
+    fn a_sure_pass_is_a_pass() {
+        assert_eq!(
+            false_passes(free_path_surely_reaches, free_point_surely_beyond),
+            0
+        );
+    }
+
+    /// The checker catches a bound that does not hold: `-ln(1 - u) >= 1.5 u` is false for small `u`.
+    #[test]
+    fn a_wrong_bound_is_caught() {
+        let path = |u: f64, mean: f64, limit: f64| u >= SURE_PASS_MIN_U && 1.5 * u * mean >= limit;
+        let point = |u: f64, t0: f64, density: f64, limit: f64| {
+            u >= SURE_PASS_MIN_U && t0 + 1.5 * u / density >= limit
+        };
+        assert!(false_passes(path, |_, _, _, _| false) > 0);
+        assert!(false_passes(|_, _, _| false, point) > 0);
+    }
 }
