@@ -336,21 +336,24 @@ pub struct SphericalRectangle {
 /// Solid angle (and the terms the sampler needs) of the rectangle `[x0, x1] x [y0, y1]` at height
 /// `z0 < 0` seen from the origin: the angle excess `gamma_0 + gamma_1 + gamma_2 + gamma_3 - 2 pi` of
 /// the spherical quadrilateral. Returns `(S, k, b0, b1)`.
+///
+/// The normals of the edges' great circles are the corners' cross products, which in this frame
+/// have a zero and two coordinates each: `n0 = (0, z0, -y0) / l(y0)`, `n1 = (-z0, 0, x1) / l(x1)`,
+/// `n2 = (0, -z0, y1) / l(y1)`, `n3 = (z0, 0, -x0) / l(x0)` with `l(a) = sqrt(z0^2 + a^2)`, so the
+/// cosines `-n_i . n_(i+1)` of the interior angles are `+-x y / (l(x) l(y))`: four square roots
+/// where four cross products and normalisations would take twelve products more each.
+#[inline]
 fn rectangle_angles(x0: f64, x1: f64, y0: f64, y1: f64, z0: f64) -> (f64, f64, f64, f64) {
-    let v00 = DVec3::new(x0, y0, z0);
-    let v01 = DVec3::new(x0, y1, z0);
-    let v10 = DVec3::new(x1, y0, z0);
-    let v11 = DVec3::new(x1, y1, z0);
-    let n0 = v00.cross(v10).normalize();
-    let n1 = v10.cross(v11).normalize();
-    let n2 = v11.cross(v01).normalize();
-    let n3 = v01.cross(v00).normalize();
-    let g0 = (-n0.dot(n1)).clamp(-1.0, 1.0).acos();
-    let g1 = (-n1.dot(n2)).clamp(-1.0, 1.0).acos();
-    let g2 = (-n2.dot(n3)).clamp(-1.0, 1.0).acos();
-    let g3 = (-n3.dot(n0)).clamp(-1.0, 1.0).acos();
+    let z2 = z0 * z0;
+    let l = |a: f64| (z2 + a * a).sqrt();
+    let (lx0, lx1, ly0, ly1) = (l(x0), l(x1), l(y0), l(y1));
+    let angle = |c: f64| c.clamp(-1.0, 1.0).acos();
+    let g0 = angle(x1 * y0 / (lx1 * ly0));
+    let g1 = angle(-(x1 * y1) / (lx1 * ly1));
+    let g2 = angle(x0 * y1 / (lx0 * ly1));
+    let g3 = angle(-(x0 * y0) / (lx0 * ly0));
     let k = TAU - g2 - g3;
-    ((g0 + g1 - k).max(0.0), k, n0.z, n2.z)
+    ((g0 + g1 - k).max(0.0), k, -y0 / ly0, y1 / ly1)
 }
 
 /// What a rectangle `q + s ex + t ey` contributes to its [`SphericalRectangle`]s whatever the origin:
