@@ -1056,8 +1056,9 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
 
-    /// The uniform numbers to try: the extremes, the bound and its neighbours, and random ones (all
-    /// multiples of 2^-53, as the sampler's are).
+    /// The uniform numbers to try: the extremes, the bound and its neighbours, random ones as the
+    /// sampler draws them (multiples of 2^-53), and small ones that are not (so `1 - u` rounds: a
+    /// harder case than the sampler's).
     fn us() -> Vec<f64> {
         let e = f64::EPSILON / 2.0; // 2^-53
         let mut v = vec![
