@@ -57,6 +57,13 @@ pub struct CompareArgs {
     /// Samples per pixel of each measured render (a square for the book's stratified Cornell box).
     #[arg(long, default_value_t = 16)]
     spp: u64,
+    /// Samples per pixel of the book's renders (default: `--spp`; a square for the Cornell box). The
+    /// noise constant of a display-encoded image grows with the samples until the noise is small
+    /// beside the signal: the gamma-2 encoding and the clamp at 1 squeeze a noisy pixel's errors. A
+    /// book's render at 16 spp therefore understates its noise at `--target-book-spp`, and the
+    /// closer this is to that, the truer the target (equal to it: no extrapolation at all).
+    #[arg(long, value_name = "SPP")]
+    book_spp: Option<u64>,
     /// Most ray segments per path (the book's `max_depth`): 50 for cornell, 40 for book2-final.
     #[arg(long)]
     max_depth: Option<u32>,
@@ -73,6 +80,11 @@ pub struct CompareArgs {
     /// `--target-book-spp`.
     #[arg(long)]
     target_rmse: Option<f64>,
+    /// The book's per-pixel RMSE at `--target-book-spp`, measured beforehand (a run with `--book-spp`
+    /// equal to `--target-book-spp` prints it as its target): the target, no extrapolation, and the
+    /// book's time to it is `--target-book-spp` samples at the rate it runs at now. Needs `--book`.
+    #[arg(long, value_name = "RMSE", conflicts_with = "target_rmse")]
+    book_noise: Option<f64>,
     /// The book's samples per pixel whose noise is the target (when `--target-rmse` is not given).
     #[arg(long, default_value_t = 1000)]
     target_book_spp: u64,
@@ -110,7 +122,20 @@ struct Measured {
     per_core: f64,
     c: f64,
     mean: f64,
+    /// The samples per pixel `c` was measured at.
+    spp: u64,
     note: String,
+}
+
+/// A noise constant measured at `measured` spp is taken as it is up to this many times that (and
+/// flagged beyond): in display values it grows with the samples until the noise is small beside the
+/// signal (the square root and the clamp at 1 squeeze a noisy pixel's errors), so one measured far
+/// below the spp it is projected to understates the noise there.
+const FAR_BELOW: f64 = 4.0;
+
+/// Whether a constant measured at `measured` spp is projected far beyond it (`needed` spp).
+fn measured_far_below(measured: u64, needed: f64) -> bool {
+    needed > FAR_BELOW * measured as f64
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
@@ -176,6 +201,16 @@ fn validate(a: &CompareArgs) -> Result<()> {
     {
         bail!("--target-rmse must be positive, got {t}");
     }
+    if let Some(t) = a.book_noise {
+        if !(t > 0.0 && t.is_finite()) {
+            bail!("--book-noise must be positive, got {t}");
+        }
+        if a.book.is_none() {
+            bail!(
+                "--book-noise: the book's code is not run (no --book), so it has no rate to go with it"
+            );
+        }
+    }
     if a.target_rmse.is_none() && a.book.is_none() {
         bail!("--target-rmse is needed when the book's code is not run (no --book)");
     }
@@ -189,12 +224,21 @@ fn validate(a: &CompareArgs) -> Result<()> {
                 main.display()
             );
         }
-        if samples_taken(program, a.spp) != a.spp {
+        if a.book_spp == Some(0) {
+            bail!("--book-spp must be positive");
+        }
+        let (flag, spp) = match a.book_spp {
+            Some(n) => ("--book-spp", n),
+            None => ("--spp", a.spp),
+        };
+        if samples_taken(program, spp) != spp {
             bail!(
-                "--spp {}: the book's Cornell box stratifies into a square number of samples; give a square (16, 64, ...)",
-                a.spp
+                "{flag} {spp}: the book's Cornell box stratifies into a square number of samples; give a square (16, 64, ...)"
             );
         }
+    }
+    if a.book_spp.is_some() && a.book.is_none() {
+        bail!("--book-spp: the book's code is not run (no --book)");
     }
     if a.mitsuba.is_some() && a.scene != CompareScene::Cornell {
         bail!("--mitsuba: only the cornell scene is written for Mitsuba");
@@ -240,6 +284,9 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         a.threads,
         w = a.width
     );
+    if let (Some(_), Some(n)) = (&a.book, a.book_spp) {
+        println!("the book's renders: {n} spp each");
+    }
     let mut rounds = Vec::with_capacity(a.rounds);
     for r in 0..a.rounds {
         if a.rounds > 1 {
@@ -248,7 +295,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         rounds.push(measure_round(&a, depth)?);
     }
     let book_c = a.book.as_ref().map(|_| rounds[0][0].c);
-    let target = match (a.target_rmse, book_c) {
+    let target = match (a.book_noise.or(a.target_rmse), book_c) {
         (Some(t), _) => t,
         (None, Some(c)) => c / (a.target_book_spp as f64).sqrt(),
         (None, None) => unreachable!("validated"),
@@ -281,7 +328,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
             let rate = Spread::of(rounds.iter().map(|rows| rows[i].per_core));
             let by_rate = rate_ratio(&rounds, i);
             let by_time = Spread::of(rounds.iter().map(|rows| {
-                seconds_to(rows[0].c, target, pixels, rows[0].per_core, a.cores)
+                book_seconds(&a, &rows[0], target, pixels)
                     / seconds_to(rows[i].c, target, pixels, rows[i].per_core, a.cores)
             }));
             println!(
@@ -330,8 +377,17 @@ fn measure_round(a: &CompareArgs, depth: u32) -> Result<Vec<Measured>> {
 fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, side: usize) {
     println!(
         "target: per-pixel RMSE {target:.5} (display values, gamma 2){}; times for {side} x {side} pixels",
-        if a.target_rmse.is_none() {
-            format!(", the book's C++ at {} spp", a.target_book_spp)
+        if a.book_noise.is_some() {
+            format!(
+                ", the book's C++ at {} spp (--book-noise, measured there)",
+                a.target_book_spp
+            )
+        } else if a.target_rmse.is_none() {
+            format!(
+                ", the book's C++ at {} spp (its noise constant measured at {} spp)",
+                a.target_book_spp,
+                a.book_spp.unwrap_or(a.spp)
+            )
         } else {
             String::new()
         }
@@ -348,25 +404,69 @@ fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, s
         nw = name_width(rows)
     );
     let book_rate = a.book.as_ref().map(|_| rows[0].per_core);
-    let book_secs = book_rate.map(|r| seconds_to(rows[0].c, target, pixels, r, a.cores));
-    for m in rows {
-        let secs = seconds_to(m.c, target, pixels, m.per_core, a.cores);
+    let book_secs = book_rate.map(|_| book_seconds(a, &rows[0], target, pixels));
+    let mut flagged = Vec::new();
+    for (i, m) in rows.iter().enumerate() {
+        let is_book = i == 0 && book_rate.is_some();
+        let (needed, secs) = match a.book_noise {
+            // the book's noise measured at its target spp: that many samples, by definition
+            Some(_) if is_book => {
+                let n = a.target_book_spp as f64;
+                (n, n * pixels as f64 / (m.per_core * a.cores as f64))
+            }
+            _ => (
+                noise::spp_to(m.c, target),
+                seconds_to(m.c, target, pixels, m.per_core, a.cores),
+            ),
+        };
         let vs = match (book_rate, book_secs) {
             (Some(r), Some(s)) => format!("{:.2}x/{:.1}x", m.per_core / r, s / secs),
             _ => "-".into(),
         };
+        let far = !(is_book && a.book_noise.is_some()) && measured_far_below(m.spp, needed);
+        if far {
+            flagged.push((is_book, m.spp));
+        }
         println!(
-            "{:<nw$} {:>14.0} {:>8.4} {:>8.4} {:>11.0} {:>14.1} {:>10}  {}",
+            "{:<nw$} {:>14.0} {:>8.4} {:>8.4} {:>10.0}{} {:>14.1} {:>10}  {}",
             m.name,
             m.per_core,
             m.c,
             m.mean,
-            noise::spp_to(m.c, target),
+            needed,
+            if far { '*' } else { ' ' },
             secs,
             vs,
             m.note,
             nw = name_width(rows)
         );
+    }
+    if !flagged.is_empty() {
+        println!(
+            "* c measured at fewer than 1/{FAR_BELOW} of the samples it is projected to. In display values the \
+             noise constant grows with the samples until the noise is small beside the signal (the square \
+             root and the clamp at 1 squeeze a noisy pixel's errors), so such a c understates the noise at \
+             the spp needed."
+        );
+        if let Some(&(_, spp)) = flagged.iter().find(|&&(book, _)| book) {
+            println!(
+                "  The book's (at {spp} spp): the target is tighter than its real noise at {} spp, and every \
+                 time above is too long; measure it nearer with --book-spp.",
+                a.target_book_spp
+            );
+        }
+        if flagged.iter().any(|&(book, _)| !book) {
+            println!("  rtl's or Mitsuba's: that time is too short; measure nearer with --spp.");
+        }
+    }
+}
+
+/// The book's seconds to `target` on `a.cores` cores: `--target-book-spp` samples a pixel when its
+/// noise there was measured (`--book-noise`), else projected from its noise constant like the others'.
+fn book_seconds(a: &CompareArgs, book: &Measured, target: f64, pixels: usize) -> f64 {
+    match a.book_noise {
+        Some(_) => a.target_book_spp as f64 * pixels as f64 / (book.per_core * a.cores as f64),
+        None => seconds_to(book.c, target, pixels, book.per_core, a.cores),
     }
 }
 
@@ -493,12 +593,13 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
     let main_path = src_dir.join("main.cc");
     let src = String::from_utf8(read(&main_path)?)
         .with_context(|| format!("{} is not UTF-8", main_path.display()))?;
+    let book_spp = a.book_spp.unwrap_or(a.spp);
     let mut images = Vec::new();
     let (mut secs, mut wall) = (0.0, 0.0);
     for &seed in &a.seeds {
         let settings = BookSettings {
             width: a.width,
-            spp: a.spp,
+            spp: book_spp,
             max_depth: depth,
             seed,
         };
@@ -550,15 +651,16 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
         secs += s.seconds();
         wall += s.wall;
     }
-    let samples = (a.width * a.width) as f64 * a.spp as f64 * 2.0;
-    let (c, mean) = pair_constant(&images[0], &images[1], a.spp)?;
+    let samples = (a.width * a.width) as f64 * book_spp as f64 * 2.0;
+    let (c, mean) = pair_constant(&images[0], &images[1], book_spp)?;
     Ok(Measured {
         name: "book C++ (g++ -O3)".into(),
         per_core: samples / secs,
         c,
         mean,
+        spp: book_spp,
         note: format!(
-            "1 thread, {secs:.1} s processor time ({wall:.1} s wall) for both renders, main.cc patched"
+            "1 thread, {book_spp} spp, {secs:.1} s processor time ({wall:.1} s wall) for both renders, main.cc patched"
         ),
     })
 }
@@ -608,6 +710,7 @@ fn run_mitsuba(a: &CompareArgs, python: &Path, depth: u32) -> Result<Measured> {
         per_core: samples / cpu[1],
         c,
         mean,
+        spp: a.spp,
         note: format!(
             "{} threads, path (max_depth {depth}), second render {:.1} s processor time ({:.1} s wall; the first, compiling its kernels, {:.1} s wall)",
             a.threads, cpu[1], times[1], times[0]
@@ -682,6 +785,7 @@ fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> R
         per_core: samples / secs,
         c,
         mean,
+        spp: a.spp,
         note: format!(
             "{} threads, {secs:.1} s processor time ({wall:.1} s wall) for both renders",
             a.threads
@@ -737,6 +841,7 @@ mod tests {
             per_core,
             c: 0.3,
             mean: 0.2,
+            spp: 16,
             note: String::new(),
         };
         let rounds: Vec<Vec<Measured>> = [(100.0, 300.0), (50.0, 200.0), (90.0, 180.0)]
@@ -767,6 +872,55 @@ mod tests {
         <Cli as clap::Parser>::try_parse_from(all).unwrap().compare
     }
 
+    /// The parser's own refusal (flags that conflict).
+    fn parse_err(args: &[&str]) -> String {
+        #[derive(clap::Parser)]
+        struct Cli {
+            #[command(flatten)]
+            compare: CompareArgs,
+        }
+        let mut all = vec!["compare"];
+        all.extend(args);
+        match <Cli as clap::Parser>::try_parse_from(all) {
+            Ok(_) => panic!("{args:?} parsed"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn the_books_measured_noise_is_reached_at_its_own_spp() {
+        let book = Measured {
+            name: String::new(),
+            per_core: 250_000.0,
+            c: 0.8,
+            mean: 0.2,
+            spp: 16,
+            note: String::new(),
+        };
+        let mut a = parse(&["--target-rmse", "0.01", "--target-book-spp", "10000"]);
+        // projected from its constant: (0.8 / 0.01)^2 = 6400 spp
+        let projected = book_seconds(&a, &book, 0.01, 1000);
+        assert!(
+            (projected - 6400.0 * 1000.0 / 500_000.0).abs() < 1e-9,
+            "{projected}"
+        );
+        // measured at 10,000 spp: that many, whatever the constant at 16 spp says
+        a.target_rmse = None;
+        a.book_noise = Some(0.01);
+        let measured = book_seconds(&a, &book, 0.01, 1000);
+        assert!(
+            (measured - 10_000.0 * 1000.0 / 500_000.0).abs() < 1e-9,
+            "{measured}"
+        );
+    }
+
+    #[test]
+    fn a_constant_projected_far_beyond_its_samples_is_flagged() {
+        assert!(!measured_far_below(16, 64.0));
+        assert!(measured_far_below(16, 64.5));
+        assert!(!measured_far_below(10000, 10000.0));
+    }
+
     #[test]
     fn bad_settings_are_refused_before_any_work() {
         let err = |args: &[&str]| validate(&parse(args)).unwrap_err().to_string();
@@ -788,6 +942,13 @@ mod tests {
         }
         assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
         assert!(err(&["--target-rmse", "0.01", "--rounds", "0"]).contains("--rounds"));
+        let e = err(&["--book-noise", "0.01"]);
+        assert!(e.contains("--book-noise") && e.contains("no --book"), "{e}");
+        assert!(
+            parse_err(&["--book-noise", "0.01", "--target-rmse", "0.01"]).contains("--target-rmse")
+        );
+        let e = err(&["--target-rmse", "0.01", "--book-spp", "1024"]);
+        assert!(e.contains("--book-spp") && e.contains("no --book"), "{e}");
         for w in ["0", "65537"] {
             let e = err(&["--target-rmse", "0.01", "--project-width", w]);
             assert!(e.contains("--project-width") && e.contains(w), "{e}");
@@ -805,6 +966,26 @@ mod tests {
         let e = err(&["--book", dir.to_str().unwrap(), "--spp", "20"]);
         assert!(e.contains("--spp 20"), "{e}");
         assert!(validate(&parse(&["--book", dir.to_str().unwrap(), "--spp", "16"])).is_ok());
+        // The book's own spp is checked in its place; rtl's then need not be a square.
+        let book = |spp: &str| {
+            parse(&[
+                "--book",
+                dir.to_str().unwrap(),
+                "--spp",
+                "20",
+                "--book-spp",
+                spp,
+            ])
+        };
+        let e = validate(&book("20")).unwrap_err().to_string();
+        assert!(e.contains("--book-spp 20"), "{e}");
+        let e = validate(&book("0")).unwrap_err().to_string();
+        assert!(e.contains("--book-spp must be positive"), "{e}");
+        assert!(validate(&book("1024")).is_ok());
+        let noise = |r: &str| parse(&["--book", dir.to_str().unwrap(), "--book-noise", r]);
+        let e = validate(&noise("0")).unwrap_err().to_string();
+        assert!(e.contains("--book-noise must be positive"), "{e}");
+        assert!(validate(&noise("0.0123")).is_ok());
         let e = err(&[
             "--target-rmse",
             "0.01",
