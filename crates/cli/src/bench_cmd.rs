@@ -25,7 +25,20 @@ pub struct BenchArgs {
 #[derive(Subcommand)]
 enum BenchCommand {
     /// Compare rtl with the book's C++ (and Mitsuba 3) side by side on this machine.
-    Compare(CompareArgs),
+    Compare(Box<CompareArgs>),
+    /// The per-pixel noise between two renders of one scene with different seeds, as `compare`
+    /// measures it: e.g. the book's program at a target's samples, or `rtl render --time`.
+    Noise(NoiseArgs),
+}
+
+#[derive(Args)]
+pub struct NoiseArgs {
+    /// Two renders: the book's PPM or rtl's `--linear` PFM (both brought to the book's encoding).
+    #[arg(num_args = 2, value_names = ["A", "B"], required = true)]
+    images: Vec<PathBuf>,
+    /// The samples per pixel of each render (for `c = RMSE sqrt(spp)`).
+    #[arg(long)]
+    spp: u64,
 }
 
 /// The scenes all the renderers have.
@@ -142,8 +155,41 @@ fn measured_far_below(measured: u64, needed: f64) -> bool {
 
 pub fn run(args: BenchArgs) -> Result<()> {
     match args.command {
-        BenchCommand::Compare(a) => compare(a),
+        BenchCommand::Compare(a) => compare(*a),
+        BenchCommand::Noise(a) => {
+            println!("{}", noise_of(&a)?);
+            Ok(())
+        }
     }
+}
+
+/// `rtl bench noise`: the per-pixel RMSE of one render (`RMS(a - b) / sqrt(2)`), its noise constant
+/// and the two images' mean display values.
+fn noise_of(a: &NoiseArgs) -> Result<String> {
+    if a.spp == 0 {
+        bail!("--spp must be positive");
+    }
+    let load = |path: &PathBuf| -> Result<DisplayImage> {
+        let bytes = read(path)?;
+        let what = path.display().to_string();
+        Ok(if bytes.starts_with(b"PF") {
+            parse_pfm(&bytes, &what)?
+        } else {
+            parse_ppm(&bytes, &what)?
+        })
+    };
+    let (x, y) = (load(&a.images[0])?, load(&a.images[1])?);
+    let (c, _) = pair_constant(&x, &y, a.spp)?;
+    Ok(format!(
+        "{}x{}, {} spp: per-pixel RMSE {:.5}, c {:.4}, mean display values {:.4} and {:.4}",
+        x.width,
+        x.height,
+        a.spp,
+        c / (a.spp as f64).sqrt(),
+        c,
+        x.mean(),
+        y.mean()
+    ))
 }
 
 /// The processor, from /proc/cpuinfo: its model name, which on a VM is often generic ("Intel(R)
@@ -410,22 +456,22 @@ fn print_table(a: &CompareArgs, rows: &[Measured], target: f64, pixels: usize, s
     let mut flagged = Vec::new();
     for (i, m) in rows.iter().enumerate() {
         let is_book = i == 0 && book_rate.is_some();
-        let (needed, secs) = match a.book_noise {
-            // the book's noise measured at its target spp: that many samples, by definition
-            Some(_) if is_book => {
-                let n = a.target_book_spp as f64;
-                (n, n * pixels as f64 / (m.per_core * a.cores as f64))
-            }
-            _ => (
-                noise::spp_to(m.c, target),
-                seconds_to(m.c, target, pixels, m.per_core, a.cores),
-            ),
+        // the book's noise measured at its target spp: that many samples, by definition
+        let measured_there = is_book && a.book_noise.is_some();
+        let needed = if measured_there {
+            a.target_book_spp as f64
+        } else {
+            noise::spp_to(m.c, target)
+        };
+        let secs = match book_secs {
+            Some(s) if is_book => s,
+            _ => seconds_to(m.c, target, pixels, m.per_core, a.cores),
         };
         let vs = match (book_rate, book_secs) {
             (Some(r), Some(s)) => format!("{:.2}x/{:.1}x", m.per_core / r, s / secs),
             _ => "-".into(),
         };
-        let far = !(is_book && a.book_noise.is_some()) && measured_far_below(m.spp, needed);
+        let far = !measured_there && measured_far_below(m.spp, needed);
         if far {
             flagged.push((is_book, m.spp));
         }
@@ -863,7 +909,7 @@ mod tests {
         );
     }
 
-    fn parse(args: &[&str]) -> CompareArgs {
+    fn try_parse(args: &[&str]) -> Result<CompareArgs, clap::Error> {
         #[derive(clap::Parser)]
         struct Cli {
             #[command(flatten)]
@@ -871,22 +917,16 @@ mod tests {
         }
         let mut all = vec!["compare"];
         all.extend(args);
-        <Cli as clap::Parser>::try_parse_from(all).unwrap().compare
+        <Cli as clap::Parser>::try_parse_from(all).map(|c| c.compare)
+    }
+
+    fn parse(args: &[&str]) -> CompareArgs {
+        try_parse(args).unwrap()
     }
 
     /// The parser's own refusal (flags that conflict).
     fn parse_err(args: &[&str]) -> String {
-        #[derive(clap::Parser)]
-        struct Cli {
-            #[command(flatten)]
-            compare: CompareArgs,
-        }
-        let mut all = vec!["compare"];
-        all.extend(args);
-        match <Cli as clap::Parser>::try_parse_from(all) {
-            Ok(_) => panic!("{args:?} parsed"),
-            Err(e) => e.to_string(),
-        }
+        try_parse(args).err().expect("parsed").to_string()
     }
 
     #[test]
@@ -914,6 +954,44 @@ mod tests {
             (measured - 10_000.0 * 1000.0 / 500_000.0).abs() < 1e-9,
             "{measured}"
         );
+    }
+
+    /// `rtl bench noise` reads either format and measures as `compare` does.
+    #[test]
+    fn the_noise_of_two_renders_is_read_from_either_format() {
+        let dir = std::env::temp_dir().join(format!("rtl-bench-noise-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // one pixel: display values 64/256 and 128/256 in every channel, so RMSE (1/4) / sqrt(2)
+        let a = dir.join("a.ppm");
+        std::fs::write(&a, "P3\n1 1\n255\n64 64 64\n").unwrap();
+        // a PFM of linear 0.25 (display sqrt = 0.5, i.e. 128/256), little-endian
+        let b = dir.join("b.pfm");
+        let mut pfm = b"PF\n1 1\n-1.0\n".to_vec();
+        for _ in 0..3 {
+            pfm.extend(0.25f32.to_le_bytes());
+        }
+        std::fs::write(&b, pfm).unwrap();
+        let args = |spp| NoiseArgs {
+            images: vec![a.clone(), b.clone()],
+            spp,
+        };
+        let out = noise_of(&args(4)).unwrap();
+        let rmse = 0.25 / std::f64::consts::SQRT_2;
+        assert!(
+            out.contains(&format!("RMSE {rmse:.5}, c {:.4}", rmse * 2.0)),
+            "{out}"
+        );
+        assert!(out.contains("0.2500 and 0.5000"), "{out}");
+        assert!(
+            noise_of(&args(0))
+                .unwrap_err()
+                .to_string()
+                .contains("--spp")
+        );
+        std::fs::write(&b, "P3\n2 1\n255\n0 0 0 0 0 0\n").unwrap();
+        let e = noise_of(&args(4)).unwrap_err().to_string();
+        assert!(e.contains("differ in size"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
