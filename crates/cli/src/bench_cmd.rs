@@ -108,7 +108,8 @@ pub struct CompareArgs {
     /// The two seeds of each renderer's pair of renders.
     #[arg(long, value_delimiter = ',', default_values_t = [1u32, 2])]
     seeds: Vec<u32>,
-    /// Measure everything this many times in turn (book, Mitsuba, rtl, then again) and summarise
+    /// Measure everything this many times in turn (book, Mitsuba, rtl, then again in the reverse
+    /// order, and so on alternately) and summarise
     /// each renderer's ratios to the book *of the same round* by their median and range: on a
     /// machine whose speed drifts, a ratio taken within one round is what stays put.
     #[arg(long, default_value_t = 1)]
@@ -340,7 +341,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         if a.rounds > 1 {
             eprintln!("round {} of {}", r + 1, a.rounds);
         }
-        rounds.push(measure_round(&a, depth)?);
+        rounds.push(measure_round(&a, depth, r)?);
     }
     let book_c = a.book.as_ref().map(|_| rounds[0][0].c);
     let target = match (a.book_noise.or(a.target_rmse), book_c) {
@@ -400,24 +401,52 @@ fn compare(mut a: CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// One round: the book's program, Mitsuba and each rtl strategy, one after another.
-fn measure_round(a: &CompareArgs, depth: u32) -> Result<Vec<Measured>> {
-    let mut rows = Vec::new();
+/// What a round runs: one renderer's pair of renders.
+enum Job<'a> {
+    Book(&'a Path),
+    Mitsuba(&'a Path),
+    Rtl(&'a str, Option<&'a str>),
+}
+
+/// The order in which round `round` runs its `n` jobs: as listed in even rounds, the reverse in odd
+/// ones. A shared machine's speed drifts within a run (the book's two renders took 10.9 and 9.7 s
+/// in one round); alternating the order keeps the drift from always favouring the renderers that
+/// run last, and the median over rounds takes both orders.
+fn round_order(n: usize, round: usize) -> Vec<usize> {
+    if round.is_multiple_of(2) {
+        (0..n).collect()
+    } else {
+        (0..n).rev().collect()
+    }
+}
+
+/// One round: the book's program, Mitsuba and each rtl strategy, one after another (in
+/// [`round_order`]); the rows in the listed order, the book's first.
+fn measure_round(a: &CompareArgs, depth: u32, round: usize) -> Result<Vec<Measured>> {
+    let mut jobs = Vec::new();
     if let Some(book) = &a.book {
-        rows.push(run_book(a, book, depth)?);
+        jobs.push(Job::Book(book));
     }
     if let Some(py) = &a.mitsuba {
-        rows.push(run_mitsuba(a, py, depth)?);
+        jobs.push(Job::Mitsuba(py));
     }
     for s in &a.strategy {
         if a.hit_tier.is_empty() {
-            rows.push(run_rtl(a, s, None, depth)?);
+            jobs.push(Job::Rtl(s, None));
         }
         for t in &a.hit_tier {
-            rows.push(run_rtl(a, s, Some(t), depth)?);
+            jobs.push(Job::Rtl(s, Some(t)));
         }
     }
-    Ok(rows)
+    let mut rows: Vec<Option<Measured>> = jobs.iter().map(|_| None).collect();
+    for i in round_order(jobs.len(), round) {
+        rows[i] = Some(match jobs[i] {
+            Job::Book(book) => run_book(a, book, depth)?,
+            Job::Mitsuba(py) => run_mitsuba(a, py, depth)?,
+            Job::Rtl(s, t) => run_rtl(a, s, t, depth)?,
+        });
+    }
+    Ok(rows.into_iter().flatten().collect())
 }
 
 /// The table of one round: rates, noise constants and projected times, and the ratios to the book
@@ -844,6 +873,22 @@ fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rounds_alternate_their_order_and_run_every_job_once() {
+        assert_eq!(round_order(4, 0), [0, 1, 2, 3]);
+        assert_eq!(round_order(4, 1), [3, 2, 1, 0]);
+        assert_eq!(round_order(4, 2), [0, 1, 2, 3]);
+        assert_eq!(round_order(1, 1), [0]);
+        assert!(round_order(0, 3).is_empty());
+        for n in 0..6 {
+            for r in 0..4 {
+                let mut o = round_order(n, r);
+                o.sort();
+                assert_eq!(o, (0..n).collect::<Vec<_>>(), "round {r} of {n} jobs");
+            }
+        }
+    }
 
     #[test]
     fn cpu_names_its_generation_and_vector_extensions() {
