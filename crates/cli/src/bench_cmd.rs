@@ -9,7 +9,7 @@ mod noise;
 use anyhow::{Context, Result, bail};
 use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
 use clap::{Args, Subcommand, ValueEnum};
-use noise::{DisplayImage, noise_constant, parse_pfm, parse_ppm, seconds_to};
+use noise::{DisplayImage, noise_constant, parse_image, parse_pfm, parse_ppm, seconds_to};
 use rtl_render::integrator::Strategy;
 use rtl_render::traversal::HitTier;
 use std::path::{Path, PathBuf};
@@ -171,13 +171,7 @@ fn noise_of(a: &NoiseArgs) -> Result<String> {
         bail!("--spp must be positive");
     }
     let load = |path: &PathBuf| -> Result<DisplayImage> {
-        let bytes = read(path)?;
-        let what = path.display().to_string();
-        Ok(if bytes.starts_with(b"PF") {
-            parse_pfm(&bytes, &what)?
-        } else {
-            parse_ppm(&bytes, &what)?
-        })
+        Ok(parse_image(&read(path)?, &path.display().to_string())?)
     };
     let (x, y) = (load(&a.images[0])?, load(&a.images[1])?);
     let (c, _) = pair_constant(&x, &y, a.spp)?;
@@ -1033,6 +1027,9 @@ mod tests {
                 .to_string()
                 .contains("--spp")
         );
+        std::fs::write(&b, "GIF89a").unwrap();
+        let e = noise_of(&args(4)).unwrap_err().to_string();
+        assert!(e.contains("PPM") && e.contains("PFM"), "{e}");
         std::fs::write(&b, "P3\n2 1\n255\n0 0 0 0 0 0\n").unwrap();
         let e = noise_of(&args(4)).unwrap_err().to_string();
         assert!(e.contains("differ in size"), "{e}");

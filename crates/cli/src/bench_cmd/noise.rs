@@ -140,6 +140,16 @@ fn value_count(what: &str, width: usize, height: usize) -> Result<usize, ImageEr
         })
 }
 
+/// Either image a renderer hands the harness, by its magic number: rtl's `--linear` PFM
+/// ([`parse_pfm`]) or the book's PPM ([`parse_ppm`]).
+pub fn parse_image(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
+    match bytes.get(..2) {
+        Some(b"PF") => parse_pfm(bytes, what),
+        Some(b"P3" | b"P6") => parse_ppm(bytes, what),
+        _ => Err(not_a(what, "PPM (P3 or P6) or colour PFM (PF)", bytes)),
+    }
+}
+
 /// A PPM image (`P3`, plain text, as the book writes it, or `P6`, binary), as display values
 /// `v / (maxval + 1)`: with the book's maxval of 255 that is `v / 256`. `what` names the file in errors.
 pub fn parse_ppm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
