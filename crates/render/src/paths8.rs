@@ -62,9 +62,25 @@ struct Ring {
     done: [bool; RING],
     /// The first sample (in the row's order) not yet summed.
     commit: u64,
+    /// Its pixel, and how many of that pixel's samples are still to be summed (counted down, not
+    /// divided out of `commit`: a 64-bit division per sample costs tens of cycles on some
+    /// processors).
+    pixel: usize,
+    left: u64,
 }
 
 impl Ring {
+    /// An empty ring for a row of pixels with `spp` samples each.
+    fn new(spp: u64) -> Ring {
+        Ring {
+            value: [Color::ZERO; RING],
+            done: [false; RING],
+            commit: 0,
+            pixel: 0,
+            left: spp,
+        }
+    }
+
     /// Keep sample `seq`'s value (sample `seq` of the row is one of pixel `seq / spp`), then sum
     /// every finished sample from `commit` on, in order, into its pixel.
     #[inline]
@@ -78,12 +94,16 @@ impl Ring {
                 break;
             }
             self.done[slot] = false;
-            let i = (self.commit / spp) as usize;
+            let i = self.pixel;
             let v = self.value[slot];
             if !Accumulator::add(&mut row.sum[i], &mut row.count[i], &mut row.dropped[i], v) {
                 stats.non_finite += 1;
             }
             self.commit += 1;
+            self.left -= 1;
+            if self.left == 0 {
+                (self.pixel, self.left) = (i + 1, spp);
+            }
         }
     }
 }
@@ -121,11 +141,7 @@ pub(crate) fn render_row(
         dropped,
     };
     let mut stats = Stats::default();
-    let mut ring = Ring {
-        value: [Color::ZERO; RING],
-        done: [false; RING],
-        commit: 0,
-    };
+    let mut ring = Ring::new(spp);
     // Everything per path is indexed `[g][l]`: packet `g`, lane `l`.
     let mut ctxs: [[Ctx; LANES]; PACKETS] =
         std::array::from_fn(|_| std::array::from_fn(|_| Ctx::new()));
@@ -160,6 +176,8 @@ pub(crate) fn render_row(
     let mut glass_from = [(0usize, 0usize); PACKETS * LANES];
     let mut glass_n = 0;
     let mut next = 0u64;
+    // its pixel and sample, `(next / spp, k0 + next % spp)`, counted rather than divided out
+    let (mut next_i, mut next_k) = (0usize, k0);
     // the scramble key of the pixel whose samples are being started, made at its first
     let mut key = 0;
     loop {
@@ -170,7 +188,12 @@ pub(crate) fn render_row(
                 let l = idle.trailing_zeros() as usize;
                 idle &= idle - 1;
                 while next < total && next - ring.commit < RING as u64 {
-                    let (i, k) = ((next / spp) as usize, k0 + next % spp);
+                    let (i, k) = (next_i, next_k);
+                    (next_i, next_k) = if next_k + 1 == k1 {
+                        (next_i + 1, k0)
+                    } else {
+                        (next_i, next_k + 1)
+                    };
                     if k == k0 {
                         if stop() {
                             return None;
