@@ -110,8 +110,10 @@ impl HitTier {
     /// side by side on an Intel Xeon (family 6 model 207), the 8-lane packets made the Cornell box's
     /// `mixture` 1.08x and `mis` 1.03x *slower* (render-speed.md, "Issue 16, seventh round"); on
     /// Intel's cores a 512-bit instruction takes the vector units of two ports, so eight lanes a
-    /// time buy no throughput over two four-lane instructions. AMD keeps them: on a Zen 5 they were
-    /// 1.04-1.11x faster (Zen 4 is unmeasured).
+    /// time buy no throughput over two four-lane instructions. (That was measured before paths were
+    /// traced sixteen at a time in the lanes, `crate::paths8`; the Intel choice is not measured
+    /// since.) AMD keeps them: on a Zen 5 they were 1.04-1.11x faster, and with the paths in the
+    /// lanes on a Zen 4 `mixture` 1.12-1.24x and `mis` 1.06-1.24x (README, "Speed").
     pub fn preferred() -> HitTier {
         match HitTier::detected() {
             HitTier::Avx512 if intel() => HitTier::Avx2,
