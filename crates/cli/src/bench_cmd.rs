@@ -68,6 +68,9 @@ pub struct CompareArgs {
     #[arg(long, default_value_t = 600)]
     width: usize,
     /// Samples per pixel of each measured render (a square for the book's stratified Cornell box).
+    /// On a shared machine longer renders are steadier: at 16 spp rtl's take a few seconds and a
+    /// burst of other load moves a round's ratio; `--spp 64` (the book's renders too) narrowed the
+    /// rounds' spread (render-speed.md, "Issue 16, fourteenth round").
     #[arg(long, default_value_t = 16)]
     spp: u64,
     /// Samples per pixel of the book's renders (default: `--spp`; a square for the Cornell box). The
