@@ -120,10 +120,10 @@ pub struct CompareArgs {
     /// The rtl binary to time (default: this one), e.g. a build of another commit.
     #[arg(long)]
     rtl: Option<PathBuf>,
-    /// Intersection tiers to time each strategy in, comma-separated (`portable`, `avx2`, `avx512`;
-    /// `rtl render --hit-tier`), e.g. `avx2,avx512` for the code a processor without AVX-512 runs
-    /// beside the best one, in the same rounds. Default: the one `rtl render` runs unless told
-    /// (`HitTier::preferred`), unnamed (as an `--rtl` binary from before the flag needs).
+    /// Intersection tiers to time each strategy in, comma-separated (`portable`, `avx2`, `avx512`,
+    /// `auto`; `rtl render --hit-tier`), e.g. `avx2,avx512` for the code a processor without AVX-512
+    /// runs beside the best one, in the same rounds. Default: what `rtl render` runs unless told,
+    /// unnamed (as an `--rtl` binary from before the flag needs).
     #[arg(long, value_delimiter = ',', value_name = "TIERS")]
     hit_tier: Vec<String>,
     /// Where the patched copy, the builds and the images go.
@@ -293,7 +293,7 @@ fn validate(a: &CompareArgs) -> Result<()> {
         s.parse::<Strategy>()
             .map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
     }
-    for t in &a.hit_tier {
+    for t in a.hit_tier.iter().filter(|t| *t != "auto") {
         t.parse::<HitTier>()
             .and_then(HitTier::runnable)
             .map_err(|e| anyhow::anyhow!("--hit-tier: {e}"))?;

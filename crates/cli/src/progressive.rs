@@ -12,6 +12,7 @@ use indicatif::ProgressBar;
 use rtl_render::checkpoint::{Checkpoint, Identity};
 use rtl_render::render::{Accumulator, Renderer};
 use rtl_render::sampler::Stats;
+use rtl_render::tier_race::TierRace;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -115,13 +116,16 @@ pub struct Plan {
 }
 
 /// Render passes into `acc` until the plan says stop, saving it between passes; returns the counters of
-/// the passes kept. The caller saves the end state (after writing the image).
+/// the passes kept. The caller saves the end state (after writing the image). Where `race` holds a
+/// race of intersection tiers, each pass runs the tier it names and is timed for it (the image is the
+/// same with either).
 pub fn run(
     renderer: &Renderer,
     pool: &rayon::ThreadPool,
     acc: &mut Accumulator,
     plan: &Plan,
     bar: &ProgressBar,
+    race: &mut Option<TierRace>,
 ) -> Result<(Stats, Ending)> {
     if acc.samples < plan.start {
         bail!("internal: accumulation before its first sample");
@@ -158,6 +162,10 @@ pub fn run(
         }
         let (k0, k1) = (acc.samples, acc.samples.saturating_add(n).min(plan.end));
         next.clone_from(acc);
+        // (both of a race's tiers are ones this processor runs)
+        if let Some(r) = race {
+            r.tier().select().context("the intersection tiers' race")?;
+        }
         let t0 = Instant::now();
         let on_row = || {
             if plan.progress_by_time {
@@ -176,7 +184,11 @@ pub fn run(
         };
         std::mem::swap(acc, &mut next);
         stats = stats + s;
-        let t = t0.elapsed().as_secs_f64() / (k1 - k0) as f64;
+        let secs = t0.elapsed().as_secs_f64();
+        if let Some(r) = race {
+            r.record(secs, k1 - k0);
+        }
+        let t = secs / (k1 - k0) as f64;
         secs_per_spp = Some(t);
         bar.set_message(format!("{} spp", acc.samples - plan.start));
         if !plan.progress_by_time {

@@ -16,6 +16,7 @@ use rtl_render::render::{
 use rtl_render::sampler::Stats;
 use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
+use rtl_render::tier_race::TierRace;
 use rtl_render::traversal::{HitTier, HitTierError};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -96,12 +97,13 @@ pub struct RenderArgs {
     /// Render samples K .. K+spp of every pixel (a part of a render split over processes or machines).
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub sample_offset: u64,
-    /// The intersection code to run: portable, avx2 or avx512 (default: the best this processor
-    /// runs, but avx2 on an Intel processor with AVX-512, where it is faster; `--explain` names it).
-    /// Every tier finds the same hits, so the image is the same bit for bit: this is for timing the
-    /// tiers side by side, or the one a processor without AVX-512 runs.
+    /// The intersection code to run: portable, avx2, avx512, or auto (time avx2 and avx512 on the
+    /// render's first passes and keep the faster). Default: the best this processor runs, but auto
+    /// on an Intel processor with AVX-512, where which is faster depends on the model; `--explain`
+    /// names it. Every tier finds the same hits, so the image is the same bit for bit: this is for
+    /// timing the tiers side by side, or the one a processor without AVX-512 runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
-    pub hit_tier: Option<HitTier>,
+    pub hit_tier: Option<TierChoice>,
     /// Trace one path at a time, where sixteen would be traced side by side in the vector lanes (the
     /// book's one-sample strategies in a scene of one small group, on a processor with AVX2). The
     /// image is the same bit for bit: this is for timing what the lanes buy.
@@ -109,9 +111,20 @@ pub struct RenderArgs {
     pub no_lanes: bool,
 }
 
-/// A tier that this processor runs, by its key.
-fn parse_hit_tier(s: &str) -> Result<HitTier, HitTierError> {
-    s.parse::<HitTier>()?.runnable()
+/// `--hit-tier`: one tier, or a race of two.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TierChoice {
+    Fixed(HitTier),
+    /// `auto`: AVX2 and AVX-512 timed on the first passes where the processor runs both.
+    Race,
+}
+
+/// A tier that this processor runs, by its key, or `auto`.
+fn parse_hit_tier(s: &str) -> Result<TierChoice, HitTierError> {
+    if s == "auto" {
+        return Ok(TierChoice::Race);
+    }
+    Ok(TierChoice::Fixed(s.parse::<HitTier>()?.runnable()?))
 }
 
 fn parse_strategy(s: &str) -> Result<Strategy, String> {
@@ -179,7 +192,14 @@ fn yes_no(on: bool, yes: &str, no: &str) -> String {
     }
 }
 
-fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64, no_lanes: bool) {
+fn explain(
+    l: &Loaded,
+    scene: &Scene,
+    settings: &RenderSettings,
+    spp: u64,
+    no_lanes: bool,
+    race: Option<&TierRace>,
+) {
     let f = scene.features;
     println!("scene {}: {}", l.name, l.description);
     println!(
@@ -215,7 +235,21 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64, no_la
         )
     );
     let (tier, best) = (HitTier::current(), HitTier::detected());
-    if tier == best {
+    // the tiers' keys, as the lanes' line names them
+    let tier_keys = match race {
+        Some(r) => format!("{} or {}", r.tiers()[0].key(), r.tiers()[1].key()),
+        None => tier.key().to_string(),
+    };
+    if let Some(r) = race {
+        let [a, b] = r.tiers();
+        println!(
+            "  intersection        : {} or {}, whichever is faster here: timed side by side on the \
+             render's first passes, then the faster runs the rest (the image is the same; \
+             --hit-tier names one)",
+            a.key(),
+            b.key()
+        );
+    } else if tier == best {
         println!("  intersection        : {}", tier.name());
     } else if tier == HitTier::preferred() {
         println!(
@@ -241,7 +275,7 @@ fn explain(l: &Loaded, scene: &Scene, settings: &RenderSettings, spp: u64, no_la
             format!(
                 "sixteen side by side in the vector lanes ({}), in two packets of eight whose rays \
                  are intersected together{}",
-                HitTier::current().key(),
+                tier_keys,
                 match (
                     lanes.lambertian_vertex_in_lanes().is_some(),
                     lanes.glass_vertex_in_lanes().is_some(),
@@ -621,9 +655,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let Some(scene_arg) = args.scene.as_deref() else {
         bail!("name a scene to render (rtl render --list shows the built-in ones) or a scene file");
     };
-    if let Some(tier) = args.hit_tier {
-        tier.select().context("--hit-tier")?;
-    }
+    let mut race = match args.hit_tier {
+        Some(TierChoice::Fixed(tier)) => {
+            tier.select().context("--hit-tier")?;
+            None
+        }
+        Some(TierChoice::Race) => TierRace::on_this_processor(true),
+        None => TierRace::on_this_processor(false),
+    };
     let job = settings(&args, scene_arg)?;
     let scene = &job.loaded.built.scene;
     if args.explain {
@@ -633,6 +672,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             &job.settings,
             args.spp.unwrap_or(job.loaded.spp),
             args.no_lanes,
+            race.as_ref(),
         );
         return Ok(());
     }
@@ -670,9 +710,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let bar = progress_bar(&args, &job, &plan, &acc);
     progressive::catch_interrupts()?;
     let start_time = Instant::now();
-    let (stats, ending) = progressive::run(&renderer, &pool, &mut acc, &plan, &bar)?;
+    let (stats, ending) = progressive::run(&renderer, &pool, &mut acc, &plan, &bar, &mut race)?;
     bar.finish_and_clear();
     let secs = start_time.elapsed().as_secs_f64();
+    if let Some(r) = &race {
+        say_race(r, args.hit_tier == Some(TierChoice::Race));
+    }
     report(
         &args,
         &job,
@@ -683,6 +726,29 @@ pub fn run(args: RenderArgs) -> Result<()> {
         secs,
         pool.current_num_threads(),
     )
+}
+
+/// How the race of the intersection tiers went (the image is the same whichever won); a render too
+/// short to finish it is told so only if `asked` for the race.
+fn say_race(r: &TierRace, asked: bool) {
+    let [a, b] = r.tiers();
+    match r.outcome() {
+        Some(o) => eprintln!(
+            "intersection: {} ran after the first passes, {:.2}x as fast as {} there, timed side by side \
+             (--hit-tier {} fixes it)",
+            o.winner.key(),
+            1.0 / o.time_ratio,
+            o.loser.key(),
+            o.winner.key()
+        ),
+        None if !asked => {}
+        None => eprintln!(
+            "intersection: the render ended before the race of {} and {} did (five passes); \
+             --hit-tier names one",
+            a.key(),
+            b.key()
+        ),
+    }
 }
 
 /// Save the checkpoint and the images, then say what was done.

@@ -529,8 +529,8 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
         assert!(text.contains(t.name()), "{t:?}: {text}");
     }
     assert!(images.windows(2).all(|w| w[0] == w[1]), "{tiers:?} differ");
-    // Without the flag the preferred tier runs (AVX2 on an Intel processor with AVX-512), and
-    // `--explain` says so on its intersection line.
+    // Without the flag the preferred tier runs (on an Intel processor with AVX-512, AVX2 and
+    // AVX-512 race), and `--explain` says so on its intersection line.
     let out = rtl(&d, &render(&["--explain"]));
     let text = String::from_utf8_lossy(&out.stdout);
     let preferred = rtl_render::traversal::HitTier::preferred();
@@ -538,7 +538,11 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
         .lines()
         .find(|l| l.trim_start().starts_with("intersection"))
         .unwrap_or_else(|| panic!("no intersection line: {text}"));
-    assert!(line.contains(preferred.name()), "{preferred:?}: {line}");
+    if rtl_render::tier_race::TierRace::on_this_processor(false).is_some() {
+        assert!(line.contains("whichever is faster"), "{line}");
+    } else {
+        assert!(line.contains(preferred.name()), "{preferred:?}: {line}");
+    }
     assert!(
         !line.contains("--hit-tier;"),
         "no --hit-tier was given: {line}"
@@ -556,6 +560,45 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
         assert!(err.contains("--hit-tier") && err.contains(bad), "{err}");
         assert!(!err.contains("panicked"), "{err}");
         assert!(!d.join("bad.png").exists());
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn hit_tier_auto_races_the_tiers_and_changes_nothing_but_the_speed() {
+    use rtl_render::traversal::HitTier;
+    let d = dir("hit-tier-auto");
+    // 40 spp at this size is passes of 1, 2, 4, 8, 16 and 9 samples per pixel: the race's five and
+    // one after it, which the winner runs.
+    let args = |tier: &'static str, pfm: &'static str| {
+        let mut v = vec!["render", "cornell", "--width", "24", "--spp", "40"];
+        v.extend(["--strategy", "mixture", "--hit-tier", tier, "--linear", pfm]);
+        v
+    };
+    let err = ok(&d, &args("auto", "auto.pfm"));
+    let fixed = HitTier::preferred().key();
+    ok(&d, &args(fixed, "fixed.pfm"));
+    let read = |f: &str| std::fs::read(d.join(f)).unwrap();
+    assert_eq!(read("auto.pfm"), read("fixed.pfm"), "auto against {fixed}");
+    let explain = rtl(
+        &d,
+        &args("auto", "x.pfm")
+            .into_iter()
+            .chain(["--explain"])
+            .collect::<Vec<_>>(),
+    );
+    let text = String::from_utf8_lossy(&explain.stdout);
+    if HitTier::detected() == HitTier::Avx512 {
+        // Both tiers run here: the race is run, and its outcome told.
+        assert!(
+            err.contains("intersection: avx") && err.contains("as fast as avx"),
+            "{err}"
+        );
+        assert!(text.contains("whichever is faster"), "{text}");
+    } else {
+        // Nothing to race: the one tier runs, and nothing is said of a race.
+        assert!(!err.contains("intersection:"), "{err}");
+        assert!(!text.contains("whichever is faster"), "{text}");
     }
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -54,6 +54,7 @@ pub mod scene_file;
 pub mod scenes;
 pub mod shapes;
 pub mod texture;
+pub mod tier_race;
 pub mod transform;
 pub mod traversal;
 pub mod vec;

@@ -113,7 +113,9 @@ impl HitTier {
     /// time buy no throughput over two four-lane instructions. (That was measured before paths were
     /// traced sixteen at a time in the lanes, `crate::paths8`; the Intel choice is not measured
     /// since.) AMD keeps them: on a Zen 5 they were 1.04-1.11x faster, and with the paths in the
-    /// lanes on a Zen 4 `mixture` 1.12-1.24x and `mis` 1.06-1.24x (README, "Speed").
+    /// lanes on a Zen 4 `mixture` 1.12-1.24x and `mis` 1.06-1.24x (README, "Speed"). So on Intel
+    /// `rtl render` times both on its first passes ([`crate::tier_race`]) and keeps the faster;
+    /// this is the tier that races first, and the one that runs where nothing races.
     pub fn preferred() -> HitTier {
         match HitTier::detected() {
             HitTier::Avx512 if intel() => HitTier::Avx2,
