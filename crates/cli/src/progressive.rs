@@ -160,7 +160,13 @@ pub fn run(
             }
             n = n.min(fit);
         }
-        let (k0, k1) = (acc.samples, acc.samples.saturating_add(n).min(plan.end));
+        // A race's passes take at most a thirty-second of the render each (with no end in sight,
+        // as long as any), so that a short render runs mostly on the faster tier.
+        let pass = match race {
+            Some(r) if r.racing() => n.min((plan.end.saturating_sub(plan.start) / 32).max(1)),
+            _ => n,
+        };
+        let (k0, k1) = (acc.samples, acc.samples.saturating_add(pass).min(plan.end));
         next.clone_from(acc);
         // (both of a race's tiers are ones this processor runs)
         if let Some(r) = race {
@@ -205,7 +211,7 @@ pub fn run(
         }
         // The next pass: about `pass_time` long, at most twice the last (a cheap start misleads).
         let fit = (plan.pass_time.as_secs_f64() / t.max(1e-12)).floor() as u64;
-        n = fit.clamp(1, n.saturating_mul(2));
+        n = fit.clamp(1, (k1 - k0).saturating_mul(2));
     };
     Ok((stats, ending))
 }

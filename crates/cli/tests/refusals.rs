@@ -568,8 +568,8 @@ fn a_hit_tier_changes_nothing_but_the_speed_and_one_not_run_is_refused() {
 fn hit_tier_auto_races_the_tiers_and_changes_nothing_but_the_speed() {
     use rtl_render::traversal::HitTier;
     let d = dir("hit-tier-auto");
-    // 40 spp at this size is passes of 1, 2, 4, 8, 16 and 9 samples per pixel: the race's five and
-    // one after it, which the winner runs.
+    // 40 spp at this size is passes of 1 sample per pixel while the race lasts (five passes, each
+    // at most a thirty-second of the render), then 2, 4, 8, 16 and 3, which the winner runs.
     let args = |tier: &'static str, pfm: &'static str| {
         let mut v = vec!["render", "cornell", "--width", "24", "--spp", "40"];
         v.extend(["--strategy", "mixture", "--hit-tier", tier, "--linear", pfm]);

@@ -9,9 +9,10 @@
 //! render needs anyway.
 //!
 //! The first pass also pays for the thread pool's start and the first touch of the buffers, so it
-//! runs tier `a` and is not counted. The next four run `a, b, b, a`: passes grow (about twice the
-//! last, up to a second each), so each tier gets one shorter and one longer pass. The tier with less
-//! time per sample per pixel over its two passes runs the rest.
+//! runs tier `a` and is not counted. The next four run `a, b, b, a` (where passes grow, each tier
+//! gets one shorter and one longer pass). The tier with less time per sample per pixel over its two
+//! passes runs the rest. The renderer keeps the race's passes short, a thirty-second of the render
+//! at most, so that a short render does not spend most of its time on the slower tier.
 
 use crate::traversal::HitTier;
 
@@ -61,6 +62,11 @@ impl TierRace {
             .then(|| TierRace::new(HitTier::preferred(), other(HitTier::preferred())))
     }
 
+    /// Whether passes are still being timed.
+    pub fn racing(&self) -> bool {
+        self.passes < ORDER.len()
+    }
+
     /// The two tiers, in the order given.
     pub fn tiers(&self) -> [HitTier; 2] {
         self.tiers
@@ -88,7 +94,7 @@ impl TierRace {
     /// The winner, once every pass of the race is recorded: the tier with less time per sample per
     /// pixel (the first on a tie, or where a time is not a positive number).
     pub fn outcome(&self) -> Option<RaceOutcome> {
-        if self.passes < ORDER.len() {
+        if self.racing() {
             return None;
         }
         let per = |i: usize| self.secs[i] / self.spp[i].max(1) as f64;
