@@ -632,6 +632,11 @@ impl Took {
 
 /// Runs `cmd`, returning its stdout and how long it took; a failure names the command.
 fn timed(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, Took)> {
+    timed_with_stderr(cmd, what).map(|(out, _, took)| (out, took))
+}
+
+/// [`timed`], keeping what the program wrote to stderr too.
+fn timed_with_stderr(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, String, Took)> {
     let cpu0 = children_cpu_seconds();
     let start = Instant::now();
     let out = cmd
@@ -647,7 +652,8 @@ fn timed(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, Took)> {
         let tail = lines[lines.len().saturating_sub(20)..].join("\n");
         bail!("{what}: {cmd:?} failed ({}):\n{tail}", out.status);
     }
-    Ok((out.stdout, secs))
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    Ok((out.stdout, stderr, secs))
 }
 
 fn read(path: &Path) -> Result<Vec<u8>> {
@@ -804,6 +810,7 @@ fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> R
     let scene = a.scene.to_possible_value().expect("no skipped scene");
     let scene = scene.get_name();
     let mut images = Vec::new();
+    let mut raced = Vec::new();
     let (mut secs, mut wall) = (0.0, 0.0);
     let name = match tier {
         Some(t) => format!("rtl --strategy {strategy} --hit-tier {t}"),
@@ -842,12 +849,17 @@ fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> R
             }
         }
         eprintln!("running {name}, seed {seed}");
-        let (_, s) = timed(&mut cmd, "rtl render")?;
+        let (_, said, s) = timed_with_stderr(&mut cmd, "rtl render")?;
         eprintln!(
             "  {:.2} s processor time, {:.2} s wall",
             s.cpu.unwrap_or(f64::NAN),
             s.wall
         );
+        // where the render raced the intersection tiers, which won (`rtl render`'s own words)
+        for line in said.lines().filter(|l| l.starts_with("intersection:")) {
+            eprintln!("  {line}");
+            raced.push(line.to_string());
+        }
         secs += s.seconds();
         wall += s.wall;
         images.push(parse_pfm(&read(&pfm)?, &pfm.display().to_string())?);
@@ -861,15 +873,58 @@ fn run_rtl(a: &CompareArgs, strategy: &str, tier: Option<&str>, depth: u32) -> R
         mean,
         spp: a.spp,
         note: format!(
-            "{} threads, {secs:.1} s processor time ({wall:.1} s wall) for both renders",
-            a.threads
+            "{} threads, {secs:.1} s processor time ({wall:.1} s wall) for both renders{}",
+            a.threads,
+            race_note(&raced)
         ),
     })
+}
+
+/// What the note of a renderer's row says of the tier races its renders ran (`intersection: avx512
+/// ran after the first passes, 1.27x as fast as avx2 there, ...`): the winners, in the renders' order.
+fn race_note(lines: &[String]) -> String {
+    let winners: Vec<&str> = lines
+        .iter()
+        .filter_map(|l| l.strip_prefix("intersection: "))
+        .filter_map(|l| l.split_once(" ran after"))
+        .map(|(tier, _)| tier)
+        .collect();
+    if winners.is_empty() {
+        String::new()
+    } else {
+        format!("; tiers raced, won by {}", winners.join(", "))
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_note_names_each_race_s_winner_and_nothing_without_races() {
+        use rtl_render::tier_race::TierRace;
+        // `rtl render`'s own lines: a race that AVX-512 won, one that AVX2 won, one cut short.
+        let race = |secs: [f64; 2], passes: usize| {
+            let mut r = TierRace::new(HitTier::Avx2, HitTier::Avx512);
+            for _ in 0..passes {
+                let t = if r.tier() == HitTier::Avx2 {
+                    secs[0]
+                } else {
+                    secs[1]
+                };
+                r.record(t, 1);
+            }
+            crate::render_cmd::race_line(&r, true).expect("a line, as asked")
+        };
+        let said = [race([1.0, 0.8], 5), race([1.0, 1.2], 5)];
+        assert_eq!(race_note(&said), "; tiers raced, won by avx512, avx2");
+        assert_eq!(race_note(&[]), "");
+        assert_eq!(
+            race_note(&[race([1.0, 0.8], 3)]),
+            "",
+            "unfinished: no winner"
+        );
+    }
 
     #[test]
     fn rounds_alternate_their_order_and_run_every_job_once() {

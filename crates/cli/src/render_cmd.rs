@@ -731,23 +731,30 @@ pub fn run(args: RenderArgs) -> Result<()> {
 /// How the race of the intersection tiers went (the image is the same whichever won); a render too
 /// short to finish it is told so only if `asked` for the race.
 fn say_race(r: &TierRace, asked: bool) {
+    if let Some(line) = race_line(r, asked) {
+        eprintln!("{line}");
+    }
+}
+
+/// [`say_race`]'s line (`rtl bench compare` reads the winner from it).
+pub(crate) fn race_line(r: &TierRace, asked: bool) -> Option<String> {
     let [a, b] = r.tiers();
     match r.outcome() {
-        Some(o) => eprintln!(
-            "intersection: {} ran after the first passes, {:.2}x as fast as {} there, timed side by side \
-             (--hit-tier {} fixes it)",
+        Some(o) => Some(format!(
+            "intersection: {} ran after the first passes, {:.2}x as fast as {} there, timed side by \
+             side (--hit-tier {} fixes it)",
             o.winner.key(),
             1.0 / o.time_ratio,
             o.loser.key(),
             o.winner.key()
-        ),
-        None if !asked => {}
-        None => eprintln!(
+        )),
+        None if !asked => None,
+        None => Some(format!(
             "intersection: the render ended before the race of {} and {} did (five passes); \
              --hit-tier names one",
             a.key(),
             b.key()
-        ),
+        )),
     }
 }
 
