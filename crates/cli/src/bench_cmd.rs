@@ -11,7 +11,7 @@ use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
 use clap::{Args, Subcommand, ValueEnum};
 use noise::{DisplayImage, noise_constant, parse_image, parse_pfm, parse_ppm, seconds_to};
 use rtl_render::integrator::Strategy;
-use rtl_render::traversal::HitTier;
+use rtl_render::traversal::{HitTier, HitTierError};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -296,7 +296,12 @@ fn validate(a: &CompareArgs) -> Result<()> {
     for t in a.hit_tier.iter().filter(|t| *t != "auto") {
         t.parse::<HitTier>()
             .and_then(HitTier::runnable)
-            .map_err(|e| anyhow::anyhow!("--hit-tier: {e}"))?;
+            .map_err(|e| match e {
+                HitTierError::Unknown(t) => anyhow::anyhow!(
+                    "--hit-tier: unknown intersection tier '{t}' (portable, avx2, avx512 or auto)"
+                ),
+                e => anyhow::anyhow!("--hit-tier: {e}"),
+            })?;
     }
     Ok(())
 }

@@ -120,11 +120,17 @@ pub enum TierChoice {
 }
 
 /// A tier that this processor runs, by its key, or `auto`.
-fn parse_hit_tier(s: &str) -> Result<TierChoice, HitTierError> {
+fn parse_hit_tier(s: &str) -> Result<TierChoice, String> {
     if s == "auto" {
         return Ok(TierChoice::Race);
     }
-    Ok(TierChoice::Fixed(s.parse::<HitTier>()?.runnable()?))
+    match s.parse::<HitTier>().and_then(HitTier::runnable) {
+        Ok(t) => Ok(TierChoice::Fixed(t)),
+        Err(HitTierError::Unknown(s)) => Err(format!(
+            "unknown intersection tier '{s}' (portable, avx2, avx512 or auto)"
+        )),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 fn parse_strategy(s: &str) -> Result<Strategy, String> {
