@@ -11,7 +11,6 @@ use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
 use clap::{Args, Subcommand, ValueEnum};
 use noise::{DisplayImage, noise_constant, parse_image, parse_pfm, parse_ppm, seconds_to};
 use rtl_render::integrator::Strategy;
-use rtl_render::traversal::{HitTier, HitTierError};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -293,15 +292,8 @@ fn validate(a: &CompareArgs) -> Result<()> {
         s.parse::<Strategy>()
             .map_err(|e| anyhow::anyhow!("--strategy: {e}"))?;
     }
-    for t in a.hit_tier.iter().filter(|t| *t != "auto") {
-        t.parse::<HitTier>()
-            .and_then(HitTier::runnable)
-            .map_err(|e| match e {
-                HitTierError::Unknown(t) => anyhow::anyhow!(
-                    "--hit-tier: unknown intersection tier '{t}' (portable, avx2, avx512 or auto)"
-                ),
-                e => anyhow::anyhow!("--hit-tier: {e}"),
-            })?;
+    for t in &a.hit_tier {
+        crate::render_cmd::parse_hit_tier(t).map_err(|e| anyhow::anyhow!("--hit-tier: {e}"))?;
     }
     Ok(())
 }
@@ -904,6 +896,7 @@ fn race_note(lines: &[String]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rtl_render::traversal::HitTier;
 
     #[test]
     fn the_note_names_each_race_s_winner_and_nothing_without_races() {

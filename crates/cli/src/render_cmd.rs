@@ -119,8 +119,9 @@ pub enum TierChoice {
     Race,
 }
 
-/// A tier that this processor runs, by its key, or `auto`.
-fn parse_hit_tier(s: &str) -> Result<TierChoice, String> {
+/// A tier that this processor runs, by its key, or `auto` (also `rtl bench compare --hit-tier`'s
+/// check of each tier it will pass on).
+pub(crate) fn parse_hit_tier(s: &str) -> Result<TierChoice, String> {
     if s == "auto" {
         return Ok(TierChoice::Race);
     }
