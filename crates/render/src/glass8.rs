@@ -117,8 +117,9 @@ mod wide {
     use crate::wide8::*;
 
     /// The glass vertex of the lanes of `lanes` (not empty; each lane's sphere a glass one of
-    /// `spheres`): each of these lanes' ray in `g.rays` becomes the next one. Returns the lanes
-    /// whose vertex asked for its uniform number (those without total internal reflection).
+    /// `spheres`): each of these lanes' ray in `g.rays` becomes the next one (the other lanes'
+    /// rays are overwritten with numbers of no meaning). Returns the lanes whose vertex asked for
+    /// its uniform number (those without total internal reflection).
     ///
     /// # Safety
     /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
@@ -214,9 +215,11 @@ mod wide {
         let offset = scale3(zero.splat_like(4.0) * err, normal);
         let out = dot(direction, normal).ge(zero);
         let origin = select3(sub3(p, offset), out, add3(p, offset));
-        let these = zero.mask(lanes);
-        g.rays.origin = store3(select3(o, these, origin));
-        g.rays.direction = store3(select3(d, these, direction));
-        (these & !total).bits()
+        // Every lane's ray is stored whole: those outside `lanes` took no part and their rays are
+        // of no use to anyone (a blend with the old rays would become masked stores, which AMD
+        // processors before Zen 4 run slowly).
+        g.rays.origin = store3(origin);
+        g.rays.direction = store3(direction);
+        (zero.mask(lanes) & !total).bits()
     }
 }

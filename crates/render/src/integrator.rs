@@ -1039,8 +1039,9 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
 ///   [`Lights::towards_emitters`]): a shadow ray, whose
 ///   emission, times the transmittance of the media it crosses, counts with weight
 ///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
-/// - from the material's density mixed 50/50 with the non-emitting targets (`p_m`): the path goes on
-///   that way, and emission it meets at the next vertex counts with `w_m = p_m^2 / (p_l^2 + p_m^2)`.
+/// - from the material's density mixed with the non-emitting targets by [`OTHERS_SHARE`] (`p_m`):
+///   the path goes on that way, and emission it meets at the next vertex counts with
+///   `w_m = p_m^2 / (p_l^2 + p_m^2)`.
 ///
 /// The two weights of every direction sum to 1, so light reaching a vertex directly is counted once in
 /// expectation, by whichever strategy sees it better (through a medium too: the path's own rays meet
