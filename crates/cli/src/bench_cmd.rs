@@ -55,7 +55,8 @@ pub struct CompareArgs {
     /// patched copy in the scratch directory (width, spp, depth and a seed set in the copy's main.cc).
     #[arg(long, value_name = "DIR")]
     book: Option<PathBuf>,
-    /// A Python with the `mitsuba` package: Mitsuba's path tracer renders the same Cornell box.
+    /// A Python with the `mitsuba` and `numpy` packages: Mitsuba's path tracer renders the same
+    /// Cornell box.
     #[arg(long, value_name = "PYTHON")]
     mitsuba: Option<PathBuf>,
     /// Mitsuba variant.
@@ -307,6 +308,9 @@ fn program(scene: CompareScene) -> BookProgram {
 
 fn compare(mut a: CompareArgs) -> Result<()> {
     validate(&a)?;
+    if let Some(py) = &a.mitsuba {
+        check_mitsuba(py, &a.mitsuba_variant)?;
+    }
     let depth = a.max_depth.unwrap_or(match a.scene {
         CompareScene::Cornell => 50,
         CompareScene::Book2Final => 40,
@@ -742,6 +746,32 @@ fn run_book(a: &CompareArgs, book: &Path, depth: u32) -> Result<Measured> {
     })
 }
 
+/// Whether `python` imports what the Mitsuba script needs (`drjit`, `mitsuba`, `numpy`) and has
+/// `variant`: asked before any render, so that a missing package is named at once rather than
+/// after the book's renders.
+fn check_mitsuba(python: &Path, variant: &str) -> Result<()> {
+    let out = Command::new(python)
+        .args([
+            "-c",
+            "import sys, drjit, mitsuba, numpy; mitsuba.set_variant(sys.argv[1])",
+        ])
+        .arg(variant)
+        .stdin(Stdio::null())
+        .output()
+        .with_context(|| format!("--mitsuba {}: cannot run it", python.display()))?;
+    if !out.status.success() {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let last = stderr.lines().rev().find(|l| !l.trim().is_empty());
+        bail!(
+            "--mitsuba {}: that Python cannot import mitsuba, drjit and numpy with variant '{variant}' \
+             (--mitsuba-variant): {}",
+            python.display(),
+            last.unwrap_or("it failed and said nothing")
+        );
+    }
+    Ok(())
+}
+
 fn run_mitsuba(a: &CompareArgs, python: &Path, depth: u32) -> Result<Measured> {
     let dir = a.scratch.join("mitsuba");
     std::fs::create_dir_all(&dir)?;
@@ -1097,6 +1127,40 @@ mod tests {
         assert!(!measured_far_below(16, 64.0));
         assert!(measured_far_below(16, 64.5));
         assert!(!measured_far_below(10000, 10000.0));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_python_without_mitsuba_is_refused_before_any_render() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = std::env::temp_dir().join(format!("rtl-bench-mitsuba-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // Stand-ins for a Python: one that lacks numpy, one that has everything.
+        let fake = |name: &str, body: &str| {
+            let path = dir.join(name);
+            std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
+            std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+            path
+        };
+        let lacking = fake(
+            "lacking",
+            "echo 'Traceback (most recent call last):' >&2; \
+             echo \"ModuleNotFoundError: No module named 'numpy'\" >&2; exit 1",
+        );
+        let e = check_mitsuba(&lacking, "llvm_ad_rgb")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--mitsuba "), "{e}");
+        assert!(
+            e.contains("No module named 'numpy'") && e.contains("llvm_ad_rgb"),
+            "{e}"
+        );
+        let good = fake("good", "exit 0");
+        assert!(check_mitsuba(&good, "llvm_ad_rgb").is_ok());
+        let missing = dir.join("no-such-python");
+        let e = check_mitsuba(&missing, "llvm_ad_rgb").unwrap_err();
+        assert!(format!("{e:#}").contains("no-such-python"), "{e:#}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
