@@ -104,8 +104,9 @@ pub struct RenderArgs {
     /// timing the tiers side by side, or the one a processor without AVX-512 runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
     pub hit_tier: Option<TierChoice>,
-    /// Trace one path at a time, where sixteen would be traced side by side in the vector lanes (the
-    /// book's one-sample strategies in a scene of one small group, on a processor with AVX2). The
+    /// Trace one path at a time, where sixteen would be traced side by side in the vector lanes (in a
+    /// scene of one small group, on a processor with AVX2: the book's one-sample strategies, and
+    /// `mis` where the scene has no media). The
     /// image is the same bit for bit: this is for timing what the lanes buy.
     #[arg(long)]
     pub no_lanes: bool,
@@ -284,26 +285,33 @@ fn explain(
                  are intersected together{}",
                 tier_keys,
                 match (
+                    settings.strategy.mis_options().is_some(),
                     lanes.lambertian_vertex_in_lanes().is_some(),
                     lanes.glass_vertex_in_lanes().is_some(),
                     lanes.mixture_in_lanes().is_some(),
                 ) {
-                    (true, true, _) => {
+                    (true, _, _, _) => {
+                        " (mis: a vertex's shadow ray in one round, the path's next ray in the \
+                         next)"
+                    }
+                    (false, true, true, _) => {
                         "; the vertices on Lambertian quads (with the mixture's directions) and \
                          on glass spheres computed whole in the lanes, eight at a time"
                     }
-                    (true, false, _) => {
+                    (false, true, false, _) => {
                         "; the vertices on Lambertian quads (with the mixture's directions) \
                          computed whole in the lanes, eight at a time"
                     }
-                    (false, _, true) => {
+                    (false, false, _, true) => {
                         " and the mixture's directions drawn together at Lambertian points"
                     }
                     _ => "",
                 }
             )
-        } else if settings.strategy.mis_options().is_some() {
-            "one at a time (mis has its own integrator)".to_string()
+        } else if settings.strategy.mis_options().is_some() && scene.features.media > 0 {
+            "one at a time (mis through media: shadow rays record the media they cross, paths \
+             may scatter in them)"
+                .to_string()
         } else if !scene.hits_eight_at_once(rtl_render::scene::GroupId(0)) {
             if HitTier::current() == HitTier::Portable {
                 "one at a time (no AVX2 tier)".to_string()

@@ -633,6 +633,14 @@ fn no_lanes_changes_nothing_but_the_speed_and_explain_says_how_paths_go() {
     let line = paths(&mixture(&["--explain"]));
     assert_eq!(line.contains("sixteen side by side"), avx, "{line}");
     assert!(paths(&mixture(&["--explain", "--no-lanes"])).contains("--no-lanes"));
-    assert!(paths(&render(&["--explain"])).contains("mis has its own integrator"));
+    // mis takes the lanes too (the same image: crates/render/tests/paths8.rs), but not through media
+    let line = paths(&render(&["--explain"]));
+    assert_eq!(line.contains("sixteen side by side"), avx, "{line}");
+    assert!(line.contains("shadow ray"), "{line}");
+    let smoke = paths(&["render", "cornell-smoke", "--explain"]);
+    assert!(
+        smoke.contains("one at a time (mis through media"),
+        "{smoke}"
+    );
     let _ = std::fs::remove_dir_all(&d);
 }

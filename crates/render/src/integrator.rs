@@ -464,39 +464,28 @@ fn trace_shadow(scene: &Scene, ray: &Ray, ctx: &mut Ctx) -> Option<(Hit, f64)> {
 // ANCHOR_END: shadow_ray
 
 /// The light sample of a vertex at `hit` whose material samples `pdf` (mixed with `towards_others`):
-/// a direction towards the emitters drawn with `u`, and, if its shadow ray meets an emitter, the
-/// emission and the factor `w_l s / p_l T` (power heuristic weight, the material's density over the
-/// light's, the transmittance of the media crossed).
+/// the shadow ray towards the emitters in a direction drawn with `u`, and the factor `w_l s / p_l`
+/// (power heuristic weight, the material's density over the light's) its emission counts with,
+/// times the transmittance of the media the ray crosses ([`MisPath::shadow_arrived`]).
 #[inline]
-#[allow(clippy::too_many_arguments)] // the vertex's parts, each used once
 fn light_sample(
-    scene: &Scene,
     lights: &Lights,
     hit: &Hit,
     time: f64,
     pdf: &VertexPdf,
     towards_others: Option<&HittablePdf<'_, LightTarget>>,
     u: glam::DVec2,
-    ctx: &mut Ctx,
-) -> Option<(Color, f64)> {
+) -> Option<(Ray, f64)> {
     let ls = lights.sample_emitters(hit.p, u)?;
     let s = pdf.pdf(ls.direction);
     let s_over_p = ratio(s, ls.pdf)?;
-    // Borrowed where `trace_shadow` left it, not moved (see `radiance_one_sample`).
-    let shadow = trace_shadow(scene, &hit.spawn(ls.direction, time), ctx);
-    let (lh, transmittance) = shadow.as_ref()?;
-    let m: &Material = &scene.materials[lh.material.index()];
-    if !m.is_emitter() || *transmittance <= 0.0 {
-        return None;
-    }
-    let emitted = m.emitted(lh, &scene.textures, ctx);
     // The material's density of the direction is `s`, made above: not evaluated again.
     let p_material = match towards_others {
         Some(t) => with_others(*t, *pdf).pdf_given_b(ls.direction, s),
         None => s,
     };
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
-    Some((emitted, w * s_over_p * *transmittance))
+    Some((hit.spawn(ls.direction, time), w * s_over_p))
 }
 
 // ANCHOR: segment_sampling
@@ -924,16 +913,19 @@ fn segment_light(
     }
     let towards_others = HittablePdf::new(hit.p, &lights.others);
     let u = glam::DVec2::new(ctx.uniform(), ctx.uniform());
-    let Some((emitted, weight)) = light_sample(
-        scene,
+    let Some((to_light, weight)) = light_sample(
         lights,
         &hit,
         ray.time,
         &VertexPdf::Material(pdf),
         towards_others.as_ref(),
         u,
-        ctx,
     ) else {
+        return Color::ZERO;
+    };
+    let Some((emitted, weight)) =
+        emitter_seen(scene, trace_shadow(scene, &to_light, ctx), weight, ctx)
+    else {
         return Color::ZERO;
     };
     let transmittance = match variant {
@@ -1092,24 +1084,13 @@ pub fn radiance_mis_variant(
     ctx: &mut Ctx,
 ) -> Color {
     let mut ray = ray;
-    // How many dielectric boundaries the path has passed into and not yet out of (see
-    // `radiance_mis`'s notes on next-event estimation inside dielectrics).
-    let mut inside_dielectrics: u32 = 0;
-    let mut throughput = Color::ONE;
-    let mut l = Color::ZERO;
-    // The previous diffuse vertex and its material-sampling density of `ray.direction`; `None` after
-    // the camera or a specular bounce.
-    let mut previous: Option<(Point3, f64)> = None;
+    let mut path = MisPath::default();
     for depth in 0..max_depth {
         ctx.stats.rays += 1;
         ctx.bounce = depth;
-        // Inside a dielectric every shadow ray meets its boundary first (a specular surface, which
-        // next-event estimation cannot pass): no light sample is taken there, and emission the path
-        // meets from there has weight 1 (the material strategy alone).
-        let light_strategy = inside_dielectrics == 0;
         let (found, vertex_sample) =
             if scene.features.media > 0 && variant != MisVariant::LightSampleWhereScattered {
-                let sample_segment = light_strategy && depth + 1 < max_depth;
+                let sample_segment = path.takes_light_samples() && depth + 1 < max_depth;
                 let rate = if depth == 0 {
                     CAMERA_SEGMENT_SAMPLE_RATE
                 } else {
@@ -1128,25 +1109,128 @@ pub fn radiance_mis_variant(
                     variant,
                     ctx,
                 );
-                l += throughput * segment.in_scattered;
+                path.l += path.throughput * segment.in_scattered;
                 if let Some((weight, through)) = segment.forced {
-                    l += throughput * through * scene.background.value(&ray);
-                    throughput *= weight;
+                    path.l += path.throughput * through * scene.background.value(&ray);
+                    path.throughput *= weight;
                 }
                 (segment.vertex, segment.samples_lights)
             } else {
                 (scene.hit(&ray, ctx), true)
             };
-        // Borrowed, not moved (see `radiance_one_sample`).
-        let Some(hit) = &found else {
-            l += throughput * scene.background.value(&ray);
-            break;
+        let vertex = MisVertex {
+            depth,
+            max_depth,
+            samples_lights: vertex_sample,
+            options,
+            variant,
+        };
+        let step = path.vertex(scene, lights, &ray, found.as_ref(), vertex, ctx);
+        if let Some(shadow) = &step.shadow {
+            path.shadow_arrived(scene, trace_shadow(scene, shadow, ctx), ctx);
+        }
+        match step.next {
+            Some(next) => ray = next,
+            None => break,
+        }
+    }
+    path.l
+}
+
+/// Where a [`MisPath`] is: the bounce of its vertex, the path's depth limit, whether the vertex may
+/// take a light sample (a medium's point takes it on its segment instead, unless the segment could
+/// not be recorded), and the estimator's options and variant.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MisVertex {
+    pub depth: u32,
+    pub max_depth: u32,
+    pub samples_lights: bool,
+    pub options: MisOptions,
+    pub variant: MisVariant,
+}
+
+/// What a `mis` vertex asks to be traced: its light sample's shadow ray (whose emitter, if it meets
+/// one, [`MisPath::shadow_arrived`] adds), and the path's next ray (`None`: the path ends).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MisStep {
+    pub shadow: Option<Ray>,
+    pub next: Option<Ray>,
+}
+
+impl MisStep {
+    const END: MisStep = MisStep {
+        shadow: None,
+        next: None,
+    };
+}
+
+/// A `mis` path between its vertices ([`radiance_mis`]'s loop a vertex at a time, so that paths
+/// traced side by side, [`crate::mis8`], can have their rays intersected together): the radiance
+/// gathered so far `l`, the throughput, the previous diffuse vertex with its material-sampling
+/// density of the ray that left it, how many dielectrics the path is inside, and the light sample
+/// waiting for its shadow ray.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MisPath {
+    pub l: Color,
+    pub throughput: Color,
+    /// `None` after the camera or a specular bounce.
+    previous: Option<(Point3, f64)>,
+    inside_dielectrics: u32,
+    /// The light sample's throughput times attenuation, and its `w_l s / p_l`.
+    waiting: Option<(Color, f64)>,
+}
+
+impl Default for MisPath {
+    fn default() -> Self {
+        MisPath {
+            l: Color::ZERO,
+            throughput: Color::ONE,
+            previous: None,
+            inside_dielectrics: 0,
+            waiting: None,
+        }
+    }
+}
+
+impl MisPath {
+    /// Whether the path's next vertex may take a light sample: not inside a dielectric, where every
+    /// shadow ray meets its boundary first (a specular surface, which next-event estimation cannot
+    /// pass); emission the path meets from there has weight 1 (the material strategy alone).
+    #[inline]
+    pub fn takes_light_samples(&self) -> bool {
+        self.inside_dielectrics == 0
+    }
+
+    /// The path's vertex where `ray` met `found` (`None`: it left the scene): emission met there,
+    /// weighted against the light strategy of the vertex before; then the light sample's shadow
+    /// ray and the next ray, from the vertex's material (mixed with the non-emitting targets).
+    #[inline(always)]
+    pub fn vertex(
+        &mut self,
+        scene: &Scene,
+        lights: &Lights,
+        ray: &Ray,
+        found: Option<&Hit>,
+        vertex: MisVertex,
+        ctx: &mut Ctx,
+    ) -> MisStep {
+        let MisVertex {
+            depth,
+            max_depth,
+            samples_lights,
+            options,
+            variant,
+        } = vertex;
+        let light_strategy = self.takes_light_samples();
+        let Some(hit) = found else {
+            self.l += self.throughput * scene.background.value(ray);
+            return MisStep::END;
         };
         let material = &scene.materials[hit.material.index()];
         if material.is_emitter() {
             let emitted = material.emitted(hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
-                let weight = match previous {
+                let weight = match self.previous {
                     None => 1.0,
                     Some((origin, p_material)) => {
                         let p_light = if variant == MisVariant::WrongUniformLightWeight {
@@ -1159,7 +1243,7 @@ pub fn radiance_mis_variant(
                         power_heuristic(1.0, p_material, 1.0, p_light)
                     }
                 };
-                l += throughput * weight * emitted;
+                self.l += self.throughput * weight * emitted;
             }
         }
         let fuzzy_metal = match material {
@@ -1181,8 +1265,8 @@ pub fn radiance_mis_variant(
         };
         let (attenuation, pdf) = match fuzzy_metal {
             Some(metal) => metal,
-            None => match material.scatter(&ray, hit, &scene.textures, ctx) {
-                None => break,
+            None => match material.scatter(ray, hit, &scene.textures, ctx) {
+                None => return MisStep::END,
                 Some(Scatter::Specular {
                     attenuation,
                     direction,
@@ -1192,16 +1276,18 @@ pub fn radiance_mis_variant(
                     if matches!(material, Material::Dielectric { .. })
                         && direction.dot(hit.normal) < 0.0
                     {
-                        inside_dielectrics = if hit.front_face {
-                            inside_dielectrics + 1
+                        self.inside_dielectrics = if hit.front_face {
+                            self.inside_dielectrics + 1
                         } else {
-                            inside_dielectrics.saturating_sub(1)
+                            self.inside_dielectrics.saturating_sub(1)
                         };
                     }
-                    throughput *= attenuation;
-                    ray = hit.spawn(direction, ray.time);
-                    previous = None;
-                    continue;
+                    self.throughput *= attenuation;
+                    self.previous = None;
+                    return MisStep {
+                        shadow: None,
+                        next: Some(hit.spawn(direction, ray.time)),
+                    };
                 }
                 Some(Scatter::Diffuse { attenuation, pdf }) => {
                     (attenuation, VertexPdf::Material(pdf))
@@ -1212,23 +1298,24 @@ pub fn radiance_mis_variant(
 
         // Next-event estimation: only if the shadow ray's hit is within the path's depth.
         // (A medium's point takes it on its segment, unless the segment could not be recorded.)
+        let mut shadow = None;
         if depth + 1 < max_depth
             && light_strategy
-            && vertex_sample
+            && samples_lights
             && !lights.emitters.is_empty()
-            && let Some((emitted, weight)) = light_sample(
-                scene,
+            && let Some((ray_to_light, weight)) = light_sample(
                 lights,
                 hit,
                 ray.time,
                 &pdf,
                 towards_others.as_ref(),
                 ctx.sample_2d(Dimension::Light(depth)),
-                ctx,
             )
         {
-            l += throughput * attenuation * emitted * weight;
+            self.waiting = Some((self.throughput * attenuation, weight));
+            shadow = Some(ray_to_light);
         }
+        let end = MisStep { shadow, next: None };
 
         // Material sampling (mixed with the non-emitting targets by OTHERS_SHARE): the path goes on
         // this way.
@@ -1244,15 +1331,15 @@ pub fn radiance_mis_variant(
             None => pdf.sample(u),
         };
         let Some(ms) = sampled else {
-            break;
+            return end;
         };
         let Some(s_over_p) = ratio(pdf.pdf(ms.direction), ms.pdf) else {
-            break;
+            return end;
         };
-        throughput *= attenuation * s_over_p;
-        previous = (light_strategy || variant == MisVariant::WrongWeightInsideDielectrics)
+        self.throughput *= attenuation * s_over_p;
+        self.previous = (light_strategy || variant == MisVariant::WrongWeightInsideDielectrics)
             .then_some((hit.p, ms.pdf));
-        ray = hit.spawn(ms.direction, ray.time);
+        let next = hit.spawn(ms.direction, ray.time);
 
         // Russian roulette: survive with probability q = min(1, max throughput / ROULETTE_BELOW)
         // (ROULETTE_BELOW_IN_MEDIA after scattering in a medium), reweight by 1 / q.
@@ -1263,21 +1350,54 @@ pub fn radiance_mis_variant(
             } else {
                 ROULETTE_BELOW
             };
-            let q = (throughput.max_element() / below).min(1.0);
+            let q = (self.throughput.max_element() / below).min(1.0);
             if q < 1.0 {
                 if q <= 0.0 || ctx.sample_1d(Dimension::Roulette(depth)) >= q {
-                    break;
+                    return end;
                 }
                 if !(in_medium && variant == MisVariant::WrongRouletteInMedia) {
-                    throughput /= q;
+                    self.throughput /= q;
                 }
             }
         }
-        if throughput == Color::ZERO {
-            break;
+        if self.throughput == Color::ZERO {
+            return end;
+        }
+        MisStep {
+            shadow,
+            next: Some(next),
         }
     }
-    l
+
+    /// What the shadow ray of the vertex's light sample met (the surface and the transmittance of
+    /// the media before it): its emission, if it is an emitter's, weighted as the sample said.
+    #[inline(always)]
+    pub fn shadow_arrived(&mut self, scene: &Scene, shadow: Option<(Hit, f64)>, ctx: &mut Ctx) {
+        let Some((throughput, weight)) = self.waiting.take() else {
+            return;
+        };
+        if let Some((emitted, weight)) = emitter_seen(scene, shadow, weight, ctx) {
+            self.l += throughput * emitted * weight;
+        }
+    }
+}
+
+/// The emission a light sample's shadow ray meets (`shadow`: the surface and the transmittance of
+/// the media before it), if it meets an emitter, and the sample's `weight` times the transmittance.
+#[inline]
+fn emitter_seen(
+    scene: &Scene,
+    shadow: Option<(Hit, f64)>,
+    weight: f64,
+    ctx: &mut Ctx,
+) -> Option<(Color, f64)> {
+    // Borrowed, not moved (see `radiance_one_sample`).
+    let (lh, transmittance) = shadow.as_ref()?;
+    let m: &Material = &scene.materials[lh.material.index()];
+    if !m.is_emitter() || *transmittance <= 0.0 {
+        return None;
+    }
+    Some((m.emitted(lh, &scene.textures, ctx), weight * *transmittance))
 }
 // ANCHOR_END: radiance_mis
 

@@ -10,7 +10,7 @@
 //! the vector lanes ([`paths8`]: their rays intersected eight at a time by [`ray8`], their vertices
 //! on Lambertian quads and glass spheres computed in the lanes by [`vertex8`] and [`glass8`], the
 //! mixture's directions drawn together by [`mixture8`] and [`warp8`], all written once over
-//! [`wide8`]'s lanes);
+//! [`wide8`]'s lanes), and `mis` paths side by side too ([`mis8`]);
 //! prefix-stable per-sample randomness ([`sampler`]); progressive rendering into an accumulation buffer
 //! ([`render`]); checkpoints and parts of long renders ([`checkpoint`]); image files ([`output`]).
 //!
@@ -40,6 +40,7 @@ pub mod lights;
 pub mod limits;
 pub mod material;
 pub mod metal_pdf;
+pub mod mis8;
 pub mod mixture8;
 pub mod output;
 pub mod paths8;

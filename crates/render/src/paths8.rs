@@ -47,21 +47,22 @@ const SECOND_BATCH: u32 = 4;
 
 /// How many samples may be finished but not yet summed into their pixel (waiting for an earlier
 /// sample of the row, still in flight, to end). A lane whose next sample would go beyond waits.
-const RING: usize = 256;
+pub(crate) const RING: usize = 256;
 
-/// Whether a render of `scene` by `strategy` traces paths side by side in the lanes: the book's
-/// one-sample strategies (`mis` has its own integrator), when the scene's rays meet a small group on
+/// Whether a render of `scene` by `strategy` traces paths side by side in the lanes here: the
+/// book's one-sample strategies (`mis` has its own integrator and its own lanes, [`crate::mis8`]),
+/// when the scene's rays meet a small group on
 /// a processor with AVX2 or AVX-512 ([`Scene::hits_eight_at_once`]).
 pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
     !matches!(strategy, Strategy::Mis(_)) && scene.hits_eight_at_once(GroupId(0))
 }
 
 /// Samples finished out of order, summed into their pixels in order.
-struct Ring {
+pub(crate) struct Ring {
     value: [Color; RING],
     done: [bool; RING],
     /// The first sample (in the row's order) not yet summed.
-    commit: u64,
+    pub(crate) commit: u64,
     /// Its pixel, and how many of that pixel's samples are still to be summed (counted down, not
     /// divided out of `commit`: a 64-bit division per sample costs tens of cycles on some
     /// processors).
@@ -71,7 +72,7 @@ struct Ring {
 
 impl Ring {
     /// An empty ring for a row of pixels with `spp` samples each.
-    fn new(spp: u64) -> Ring {
+    pub(crate) fn new(spp: u64) -> Ring {
         Ring {
             value: [Color::ZERO; RING],
             done: [false; RING],
@@ -84,7 +85,14 @@ impl Ring {
     /// Keep sample `seq`'s value (sample `seq` of the row is one of pixel `seq / spp`), then sum
     /// every finished sample from `commit` on, in order, into its pixel.
     #[inline]
-    fn finish(&mut self, seq: u64, value: Color, spp: u64, row: &mut Row<'_>, stats: &mut Stats) {
+    pub(crate) fn finish(
+        &mut self,
+        seq: u64,
+        value: Color,
+        spp: u64,
+        row: &mut Row<'_>,
+        stats: &mut Stats,
+    ) {
         let slot = (seq % RING as u64) as usize;
         self.value[slot] = value;
         self.done[slot] = true;
@@ -109,10 +117,10 @@ impl Ring {
 }
 
 /// A row of the accumulation buffer.
-struct Row<'a> {
-    sum: &'a mut [Color],
-    count: &'a mut [u64],
-    dropped: &'a mut [u64],
+pub(crate) struct Row<'a> {
+    pub(crate) sum: &'a mut [Color],
+    pub(crate) count: &'a mut [u64],
+    pub(crate) dropped: &'a mut [u64],
 }
 
 /// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels,

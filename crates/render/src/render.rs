@@ -129,7 +129,7 @@ pub struct Renderer<'a> {
     /// once here rather than per sample).
     low_discrepancy: bool,
     /// Whether paths are traced side by side in the vector lanes, their rays intersected eight at
-    /// a time ([`crate::paths8`]): the same image, sooner.
+    /// a time ([`crate::paths8`], [`crate::mis8`]): the same image, sooner.
     paths_in_lanes: bool,
     /// The `mixture` strategy's density in the lanes, where the paths are traced in them.
     mixture8: Option<crate::mixture8::Mixture8>,
@@ -151,7 +151,8 @@ impl<'a> Renderer<'a> {
         let options = settings.strategy.mis_options();
         let spherical_rectangles = options.is_some_and(|o| o.spherical_rectangles);
         let lights = Lights::new(scene, spherical_rectangles);
-        let paths_in_lanes = crate::paths8::applies(scene, settings.strategy);
+        let paths_in_lanes = crate::paths8::applies(scene, settings.strategy)
+            || crate::mis8::applies(scene, settings.strategy);
         let mixture8 = (paths_in_lanes && settings.strategy == Strategy::Mixture)
             .then(|| crate::mixture8::Mixture8::new(&lights.all, settings.mixture_weight))
             .flatten();
@@ -174,9 +175,9 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    /// Whether paths are traced side by side in the lanes ([`crate::paths8`]): for the book's one-sample
-    /// strategies in a scene whose rays meet a small group (no tree), on a processor with AVX2 or
-    /// AVX-512.
+    /// Whether paths are traced side by side in the lanes ([`crate::paths8`], [`crate::mis8`]): in a
+    /// scene whose rays meet a small group (no tree), on a processor with AVX2 or AVX-512, for the
+    /// book's one-sample strategies and for `mis` where the scene has no media.
     pub fn paths_in_lanes(&self) -> bool {
         self.paths_in_lanes
     }
@@ -352,8 +353,11 @@ impl<'a> Renderer<'a> {
             .enumerate()
             .map(|(j, ((sum, count), dropped))| {
                 if self.paths_in_lanes {
-                    let stats =
-                        crate::paths8::render_row(self, j, k0, k1, sum, count, dropped, stop);
+                    let stats = if matches!(self.settings.strategy, Strategy::Mis(_)) {
+                        crate::mis8::render_row(self, j, k0, k1, sum, count, dropped, stop)
+                    } else {
+                        crate::paths8::render_row(self, j, k0, k1, sum, count, dropped, stop)
+                    };
                     if stats.is_some() {
                         on_row();
                     }

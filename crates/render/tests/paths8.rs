@@ -12,7 +12,7 @@ use rtl_pdf::{CosinePdf, QuadTarget, SphereTarget};
 use rtl_render::camera::CameraSettings;
 mod hit_bits;
 use hit_bits::record;
-use rtl_render::integrator::{Strategy, sample_diffuse};
+use rtl_render::integrator::{MisOptions, Strategy, sample_diffuse};
 use rtl_render::lanes::F64x8;
 use rtl_render::lights::{LightTarget, Lights};
 use rtl_render::material::{Albedo, Material, ScatterPdf};
@@ -57,6 +57,12 @@ fn point<R: Rng>(rng: &mut R, r: f64) -> Point3 {
 /// room), a glass, a metal or a textured ball and a second sphere, the lamp and the first ball
 /// listed as targets: one small group, as the lanes take it.
 fn small_room(rng: &mut Xoshiro256PlusPlus) -> Scene {
+    small_room_lit(rng, false)
+}
+
+/// [`small_room`], with a second lamp (small, of another radiance, not listed) if `second`:
+/// `mis` then chooses its emitter per shading point.
+fn small_room_lit(rng: &mut Xoshiro256PlusPlus, second: bool) -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let wall = b.material(Material::lambertian(Color::new(0.7, 0.6, 0.5)));
@@ -105,6 +111,15 @@ fn small_room(rng: &mut Xoshiro256PlusPlus) -> Scene {
     let centre = Point3::new(1.5, -s + 1.2, 0.5);
     b.sphere(w, centre, 1.2, ball).unwrap();
     b.sphere(w, Point3::new(-2.0, 1.0, 2.0), 0.6, red).unwrap();
+    if second {
+        let glow = b.material(Material::DiffuseLight {
+            emit: Albedo::Constant(Color::new(20.0, 8.0, 2.0)),
+            two_sided: false,
+        });
+        let corner = Point3::new(2.0, s - 2e-3, 2.0);
+        b.quad(w, corner, Vec3::X * 0.5, Vec3::Z * 0.5, glow)
+            .unwrap();
+    }
     b.targets.push(ImportanceTarget::Quad(
         rtl_render::shapes::Quad::new(light.0, light.1, light.2, rtl_render::scene::NO_MATERIAL)
             .unwrap(),
@@ -180,7 +195,7 @@ fn lanes_agree(
         let r = lanes(scene, st);
         assert!(
             r.paths_in_lanes(),
-            "{tier:?}: the lanes should take this scene"
+            "{tier:?}: the lanes should take this scene ({st:?})"
         );
         agree &= same(&passes(&r, ranges), &reference);
     }
@@ -262,6 +277,62 @@ fn paths_side_by_side_give_the_image_of_one_at_a_time() {
             "room {i} {strategy:?}"
         );
     }
+}
+
+/// `mis` paths side by side ([`rtl_render::mis8`]) against one at a time: the book's boxes and
+/// random small rooms (with one lamp or two, at depths 0 to 20), with each of the options on and
+/// off. Scenes with media stay one path at a time.
+#[test]
+fn mis_paths_side_by_side_give_the_image_of_one_at_a_time() {
+    let options = [
+        MisOptions::DEFAULT,
+        MisOptions {
+            russian_roulette: false,
+            spherical_rectangles: true,
+            low_discrepancy: false,
+        },
+        MisOptions {
+            russian_roulette: true,
+            spherical_rectangles: true,
+            low_discrepancy: true,
+        },
+    ];
+    for (i, name) in ["cornell", "cornell-book2", "quads"]
+        .into_iter()
+        .enumerate()
+    {
+        let scene = builtin(name);
+        for (o, &option) in options.iter().enumerate() {
+            let st = settings(
+                12,
+                5 + i as u64,
+                scene.max_depth,
+                Strategy::Mis(option),
+                0.5,
+            );
+            let ranges: &[(u64, u64)] = if o % 2 == 0 {
+                &[(0, 5)]
+            } else {
+                &[(2, 3), (3, 9)]
+            };
+            assert!(lanes_agree(&scene, st, ranges, plain), "{name} {option:?}");
+        }
+    }
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1717);
+    for i in 0..12 {
+        let scene = small_room_lit(&mut rng, i % 2 == 1);
+        let depth = [20, 1, 2, 0, 3, 50][i % 6];
+        let st = settings(10, i as u64, depth, Strategy::Mis(options[i % 3]), 0.5);
+        assert!(
+            lanes_agree(&scene, st, &[(0, 6)], plain),
+            "room {i} depth {depth} {:?}",
+            options[i % 3]
+        );
+    }
+    // a medium: one path at a time
+    let smoke = builtin("cornell-smoke");
+    let r = Renderer::new(&smoke, settings(8, 1, 50, Strategy::default(), 0.5));
+    assert!(!r.paths_in_lanes());
 }
 
 #[test]
@@ -861,11 +932,11 @@ fn the_lanes_refuse_what_they_do_not_follow() {
     };
     assert!(Mixture8::new(&[plain], 0.5).is_some());
     assert!(Mixture8::new(&vec![plain; rtl_render::mixture8::MAX_TARGETS + 1], 0.5).is_none());
-    // mis has its own integrator; a tree is not one small group
+    // a tree is not one small group (for mis neither, whose lanes are tested above)
     let cornell = builtin("cornell");
-    let mis = Renderer::new(&cornell, settings(8, 1, 50, Strategy::default(), 0.5));
-    assert!(!mis.paths_in_lanes());
     let tree = builtin("book2-final");
+    let mis = Renderer::new(&tree, settings(8, 1, 40, Strategy::default(), 0.5));
+    assert!(!mis.paths_in_lanes());
     let r = Renderer::new(&tree, settings(8, 1, 40, Strategy::Mixture, 0.5));
     assert!(!r.paths_in_lanes());
     // where an AVX tier runs, the book's Cornell box takes the lanes for mixture

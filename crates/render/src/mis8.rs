@@ -1,0 +1,209 @@
+//! Sixteen `mis` paths side by side, in two packets of eight: next-event estimation with multiple
+//! importance sampling ([`MisPath`], [`crate::integrator::radiance_mis`]'s loop a vertex at a time)
+//! traced for sixteen samples at once, each packet's rays intersected together in the lanes of
+//! vector registers ([`crate::ray8`]), as [`crate::paths8`] does for the book's one-sample
+//! strategies.
+//!
+//! A `mis` vertex asks for two rays: its light sample's shadow ray and the path's next ray. A
+//! lane traces them one after the other: the shadow ray in one round, its emission added when it
+//! comes back, then the next ray in the following round (so every packet's lanes hold one kind of
+//! ray or the other, mixed as the paths happen to be). Each vertex is computed on its own, as one
+//! path at a time computes it, with the lane's own numbers ([`Ctx`]); the rays' hits are the ones
+//! [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes without media take this
+//! form (a shadow ray through a medium records what it crosses, a ray through one may scatter in
+//! it: both one ray at a time), and each pixel's samples are summed in the order of `k`
+//! ([`Ring`]): the image is bit-identical to tracing one path at a time (tested in
+//! `crates/render/tests/paths8.rs`).
+
+use crate::integrator::{MisPath, MisVariant, MisVertex, Strategy};
+use crate::paths8::{LANES, Ring, Row};
+use crate::ray::{Interval, Ray};
+use crate::ray8::Rays8;
+use crate::render::Renderer;
+use crate::sampler::{Ctx, Stats};
+use crate::scene::{GroupId, Scene};
+use crate::vec::{Color, Point3, Vec3};
+
+/// Packets of paths in flight per thread (as [`crate::paths8`]'s).
+const PACKETS: usize = 2;
+
+/// Whether a render of `scene` by `strategy` traces `mis` paths side by side in the lanes: for
+/// `mis`, in a scene without media whose rays meet a small group, on a processor with AVX2 or
+/// AVX-512 ([`Scene::hits_eight_at_once`]).
+pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
+    matches!(strategy, Strategy::Mis(_))
+        && scene.features.media == 0
+        && scene.hits_eight_at_once(GroupId(0))
+}
+
+/// [`Renderer::render_pass_until`]'s work on row `j` for `mis`: samples `k0..k1` of each of its
+/// pixels, sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample)
+/// said to stop. Called only where [`applies`] said so (an AVX tier runs).
+#[cfg(target_arch = "x86_64")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn render_row(
+    r: &Renderer,
+    j: usize,
+    k0: u64,
+    k1: u64,
+    sum: &mut [Color],
+    count: &mut [u64],
+    dropped: &mut [u64],
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Option<Stats> {
+    let (scene, lights) = (r.scene, &r.lights);
+    let options = r
+        .settings
+        .strategy
+        .mis_options()
+        .expect("mis8 renders only `mis`");
+    let max_depth = r.settings.max_depth;
+    let spp = k1.saturating_sub(k0);
+    let total = sum.len() as u64 * spp;
+    let mut row = Row {
+        sum,
+        count,
+        dropped,
+    };
+    let mut stats = Stats::default();
+    let mut ring = Ring::new(spp);
+    // Everything per path is indexed `[g][l]`: packet `g`, lane `l`.
+    let mut ctxs: [[Ctx; LANES]; PACKETS] =
+        std::array::from_fn(|_| std::array::from_fn(|_| Ctx::new()));
+    let placeholder = Ray::new(Point3::ZERO, Vec3::X, 0.0);
+    let mut paths = [[MisPath::default(); LANES]; PACKETS];
+    // the bounce of the vertex each path's ray (or the shadow ray of whose vertex) is traced for
+    let mut depths = [[0u32; LANES]; PACKETS];
+    let mut seqs = [[0u64; LANES]; PACKETS];
+    let mut rays = [[placeholder; LANES]; PACKETS];
+    // a lane tracing a shadow ray keeps its path's next ray here (`None`: the path ends after it)
+    let mut after_shadow = [[None::<Ray>; LANES]; PACKETS];
+    let mut shadows = [0u8; PACKETS];
+    let mut lanes = [Rays8::default(); PACKETS];
+    let tier = crate::traversal::HitTier::current();
+    let mut per_lane = [[crate::traversal::Found::NOTHING; LANES]; PACKETS];
+    let mut closest = [crate::ray8::Closest8::default(); PACKETS];
+    let mut active = [0u8; PACKETS];
+    let mut next = 0u64;
+    // its pixel and sample, `(next / spp, k0 + next % spp)`, counted rather than divided out
+    let (mut next_i, mut next_k) = (0usize, k0);
+    // the scramble key of the pixel whose samples are being started, made at its first
+    let mut key = 0;
+    loop {
+        // Each idle path takes the row's next sample, if the ring has room for it.
+        for g in 0..PACKETS {
+            let mut idle = !active[g];
+            while idle != 0 && next < total {
+                let l = idle.trailing_zeros() as usize;
+                idle &= idle - 1;
+                while next < total && next - ring.commit < crate::paths8::RING as u64 {
+                    let (i, k) = (next_i, next_k);
+                    (next_i, next_k) = if next_k + 1 == k1 {
+                        (next_i + 1, k0)
+                    } else {
+                        (next_i, next_k + 1)
+                    };
+                    if k == k0 {
+                        if stop() {
+                            return None;
+                        }
+                        key = r.pixel_key_of(i, j);
+                    }
+                    let ctx = &mut ctxs[g][l];
+                    let ray = r.start_sample_keyed(i, j, k, key, ctx);
+                    let seq = next;
+                    next += 1;
+                    if max_depth > 0 {
+                        ctx.stats.rays += 1;
+                        ctx.bounce = 0;
+                        paths[g][l] = MisPath::default();
+                        depths[g][l] = 0;
+                        seqs[g][l] = seq;
+                        rays[g][l] = ray;
+                        lanes[g].set(l, &ray);
+                        active[g] |= 1 << l;
+                        break;
+                    }
+                    // No intersection allowed at all: the sample is black.
+                    Renderer::finish_sample(ctx);
+                    ring.finish(seq, Color::ZERO, spp, &mut row, &mut stats);
+                }
+            }
+        }
+        if active == [0; PACKETS] {
+            break;
+        }
+        for g in 0..PACKETS {
+            let traced = active[g];
+            if traced == 0 {
+                continue;
+            }
+            // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+            let found = unsafe {
+                scene.hit8_small(
+                    tier,
+                    GroupId(0),
+                    &rays[g],
+                    &lanes[g],
+                    traced,
+                    Interval::FORWARD,
+                    &mut ctxs[g],
+                    &mut closest[g],
+                    &mut per_lane[g],
+                )
+            };
+            let (ctxs, paths, rays, lanes) =
+                (&mut ctxs[g], &mut paths[g], &mut rays[g], &mut lanes[g]);
+            let (depths, after_shadow, shadows) =
+                (&mut depths[g], &mut after_shadow[g], &mut shadows[g]);
+            let (active, seqs) = (&mut active[g], &seqs[g]);
+            let mut bits = traced;
+            while bits != 0 {
+                let l = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let ctx = &mut ctxs[l];
+                let hit = found.record(&closest[g], &per_lane[g], l, &rays[l]);
+                let next = if *shadows & (1 << l) != 0 {
+                    // (no media: nothing is crossed, the transmittance is 1)
+                    paths[l].shadow_arrived(scene, hit.map(|h| (h, 1.0)), ctx);
+                    *shadows &= !(1 << l);
+                    after_shadow[l]
+                } else {
+                    let vertex = MisVertex {
+                        depth: depths[l],
+                        max_depth,
+                        samples_lights: true,
+                        options,
+                        variant: MisVariant::Book,
+                    };
+                    let step = paths[l].vertex(scene, lights, &rays[l], hit.as_ref(), vertex, ctx);
+                    if let Some(shadow) = step.shadow {
+                        ctx.stats.rays += 1;
+                        rays[l] = shadow;
+                        lanes.set(l, &shadow);
+                        after_shadow[l] = step.next;
+                        *shadows |= 1 << l;
+                        continue;
+                    }
+                    step.next
+                };
+                // The path goes on with its next ray, within its depth, or is summed into its pixel.
+                match next {
+                    Some(ray) if depths[l] + 1 < max_depth => {
+                        depths[l] += 1;
+                        ctx.stats.rays += 1;
+                        ctx.bounce = depths[l];
+                        rays[l] = ray;
+                        lanes.set(l, &ray);
+                    }
+                    _ => {
+                        *active &= !(1 << l);
+                        Renderer::finish_sample(ctx);
+                        ring.finish(seqs[l], paths[l].l, spp, &mut row, &mut stats);
+                    }
+                }
+            }
+        }
+    }
+    Some(ctxs.iter().flatten().fold(stats, |s, c| s + c.stats))
+}
