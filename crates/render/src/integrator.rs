@@ -923,8 +923,9 @@ fn segment_light(
     ) else {
         return Color::ZERO;
     };
+    let seen = trace_shadow(scene, &to_light, ctx);
     let Some((emitted, weight)) =
-        emitter_seen(scene, trace_shadow(scene, &to_light, ctx), weight, ctx)
+        emitter_seen(scene, seen.as_ref().map(|(h, t)| (h, *t)), weight, ctx)
     else {
         return Color::ZERO;
     };
@@ -1127,7 +1128,8 @@ pub fn radiance_mis_variant(
         };
         let step = path.vertex(scene, lights, &ray, found.as_ref(), vertex, ctx);
         if let Some(shadow) = &step.shadow {
-            path.shadow_arrived(scene, trace_shadow(scene, shadow, ctx), ctx);
+            let seen = trace_shadow(scene, shadow, ctx);
+            path.shadow_arrived(scene, seen.as_ref().map(|(h, t)| (h, *t)), ctx);
         }
         match step.next {
             Some(next) => ray = next,
@@ -1372,7 +1374,7 @@ impl MisPath {
     /// What the shadow ray of the vertex's light sample met (the surface and the transmittance of
     /// the media before it): its emission, if it is an emitter's, weighted as the sample said.
     #[inline(always)]
-    pub fn shadow_arrived(&mut self, scene: &Scene, shadow: Option<(Hit, f64)>, ctx: &mut Ctx) {
+    pub fn shadow_arrived(&mut self, scene: &Scene, shadow: Option<(&Hit, f64)>, ctx: &mut Ctx) {
         let Some((throughput, weight)) = self.waiting.take() else {
             return;
         };
@@ -1387,17 +1389,16 @@ impl MisPath {
 #[inline]
 fn emitter_seen(
     scene: &Scene,
-    shadow: Option<(Hit, f64)>,
+    shadow: Option<(&Hit, f64)>,
     weight: f64,
     ctx: &mut Ctx,
 ) -> Option<(Color, f64)> {
-    // Borrowed, not moved (see `radiance_one_sample`).
-    let (lh, transmittance) = shadow.as_ref()?;
+    let (lh, transmittance) = shadow?;
     let m: &Material = &scene.materials[lh.material.index()];
-    if !m.is_emitter() || *transmittance <= 0.0 {
+    if !m.is_emitter() || transmittance <= 0.0 {
         return None;
     }
-    Some((m.emitted(lh, &scene.textures, ctx), weight * *transmittance))
+    Some((m.emitted(lh, &scene.textures, ctx), weight * transmittance))
 }
 // ANCHOR_END: radiance_mis
 

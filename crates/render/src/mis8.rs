@@ -165,7 +165,7 @@ pub(crate) fn render_row(
                 let hit = found.record(&closest[g], &per_lane[g], l, &rays[l]);
                 let next = if *shadows & (1 << l) != 0 {
                     // (no media: nothing is crossed, the transmittance is 1)
-                    paths[l].shadow_arrived(scene, hit.map(|h| (h, 1.0)), ctx);
+                    paths[l].shadow_arrived(scene, hit.as_ref().map(|h| (h, 1.0)), ctx);
                     *shadows &= !(1 << l);
                     after_shadow[l]
                 } else {
