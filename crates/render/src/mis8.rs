@@ -1,5 +1,5 @@
 //! Sixteen `mis` paths side by side, in two packets of eight: next-event estimation with multiple
-//! importance sampling ([`MisPath`], [`crate::integrator::radiance_mis`]'s loop a vertex at a time)
+//! importance sampling (the integrator's `MisPath`: `radiance_mis`'s loop a vertex at a time)
 //! traced for sixteen samples at once, each packet's rays intersected together in the lanes of
 //! vector registers ([`crate::ray8`]), as [`crate::paths8`] does for the book's one-sample
 //! strategies.
@@ -8,21 +8,25 @@
 //! lane traces them one after the other: the shadow ray in one round, its emission added when it
 //! comes back, then the next ray in the following round (so every packet's lanes hold one kind of
 //! ray or the other, mixed as the paths happen to be). Each vertex is computed on its own, as one
-//! path at a time computes it, with the lane's own numbers ([`Ctx`]); the rays' hits are the ones
+//! path at a time computes it, with the lane's own numbers ([`Ctx`](crate::sampler::Ctx)); the rays' hits are the ones
 //! [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes without media take this
 //! form (a shadow ray through a medium records what it crosses, a ray through one may scatter in
 //! it: both one ray at a time), and each pixel's samples are summed in the order of `k`
-//! ([`Ring`]): the image is bit-identical to tracing one path at a time (tested in
+//! (`paths8`'s ring): the image is bit-identical to tracing one path at a time (tested in
 //! `crates/render/tests/paths8.rs`).
 
-use crate::integrator::{MisPath, MisVariant, MisVertex, Strategy};
-use crate::paths8::{LANES, Ring, Row};
-use crate::ray::{Interval, Ray};
-use crate::ray8::Rays8;
-use crate::render::Renderer;
-use crate::sampler::{Ctx, Stats};
+use crate::integrator::Strategy;
 use crate::scene::{GroupId, Scene};
-use crate::vec::{Color, Point3, Vec3};
+#[cfg(target_arch = "x86_64")]
+use crate::{
+    integrator::{MisPath, MisVariant, MisVertex},
+    paths8::{LANES, Ring, Row},
+    ray::{Interval, Ray},
+    ray8::Rays8,
+    render::Renderer,
+    sampler::{Ctx, Stats},
+    vec::{Color, Point3, Vec3},
+};
 
 /// Packets of paths in flight per thread (as [`crate::paths8`]'s).
 const PACKETS: usize = 2;

@@ -352,6 +352,8 @@ impl<'a> Renderer<'a> {
             .zip(acc.dropped.par_chunks_mut(w))
             .enumerate()
             .map(|(j, ((sum, count), dropped))| {
+                // (only x86-64 has the lanes: `paths_in_lanes` is false elsewhere)
+                #[cfg(target_arch = "x86_64")]
                 if self.paths_in_lanes {
                     let stats = if matches!(self.settings.strategy, Strategy::Mis(_)) {
                         crate::mis8::render_row(self, j, k0, k1, sum, count, dropped, stop)
