@@ -8,12 +8,12 @@
 //! lane traces them one after the other: the shadow ray in one round, its emission added when it
 //! comes back, then the next ray in the following round (so every packet's lanes hold one kind of
 //! ray or the other, mixed as the paths happen to be). Each vertex is computed on its own, as one
-//! path at a time computes it, with the lane's own numbers ([`Ctx`](crate::sampler::Ctx)); the rays' hits are the ones
-//! [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes without media take this
-//! form (a shadow ray through a medium records what it crosses, a ray through one may scatter in
-//! it: both one ray at a time), and each pixel's samples are summed in the order of `k`
-//! (`paths8`'s ring): the image is bit-identical to tracing one path at a time (tested in
-//! `crates/render/tests/paths8.rs`).
+//! path at a time computes it, with the lane's own numbers ([`crate::sampler::Ctx`]); the rays'
+//! hits are the ones [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes
+//! without media take this form (a shadow ray through a medium records what it crosses, a ray
+//! through one may scatter in it: both one ray at a time), and each pixel's samples are summed in
+//! the order of `k` (`paths8`'s ring): the image is bit-identical to tracing one path at a time
+//! (tested in `crates/render/tests/paths8.rs`).
 
 use crate::integrator::Strategy;
 use crate::scene::{GroupId, Scene};
