@@ -12,7 +12,7 @@
 //! hits are the ones [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes
 //! without media take this form (a shadow ray through a medium records what it crosses, a ray
 //! through one may scatter in it: both one ray at a time), and each pixel's samples are summed in
-//! the order of `k` (`paths8`'s ring): the image is bit-identical to tracing one path at a time
+//! the order of `k` (`paths8`'s `RowSamples`): the image is bit-identical to tracing one path at a time
 //! (tested in `crates/render/tests/paths8.rs`).
 
 use crate::integrator::Strategy;
@@ -20,7 +20,7 @@ use crate::scene::{GroupId, Scene};
 #[cfg(target_arch = "x86_64")]
 use crate::{
     integrator::{MisPath, MisVariant, MisVertex},
-    paths8::{LANES, Ring, Row},
+    paths8::{LANES, RowSamples},
     ray::{Interval, Ray},
     ray8::Rays8,
     render::Renderer,
@@ -62,15 +62,7 @@ pub(crate) fn render_row(
         .mis_options()
         .expect("mis8 renders only `mis`");
     let max_depth = r.settings.max_depth;
-    let spp = k1.saturating_sub(k0);
-    let total = sum.len() as u64 * spp;
-    let mut row = Row {
-        sum,
-        count,
-        dropped,
-    };
-    let mut stats = Stats::default();
-    let mut ring = Ring::new(spp);
+    let mut samples = RowSamples::new(j, k0, k1, sum, count, dropped);
     // Everything per path is indexed `[g][l]`: packet `g`, lane `l`.
     let mut ctxs: [[Ctx; LANES]; PACKETS] =
         std::array::from_fn(|_| std::array::from_fn(|_| Ctx::new()));
@@ -88,50 +80,22 @@ pub(crate) fn render_row(
     let mut per_lane = [[crate::traversal::Found::NOTHING; LANES]; PACKETS];
     let mut closest = [crate::ray8::Closest8::default(); PACKETS];
     let mut active = [0u8; PACKETS];
-    let mut next = 0u64;
-    // its pixel and sample, `(next / spp, k0 + next % spp)`, counted rather than divided out
-    let (mut next_i, mut next_k) = (0usize, k0);
-    // the scramble key of the pixel whose samples are being started, made at its first
-    let mut key = 0;
     loop {
         // Each idle path takes the row's next sample, if the ring has room for it.
         for g in 0..PACKETS {
             let mut idle = !active[g];
-            while idle != 0 && next < total {
+            while idle != 0 {
                 let l = idle.trailing_zeros() as usize;
                 idle &= idle - 1;
-                while next < total && next - ring.commit < crate::paths8::RING as u64 {
-                    let (i, k) = (next_i, next_k);
-                    (next_i, next_k) = if next_k + 1 == k1 {
-                        (next_i + 1, k0)
-                    } else {
-                        (next_i, next_k + 1)
-                    };
-                    if k == k0 {
-                        if stop() {
-                            return None;
-                        }
-                        key = r.pixel_key_of(i, j);
-                    }
-                    let ctx = &mut ctxs[g][l];
-                    let ray = r.start_sample_keyed(i, j, k, key, ctx);
-                    let seq = next;
-                    next += 1;
-                    if max_depth > 0 {
-                        ctx.stats.rays += 1;
-                        ctx.bounce = 0;
-                        paths[g][l] = MisPath::default();
-                        depths[g][l] = 0;
-                        seqs[g][l] = seq;
-                        rays[g][l] = ray;
-                        lanes[g].set(l, &ray);
-                        active[g] |= 1 << l;
-                        break;
-                    }
-                    // No intersection allowed at all: the sample is black.
-                    Renderer::finish_sample(ctx);
-                    ring.finish(seq, Color::ZERO, spp, &mut row, &mut stats);
-                }
+                let Some((seq, ray)) = samples.start(r, &mut ctxs[g][l], stop)? else {
+                    break;
+                };
+                paths[g][l] = MisPath::default();
+                depths[g][l] = 0;
+                seqs[g][l] = seq;
+                rays[g][l] = ray;
+                lanes[g].set(l, &ray);
+                active[g] |= 1 << l;
             }
         }
         if active == [0; PACKETS] {
@@ -202,12 +166,11 @@ pub(crate) fn render_row(
                     }
                     _ => {
                         *active &= !(1 << l);
-                        Renderer::finish_sample(ctx);
-                        ring.finish(seqs[l], paths[l].l, spp, &mut row, &mut stats);
+                        samples.finish(seqs[l], paths[l].l, ctx);
                     }
                 }
             }
         }
     }
-    Some(ctxs.iter().flatten().fold(stats, |s, c| s + c.stats))
+    Some(samples.stats(ctxs.iter().flatten()))
 }

@@ -47,7 +47,7 @@ const SECOND_BATCH: u32 = 4;
 
 /// How many samples may be finished but not yet summed into their pixel (waiting for an earlier
 /// sample of the row, still in flight, to end). A lane whose next sample would go beyond waits.
-pub(crate) const RING: usize = 256;
+const RING: usize = 256;
 
 /// Whether a render of `scene` by `strategy` traces paths side by side in the lanes here: the
 /// book's one-sample strategies (`mis` has its own integrator and its own lanes, [`crate::mis8`]),
@@ -58,11 +58,11 @@ pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
 }
 
 /// Samples finished out of order, summed into their pixels in order.
-pub(crate) struct Ring {
+struct Ring {
     value: [Color; RING],
     done: [bool; RING],
     /// The first sample (in the row's order) not yet summed.
-    pub(crate) commit: u64,
+    commit: u64,
     /// Its pixel, and how many of that pixel's samples are still to be summed (counted down, not
     /// divided out of `commit`: a 64-bit division per sample costs tens of cycles on some
     /// processors).
@@ -72,7 +72,7 @@ pub(crate) struct Ring {
 
 impl Ring {
     /// An empty ring for a row of pixels with `spp` samples each.
-    pub(crate) fn new(spp: u64) -> Ring {
+    fn new(spp: u64) -> Ring {
         Ring {
             value: [Color::ZERO; RING],
             done: [false; RING],
@@ -117,10 +117,113 @@ impl Ring {
 }
 
 /// A row of the accumulation buffer.
-pub(crate) struct Row<'a> {
-    pub(crate) sum: &'a mut [Color],
-    pub(crate) count: &'a mut [u64],
-    pub(crate) dropped: &'a mut [u64],
+struct Row<'a> {
+    sum: &'a mut [Color],
+    count: &'a mut [u64],
+    dropped: &'a mut [u64],
+}
+
+/// A row's samples for paths traced side by side (here and in [`crate::mis8`]): started in the
+/// order of `(pixel, k)`, one on each idle lane, and summed into their pixels in that order
+/// whenever they end ([`Ring`]).
+pub(crate) struct RowSamples<'a> {
+    row: Row<'a>,
+    ring: Ring,
+    stats: Stats,
+    j: usize,
+    k0: u64,
+    k1: u64,
+    spp: u64,
+    total: u64,
+    /// The next sample to start, in the row's order; its pixel and sample, `(next / spp, k0 +
+    /// next % spp)`, counted rather than divided out.
+    next: u64,
+    next_i: usize,
+    next_k: u64,
+    /// The scramble key of the pixel whose samples are being started, made at its first.
+    key: u64,
+}
+
+impl<'a> RowSamples<'a> {
+    /// Samples `k0..k1` of each pixel of row `j`, summed into `sum`, `count` and `dropped`.
+    pub(crate) fn new(
+        j: usize,
+        k0: u64,
+        k1: u64,
+        sum: &'a mut [Color],
+        count: &'a mut [u64],
+        dropped: &'a mut [u64],
+    ) -> Self {
+        let spp = k1.saturating_sub(k0);
+        RowSamples {
+            total: sum.len() as u64 * spp,
+            row: Row {
+                sum,
+                count,
+                dropped,
+            },
+            ring: Ring::new(spp),
+            stats: Stats::default(),
+            j,
+            k0,
+            k1,
+            spp,
+            next: 0,
+            next_i: 0,
+            next_k: k0,
+            key: 0,
+        }
+    }
+
+    /// The next sample begun in `ctx`, counted as its path's first ray: its number in the row's
+    /// order and its camera ray. `Some(None)` if no sample is left or the ring has no room for
+    /// one; `None` if `stop()` (asked before each pixel's first sample) said to stop. A sample
+    /// allowed no intersection at all (`max_depth` 0) is black, and summed at once.
+    #[inline]
+    pub(crate) fn start(
+        &mut self,
+        r: &Renderer,
+        ctx: &mut Ctx,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Option<(u64, Ray)>> {
+        while self.next < self.total && self.next - self.ring.commit < RING as u64 {
+            let (i, k) = (self.next_i, self.next_k);
+            (self.next_i, self.next_k) = if k + 1 == self.k1 {
+                (i + 1, self.k0)
+            } else {
+                (i, k + 1)
+            };
+            if k == self.k0 {
+                if stop() {
+                    return None;
+                }
+                self.key = r.pixel_key_of(i, self.j);
+            }
+            let ray = r.start_sample_keyed(i, self.j, k, self.key, ctx);
+            let seq = self.next;
+            self.next += 1;
+            if r.settings.max_depth > 0 {
+                ctx.stats.rays += 1;
+                ctx.bounce = 0;
+                return Some(Some((seq, ray)));
+            }
+            self.finish(seq, Color::ZERO, ctx);
+        }
+        Some(None)
+    }
+
+    /// Sample `seq`, traced in `ctx`, ends with `value`.
+    #[inline]
+    pub(crate) fn finish(&mut self, seq: u64, value: Color, ctx: &mut Ctx) {
+        Renderer::finish_sample(ctx);
+        let (spp, row, stats) = (self.spp, &mut self.row, &mut self.stats);
+        self.ring.finish(seq, value, spp, row, stats);
+    }
+
+    /// The counters of the row: those of its samples' `ctxs` and the non-finite samples dropped.
+    pub(crate) fn stats<'c>(self, ctxs: impl Iterator<Item = &'c Ctx>) -> Stats {
+        ctxs.fold(self.stats, |s, c| s + c.stats)
+    }
 }
 
 /// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels,
@@ -141,15 +244,7 @@ pub(crate) fn render_row(
     let scene = r.scene;
     let (strategy, weight) = (r.settings.strategy, r.settings.mixture_weight);
     let max_depth = r.settings.max_depth;
-    let spp = k1.saturating_sub(k0);
-    let total = sum.len() as u64 * spp;
-    let mut row = Row {
-        sum,
-        count,
-        dropped,
-    };
-    let mut stats = Stats::default();
-    let mut ring = Ring::new(spp);
+    let mut samples = RowSamples::new(j, k0, k1, sum, count, dropped);
     // Everything per path is indexed `[g][l]`: packet `g`, lane `l`.
     let mut ctxs: [[Ctx; LANES]; PACKETS] =
         std::array::from_fn(|_| std::array::from_fn(|_| Ctx::new()));
@@ -183,57 +278,29 @@ pub(crate) fn render_row(
     let mut glass_batch = [crate::glass8::Glass8::default(); PACKETS];
     let mut glass_from = [(0usize, 0usize); PACKETS * LANES];
     let mut glass_n = 0;
-    let mut next = 0u64;
-    // its pixel and sample, `(next / spp, k0 + next % spp)`, counted rather than divided out
-    let (mut next_i, mut next_k) = (0usize, k0);
-    // the scramble key of the pixel whose samples are being started, made at its first
-    let mut key = 0;
     loop {
         // Each idle path takes the row's next sample, if the ring has room for it.
         for g in 0..PACKETS {
             let mut idle = !active[g];
-            while idle != 0 && next < total {
+            while idle != 0 {
                 let l = idle.trailing_zeros() as usize;
                 idle &= idle - 1;
-                while next < total && next - ring.commit < RING as u64 {
-                    let (i, k) = (next_i, next_k);
-                    (next_i, next_k) = if next_k + 1 == k1 {
-                        (next_i + 1, k0)
-                    } else {
-                        (next_i, next_k + 1)
-                    };
-                    if k == k0 {
-                        if stop() {
-                            return None;
-                        }
-                        key = r.pixel_key_of(i, j);
-                    }
-                    let ctx = &mut ctxs[g][l];
-                    let ray = r.start_sample_keyed(i, j, k, key, ctx);
-                    let seq = next;
-                    next += 1;
-                    if max_depth > 0 {
-                        ctx.stats.rays += 1;
-                        ctx.bounce = 0;
-                        // (field by field: a whole new path written at once was read back across
-                        // its stores, which cannot forward to the load)
-                        let path = &mut paths[g][l];
-                        path.throughput = Color::ONE;
-                        path.l = Color::ZERO;
-                        path.depth = 0;
-                        for t in &mut throughput[g] {
-                            t.0[l] = 1.0;
-                        }
-                        seqs[g][l] = seq;
-                        rays[g][l] = ray;
-                        lanes[g].set(l, &ray);
-                        active[g] |= 1 << l;
-                        break;
-                    }
-                    // No intersection allowed at all: the sample is black.
-                    Renderer::finish_sample(ctx);
-                    ring.finish(seq, Color::ZERO, spp, &mut row, &mut stats);
+                let Some((seq, ray)) = samples.start(r, &mut ctxs[g][l], stop)? else {
+                    break;
+                };
+                // (field by field: a whole new path written at once was read back across its
+                // stores, which cannot forward to the load)
+                let path = &mut paths[g][l];
+                path.throughput = Color::ONE;
+                path.l = Color::ZERO;
+                path.depth = 0;
+                for t in &mut throughput[g] {
+                    t.0[l] = 1.0;
                 }
+                seqs[g][l] = seq;
+                rays[g][l] = ray;
+                lanes[g].set(l, &ray);
+                active[g] |= 1 << l;
             }
         }
         if active == [0; PACKETS] {
@@ -281,8 +348,7 @@ pub(crate) fn render_row(
                         }
                         _ => {
                             *active &= !(1 << l);
-                            Renderer::finish_sample(ctx);
-                            ring.finish(seqs[l], path.l, spp, &mut row, &mut stats);
+                            samples.finish(seqs[l], path.l, ctx);
                         }
                     }
                 }};
@@ -443,8 +509,7 @@ pub(crate) fn render_row(
                         }
                     } else {
                         active[g] &= !(1 << l);
-                        Renderer::finish_sample(ctx);
-                        ring.finish(seqs[g][l], path.l, spp, &mut row, &mut stats);
+                        samples.finish(seqs[g][l], path.l, ctx);
                     }
                 }
             }
@@ -502,13 +567,12 @@ pub(crate) fn render_row(
                     batch.scatter(b, &mut lanes[g], &mut throughput[g], l);
                 } else {
                     active[g] &= !(1 << l);
-                    Renderer::finish_sample(ctx);
-                    ring.finish(seqs[g][l], path.l, spp, &mut row, &mut stats);
+                    samples.finish(seqs[g][l], path.l, ctx);
                 }
             }
         }
     }
-    Some(ctxs.iter().flatten().fold(stats, |s, c| s + c.stats))
+    Some(samples.stats(ctxs.iter().flatten()))
 }
 
 /// A batch of Lambertian vertices for [`crate::vertex8`], gathered lane by lane from the paths
