@@ -290,6 +290,11 @@ fn explain(
                     lanes.glass_vertex_in_lanes().is_some(),
                     lanes.mixture_in_lanes().is_some(),
                 ) {
+                    (true, _, _, _) if lanes.mis_vertex_in_lanes().is_some() => {
+                        " (mis: a vertex's shadow ray in one round, the path's next ray in the \
+                         next; the vertices on Lambertian quads, light sample and material \
+                         sample, computed in the lanes, eight at a time)"
+                    }
                     (true, _, _, _) => {
                         " (mis: a vertex's shadow ray in one round, the path's next ray in the \
                          next)"

@@ -1343,10 +1343,30 @@ impl MisPath {
             .then_some((hit.p, ms.pdf));
         let next = hit.spawn(ms.direction, ray.time);
 
-        // Russian roulette: survive with probability q = min(1, max throughput / ROULETTE_BELOW)
-        // (ROULETTE_BELOW_IN_MEDIA after scattering in a medium), reweight by 1 / q.
+        let in_medium = matches!(material, Material::Isotropic { .. });
+        if !self.survives_roulette(depth, in_medium, options, variant, ctx) {
+            return end;
+        }
+        MisStep {
+            shadow,
+            next: Some(next),
+        }
+    }
+
+    /// Russian roulette after the vertex at `depth` (`in_medium`: it scattered in a medium):
+    /// survive with probability `q = min(1, max throughput / ROULETTE_BELOW)`
+    /// (`ROULETTE_BELOW_IN_MEDIA` in a medium), reweighted by `1 / q`. Whether the path goes on
+    /// (not if its throughput is 0).
+    #[inline(always)]
+    fn survives_roulette(
+        &mut self,
+        depth: u32,
+        in_medium: bool,
+        options: MisOptions,
+        variant: MisVariant,
+        ctx: &mut Ctx,
+    ) -> bool {
         if options.russian_roulette && depth >= ROULETTE_AFTER {
-            let in_medium = matches!(material, Material::Isotropic { .. });
             let below = if in_medium {
                 ROULETTE_BELOW_IN_MEDIA
             } else {
@@ -1355,19 +1375,51 @@ impl MisPath {
             let q = (self.throughput.max_element() / below).min(1.0);
             if q < 1.0 {
                 if q <= 0.0 || ctx.sample_1d(Dimension::Roulette(depth)) >= q {
-                    return end;
+                    return false;
                 }
                 if !(in_medium && variant == MisVariant::WrongRouletteInMedia) {
                     self.throughput /= q;
                 }
             }
         }
-        if self.throughput == Color::ZERO {
-            return end;
+        self.throughput != Color::ZERO
+    }
+
+    /// The rest of a Lambertian vertex at `depth` whose light sample and material sample were
+    /// computed in the lanes ([`crate::mis_vertex8`]): `waiting`, the light sample's carried
+    /// throughput and weight if it made a shadow ray; `bounce`, the throughput after the
+    /// material sample, the vertex's point and the density the direction was drawn with, if it
+    /// made one. Whether the path goes on (after Russian roulette).
+    #[inline(always)]
+    pub fn lambertian_from_lanes(
+        &mut self,
+        waiting: Option<(Color, f64)>,
+        bounce: Option<(Color, Point3, f64)>,
+        depth: u32,
+        options: MisOptions,
+        ctx: &mut Ctx,
+    ) -> bool {
+        if waiting.is_some() {
+            self.waiting = waiting;
         }
-        MisStep {
-            shadow,
-            next: Some(next),
+        let Some((throughput, p, pdf)) = bounce else {
+            return false;
+        };
+        self.throughput = throughput;
+        self.previous = Some((p, pdf));
+        self.survives_roulette(depth, false, options, MisVariant::Book, ctx)
+    }
+
+    /// The shadow ray of the vertex's light sample met `emitted`, the radiance of a light of
+    /// constant radiance seen from the ray's side (zero from behind a one-sided one; `None`: it
+    /// met no emitter): [`MisPath::shadow_arrived`] without the hit's record.
+    #[inline(always)]
+    pub fn shadow_met(&mut self, emitted: Option<Color>) {
+        let Some((throughput, weight)) = self.waiting.take() else {
+            return;
+        };
+        if let Some(emitted) = emitted {
+            self.l += throughput * emitted * weight;
         }
     }
 

@@ -45,6 +45,7 @@ pub mod limits;
 pub mod material;
 pub mod metal_pdf;
 pub mod mis8;
+pub mod mis_vertex8;
 pub mod mixture8;
 pub mod output;
 pub mod paths8;

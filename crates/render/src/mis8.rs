@@ -7,7 +7,12 @@
 //! A `mis` vertex asks for two rays: its light sample's shadow ray and the path's next ray. A
 //! lane traces them one after the other: the shadow ray in one round, its emission added when it
 //! comes back, then the next ray in the following round (so every packet's lanes hold one kind of
-//! ray or the other, mixed as the paths happen to be). Each vertex is computed on its own, as one
+//! ray or the other, mixed as the paths happen to be). A vertex on a Lambertian quad of constant
+//! albedo (where the scene has one emitter and other targets: the Cornell box) is computed in the
+//! lanes, a packet's such vertices at once ([`crate::mis_vertex8`]): its light sample, its
+//! material sample and their weights; a shadow ray that meets a light of constant radiance, a
+//! Lambertian quad or nothing is read without building its hit's record. Every other vertex is
+//! computed on its own, as one
 //! path at a time computes it, with the lane's own numbers ([`crate::sampler::Ctx`]); the rays'
 //! hits are the ones [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes
 //! without media take this form (a shadow ray through a medium records what it crosses, a ray
@@ -19,12 +24,15 @@ use crate::integrator::Strategy;
 use crate::scene::{GroupId, Scene};
 #[cfg(target_arch = "x86_64")]
 use crate::{
-    integrator::{MisPath, MisVariant, MisVertex},
+    integrator::{MisPath, MisStep, MisVariant, MisVertex},
+    lanes::F64x8,
+    mis_vertex8::{MisIn, MisOut},
     paths8::{LANES, RowSamples},
     ray::{Interval, Ray},
+    ray8::NO_HIT,
     ray8::Rays8,
     render::Renderer,
-    sampler::{Ctx, Stats},
+    sampler::{Ctx, Dimension, Stats},
     vec::{Color, Point3, Vec3},
 };
 
@@ -80,6 +88,11 @@ pub(crate) fn render_row(
     let mut per_lane = [[crate::traversal::Found::NOTHING; LANES]; PACKETS];
     let mut closest = [crate::ray8::Closest8::default(); PACKETS];
     let mut active = [0u8; PACKETS];
+    // The Lambertian vertex in the lanes ([`crate::mis_vertex8`]): its numbers and its answers.
+    let in_lanes = r.mis_vertex_in_lanes();
+    let mut throughput = [F64x8::ZERO; 3];
+    let (mut u_light, mut u_material) = ([F64x8::ZERO; 2], [F64x8::ZERO; 2]);
+    let mut out = MisOut::default();
     loop {
         // Each idle path takes the row's next sample, if the ring has room for it.
         for g in 0..PACKETS {
@@ -125,26 +138,100 @@ pub(crate) fn render_row(
             let (depths, after_shadow, shadows) =
                 (&mut depths[g], &mut after_shadow[g], &mut shadows[g]);
             let (active, seqs) = (&mut active[g], &seqs[g]);
+            // The paths whose ray met a Lambertian quad of constant albedo, outside any
+            // dielectric, have their vertex computed in the lanes: its numbers drawn lane by
+            // lane, in the order one path at a time draws them (the light sample's, the bounce's).
+            let mut lambertian = 0u8;
+            if let Some((surfaces, mis)) = in_lanes {
+                for (l, &h) in closest[g].hit.iter().enumerate() {
+                    lambertian |= (surfaces.lambertian(h) as u8) << l;
+                }
+                lambertian &= traced & !*shadows;
+                let (mut bits, mut light_lanes) = (lambertian, 0u8);
+                while bits != 0 {
+                    let l = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    if !paths[l].takes_light_samples() {
+                        lambertian &= !(1 << l);
+                        continue;
+                    }
+                    let (ctx, depth) = (&mut ctxs[l], depths[l]);
+                    if depth + 1 < max_depth {
+                        let u = ctx.sample_2d(Dimension::Light(depth));
+                        (u_light[0].0[l], u_light[1].0[l]) = (u.x, u.y);
+                        light_lanes |= 1 << l;
+                    }
+                    let u = ctx.sample_2d(Dimension::Material(depth));
+                    (u_material[0].0[l], u_material[1].0[l]) = (u.x, u.y);
+                    for (a, t) in throughput.iter_mut().enumerate() {
+                        t.0[l] = paths[l].throughput[a];
+                    }
+                }
+                let input = MisIn {
+                    surfaces,
+                    found: &closest[g],
+                    rays: lanes,
+                    throughput: &throughput,
+                    u_light: &u_light,
+                    u_material: &u_material,
+                };
+                // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+                unsafe { mis.vertex(tier, &input, lambertian, light_lanes, &mut out) };
+            }
+            let at = |v: &[F64x8; 3], l: usize| Vec3::new(v[0].0[l], v[1].0[l], v[2].0[l]);
             let mut bits = traced;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
                 let ctx = &mut ctxs[l];
-                let hit = found.record(&closest[g], &per_lane[g], l, &rays[l]);
                 let next = if *shadows & (1 << l) != 0 {
-                    // (no media: nothing is crossed, the transmittance is 1)
-                    paths[l].shadow_arrived(scene, hit.as_ref().map(|h| (h, 1.0)), ctx);
                     *shadows &= !(1 << l);
+                    let h = closest[g].hit[l];
+                    match in_lanes {
+                        // a light of constant radiance, a Lambertian quad, nothing: no record
+                        Some((s, _)) if s.light(h).is_some() || s.lambertian(h) || h == NO_HIT => {
+                            let light = s.light(h);
+                            paths[l].shadow_met(light.map(|q| q.emitted(rays[l].direction)));
+                        }
+                        _ => {
+                            let hit = found.record(&closest[g], &per_lane[g], l, &rays[l]);
+                            // (no media: nothing is crossed, the transmittance is 1)
+                            paths[l].shadow_arrived(scene, hit.as_ref().map(|h| (h, 1.0)), ctx);
+                        }
+                    }
                     after_shadow[l]
                 } else {
-                    let vertex = MisVertex {
-                        depth: depths[l],
-                        max_depth,
-                        samples_lights: true,
-                        options,
-                        variant: MisVariant::Book,
+                    let step = if lambertian & (1 << l) != 0 {
+                        let waiting = (out.shadow & (1 << l) != 0)
+                            .then(|| (at(&out.carried, l), out.weight.0[l]));
+                        let bounce = (out.next & (1 << l) != 0)
+                            .then(|| (at(&out.throughput, l), at(&out.p, l), out.pdf.0[l]));
+                        let time = rays[l].time;
+                        let goes_on = paths[l]
+                            .lambertian_from_lanes(waiting, bounce, depths[l], options, ctx);
+                        MisStep {
+                            shadow: waiting.map(|_| {
+                                Ray::new(
+                                    at(&out.shadow_origin, l),
+                                    at(&out.shadow_direction, l),
+                                    time,
+                                )
+                            }),
+                            next: goes_on.then(|| {
+                                Ray::new(at(&out.next_origin, l), at(&out.next_direction, l), time)
+                            }),
+                        }
+                    } else {
+                        let hit = found.record(&closest[g], &per_lane[g], l, &rays[l]);
+                        let vertex = MisVertex {
+                            depth: depths[l],
+                            max_depth,
+                            samples_lights: true,
+                            options,
+                            variant: MisVariant::Book,
+                        };
+                        paths[l].vertex(scene, lights, &rays[l], hit.as_ref(), vertex, ctx)
                     };
-                    let step = paths[l].vertex(scene, lights, &rays[l], hit.as_ref(), vertex, ctx);
                     if let Some(shadow) = step.shadow {
                         ctx.stats.rays += 1;
                         rays[l] = shadow;

@@ -19,7 +19,7 @@ use rtl_pdf::QuadSampling;
 
 /// One importance target, as the lanes read it.
 #[derive(Clone, Copy, Debug)]
-enum Target8 {
+pub(crate) enum Target8 {
     /// A quad sampled by area ([`rtl_pdf::QuadTarget`]): corner, edges, unit normal, `1 / area`,
     /// dual basis, edge scale, and whether it is one-sided.
     Quad {
@@ -58,29 +58,38 @@ impl Mixture8 {
         }
         let targets = lights
             .iter()
-            .map(|t| match t {
-                LightTarget::Quad { quad, one_sided } => (quad.sampling() == QuadSampling::Area)
-                    .then(|| {
-                        let (vw, wu) = quad.dual_basis();
-                        Target8::Quad {
-                            q: quad.q(),
-                            u: quad.u(),
-                            v: quad.v(),
-                            normal: quad.normal(),
-                            inv_area: quad.inv_area(),
-                            vw,
-                            wu,
-                            edge_scale: quad.edge_scale(),
-                            one_sided: *one_sided,
-                        }
-                    }),
-                LightTarget::Sphere(s) => Some(Target8::Sphere {
-                    center: s.center(),
-                    radius: s.radius(),
-                }),
-            })
+            .map(Target8::new)
             .collect::<Option<Vec<_>>>()?;
         Some(Mixture8 { targets, weight })
+    }
+}
+
+impl Target8 {
+    /// `t` as the lanes read it; `None` for a quad that samples by spherical rectangles, which the
+    /// lanes do not.
+    pub(crate) fn new(t: &LightTarget) -> Option<Target8> {
+        match t {
+            LightTarget::Quad { quad, one_sided } => {
+                (quad.sampling() == QuadSampling::Area).then(|| {
+                    let (vw, wu) = quad.dual_basis();
+                    Target8::Quad {
+                        q: quad.q(),
+                        u: quad.u(),
+                        v: quad.v(),
+                        normal: quad.normal(),
+                        inv_area: quad.inv_area(),
+                        vw,
+                        wu,
+                        edge_scale: quad.edge_scale(),
+                        one_sided: *one_sided,
+                    }
+                })
+            }
+            LightTarget::Sphere(s) => Some(Target8::Sphere {
+                center: s.center(),
+                radius: s.radius(),
+            }),
+        }
     }
 }
 
@@ -88,7 +97,7 @@ impl Mixture8 {
 pub const MAX_TARGETS: usize = 8;
 
 #[cfg(target_arch = "x86_64")]
-mod wide {
+pub(crate) mod wide {
     use super::{MAX_TARGETS, Mixture8, Target8};
     use crate::lanes::F64x8;
     use crate::warp8::*;
@@ -99,10 +108,10 @@ mod wide {
     pub type Stored = ([F64x8; 3], F64x8, u8);
 
     /// A direction and its density in each lane, and the lanes where the sampler succeeded.
-    struct Sampled<W: Wide8> {
-        direction: V3<W>,
-        pdf: W,
-        ok: W::Mask,
+    pub(crate) struct Sampled<W: Wide8> {
+        pub direction: V3<W>,
+        pub pdf: W,
+        pub ok: W::Mask,
     }
 
     /// rtl-pdf's `remap(u, lo, p)`: `((u - lo) / p).clamp(0, 1 - 2^-53)`, `lo` and `p` lane by lane.
@@ -125,7 +134,7 @@ mod wide {
     /// What a target looks like from the eight origins: all that its density and its sampler
     /// compute from the origin alone, computed once for both.
     #[derive(Clone, Copy)]
-    enum View8<W: Wide8> {
+    pub(crate) enum View8<W: Wide8> {
         /// A quad: the origin's height `h` above its plane, the lanes behind it (one-sided) and
         /// those out of its plane.
         Quad { h: W, behind: W::Mask, off: W::Mask },
@@ -138,13 +147,20 @@ mod wide {
             omc: W,
             cone_pdf: W,
         },
+        /// Not made (an entry past the targets).
+        Nothing,
+    }
+
+    impl<W: Wide8> View8<W> {
+        /// A placeholder for a view not yet made.
+        pub(crate) const NONE: View8<W> = View8::Nothing;
     }
 
     impl Target8 {
         /// [`View8`] of this target from `origin`: `LightTarget::behind` and `QuadTarget::height`
         /// for a quad; `SphereTarget::view`'s terms for a sphere.
         #[inline(always)]
-        fn view<W: Wide8>(&self, origin: V3<W>) -> View8<W> {
+        pub(crate) fn view<W: Wide8>(&self, origin: V3<W>) -> View8<W> {
             let o = origin[0];
             let zero = o.zero_like();
             match *self {
@@ -200,7 +216,7 @@ mod wide {
 
         /// `LightTarget::pdf(origin, direction)` in each lane, `view` this target's from `origin`.
         #[inline(always)]
-        fn pdf<W: Wide8>(&self, view: &View8<W>, origin: V3<W>, direction: V3<W>) -> W {
+        pub(crate) fn pdf<W: Wide8>(&self, view: &View8<W>, origin: V3<W>, direction: V3<W>) -> W {
             let o = origin[0];
             let zero = origin[0].zero_like();
             match (*self, *view) {
@@ -254,7 +270,12 @@ mod wide {
 
         /// `LightTarget::sample(origin, u)` in each lane, `view` this target's from `origin`.
         #[inline(always)]
-        fn sample<W: Wide8>(&self, view: &View8<W>, origin: V3<W>, u: [W; 2]) -> Sampled<W> {
+        pub(crate) fn sample<W: Wide8>(
+            &self,
+            view: &View8<W>,
+            origin: V3<W>,
+            u: [W; 2],
+        ) -> Sampled<W> {
             let o = origin[0];
             match (*self, *view) {
                 (
@@ -339,19 +360,59 @@ mod wide {
             u: [W; 2],
             lanes: u8,
         ) -> (V3<W>, W, W::Mask) {
+            let mut views = [View8::NONE; MAX_TARGETS];
+            self.see_from(p, &mut views);
+            let (d, r, _, ok) = self.sample_seen(&views, p, normal, u, lanes);
+            (d, r, ok)
+        }
+
+        /// Each target's [`View8`] from the points `p`, one a target from the first entry of
+        /// `views` on (in place: the array is large, and returned it would be copied).
+        #[inline(always)]
+        pub(crate) fn see_from<W: Wide8>(&self, p: V3<W>, views: &mut [View8<W>; MAX_TARGETS]) {
+            for (view, t) in views.iter_mut().zip(&self.targets) {
+                *view = t.view(p);
+            }
+        }
+
+        /// The targets' density `(1 / n) sum_j p_j(direction)` from the points their `views` are
+        /// of, in order (`HittablePdf::pdf`, uniform choice).
+        #[inline(always)]
+        pub(crate) fn targets_pdf<W: Wide8>(
+            &self,
+            views: &[View8<W>; MAX_TARGETS],
+            p: V3<W>,
+            direction: V3<W>,
+        ) -> W {
+            let mut all = p[0].zero_like();
+            for (j, t) in self.targets.iter().enumerate() {
+                let pj = t.pdf(&views[j], p, direction);
+                all = if j == 0 { pj } else { all + pj };
+            }
+            if self.targets.len() == 1 {
+                all
+            } else {
+                over(all, self.targets.len())
+            }
+        }
+
+        /// [`Mixture8::sample_in`] with the targets' `views` from `p` made by the caller: the
+        /// direction, the weight `s / p`, the mixture's density `p` of the direction, and the
+        /// lanes where they are usable.
+        #[inline(always)]
+        pub(crate) fn sample_seen<W: Wide8>(
+            &self,
+            views: &[View8<W>; MAX_TARGETS],
+            p: V3<W>,
+            normal: V3<W>,
+            u: [W; 2],
+            lanes: u8,
+        ) -> (V3<W>, W, W, W::Mask) {
             let (wa, n) = (self.weight, self.targets.len());
             let zero = u[0].zero_like();
             let lanes = zero.mask(lanes);
             let towards = lanes & u[0].lt(zero.splat_like(wa));
             let material = lanes & !towards;
-            let mut views = [View8::Quad {
-                h: zero,
-                behind: zero.mask(0),
-                off: zero.mask(0),
-            }; MAX_TARGETS];
-            for (view, t) in views.iter_mut().zip(&self.targets) {
-                *view = t.view(p);
-            }
             // u.x's rest: remap(u.x, 0, w) towards the targets, remap(u.x, w, 1 - w) else
             let (w, rest_w) = (zero.splat_like(wa), zero.splat_like(1.0 - wa));
             let rest = remap(u[0], w.select(towards, zero), rest_w.select(towards, w));
@@ -408,7 +469,7 @@ mod wide {
             // ratio(s, p): s / p where p > 0, s > 0 and the quotient is finite
             let r = cos / mix;
             let ok = ok & mix.gt(zero) & cos.gt(zero) & r.le(zero.splat_like(f64::MAX));
-            (direction, r, ok)
+            (direction, r, mix, ok)
         }
 
         /// [`Mixture8::sample_in`] with the lanes stored: the directions, the weights, and the

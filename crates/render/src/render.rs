@@ -137,6 +137,8 @@ pub struct Renderer<'a> {
     quad_surfaces: Option<crate::vertex8::QuadSurfaces>,
     /// The glass spheres whose vertex is computed in the lanes ([`crate::glass8`]).
     glass_spheres: Option<crate::glass8::GlassSpheres>,
+    /// The targets of `mis`'s Lambertian vertex in the lanes ([`crate::mis_vertex8`]).
+    mis_lanes: Option<crate::mis_vertex8::MisLanes>,
 }
 
 impl<'a> Renderer<'a> {
@@ -156,9 +158,12 @@ impl<'a> Renderer<'a> {
         let mixture8 = (paths_in_lanes && settings.strategy == Strategy::Mixture)
             .then(|| crate::mixture8::Mixture8::new(&lights.all, settings.mixture_weight))
             .flatten();
-        let quad_surfaces = mixture8
-            .as_ref()
-            .and_then(|_| crate::vertex8::QuadSurfaces::new(scene, crate::scene::GroupId(0)));
+        let mis_lanes = (paths_in_lanes && options.is_some())
+            .then(|| crate::mis_vertex8::MisLanes::new(&lights))
+            .flatten();
+        let quad_surfaces = (mixture8.is_some() || mis_lanes.is_some())
+            .then(|| crate::vertex8::QuadSurfaces::new(scene, crate::scene::GroupId(0)))
+            .flatten();
         let glass_spheres = quad_surfaces
             .as_ref()
             .and_then(|_| crate::glass8::GlassSpheres::new(scene, crate::scene::GroupId(0)));
@@ -172,6 +177,7 @@ impl<'a> Renderer<'a> {
             mixture8,
             quad_surfaces,
             glass_spheres,
+            mis_lanes,
         }
     }
 
@@ -195,6 +201,23 @@ impl<'a> Renderer<'a> {
         self.quad_surfaces
             .as_ref()
             .filter(|_| self.mixture8.is_some())
+    }
+
+    /// `mis`'s Lambertian vertex in the lanes ([`crate::mis_vertex8`]): the quads and the targets,
+    /// where `mis` traces its paths in the lanes, the scene has one emitter and non-emitting
+    /// targets, and its small group has Lambertian quads of a constant albedo.
+    pub fn mis_vertex_in_lanes(
+        &self,
+    ) -> Option<(&crate::vertex8::QuadSurfaces, &crate::mis_vertex8::MisLanes)> {
+        Some((self.quad_surfaces.as_ref()?, self.mis_lanes.as_ref()?))
+    }
+
+    /// This renderer with `m` as the targets of `mis`'s Lambertian vertex in the lanes: for the
+    /// tests that show a wrong one is caught.
+    #[doc(hidden)]
+    pub fn with_mis_vertex_in_lanes(mut self, m: Option<crate::mis_vertex8::MisLanes>) -> Self {
+        self.mis_lanes = m;
+        self
     }
 
     /// This renderer with the Lambertian vertex built lane by lane after the traversal (only the
@@ -249,6 +272,7 @@ impl<'a> Renderer<'a> {
         self.mixture8 = None;
         self.quad_surfaces = None;
         self.glass_spheres = None;
+        self.mis_lanes = None;
         self
     }
 

@@ -21,7 +21,7 @@ use crate::scene::{GroupId, Object, Scene};
 
 /// A quad's numbers: `Q`, `u`, `v`, the unit outward normal, the error bound of a hit point, the
 /// albedo.
-type Row = [f64; 16];
+pub(crate) type Row = [f64; 16];
 
 /// The quads of a small group in the order of its packets (quad `k` is lane `k % 4` of packet
 /// `k / 4`, the numbering of [`crate::ray8::Closest8::hit`]), for the vertex in the lanes.
@@ -116,6 +116,13 @@ impl QuadSurfaces {
     #[inline(always)]
     pub fn lambertian(&self, h: u32) -> bool {
         self.lambertian.get(h as usize).copied().unwrap_or(false)
+    }
+
+    /// Quad `h`'s numbers (`Q`, `u`, `v`, the unit outward normal, the error bound, the albedo;
+    /// zeros for a quad that is not Lambertian of a constant albedo).
+    #[inline(always)]
+    pub(crate) fn row(&self, h: u32) -> &Row {
+        &self.rows[h as usize]
     }
 
     /// The light of constant radiance a lane's hit `h` is on, if it is on one.

@@ -335,6 +335,83 @@ fn mis_paths_side_by_side_give_the_image_of_one_at_a_time() {
     assert!(!r.paths_in_lanes());
 }
 
+/// `mis`'s Lambertian vertex in the lanes ([`rtl_render::mis_vertex8`]) against one path at a
+/// time: the Cornell box and small rooms with one lamp and a listed ball (glass, metal or a
+/// texture), at depths 1 to 50, with Russian roulette and low-discrepancy numbers on and off; and
+/// the same rooms with the vertex computed one path at a time inside the lanes.
+#[test]
+fn the_mis_vertex_in_the_lanes_gives_the_image_of_one_path_at_a_time() {
+    let options = [
+        MisOptions::DEFAULT,
+        MisOptions {
+            russian_roulette: false,
+            spherical_rectangles: false,
+            low_discrepancy: false,
+        },
+        MisOptions {
+            russian_roulette: true,
+            spherical_rectangles: false,
+            low_discrepancy: false,
+        },
+    ];
+    let cornell = builtin("cornell");
+    for (o, &option) in options.iter().enumerate() {
+        let st = settings(12, 3 + o as u64, 50, Strategy::Mis(option), 0.5);
+        if !tiers().is_empty() {
+            assert!(Renderer::new(&cornell, st).mis_vertex_in_lanes().is_some());
+        }
+        assert!(
+            lanes_agree(&cornell, st, &[(0, 3), (3, 7)], plain),
+            "{option:?}"
+        );
+    }
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1818);
+    let mut rooms = 0;
+    while rooms < 9 {
+        let scene = small_room(&mut rng);
+        let depth = [50, 1, 2, 3, 20][rooms % 5];
+        let st = settings(
+            10,
+            rooms as u64,
+            depth,
+            Strategy::Mis(options[rooms % 3]),
+            0.5,
+        );
+        if Renderer::new(&scene, st).mis_vertex_in_lanes().is_none() {
+            continue; // the ball is not listed: no other target
+        }
+        assert!(lanes_agree(&scene, st, &[(0, 6)], plain), "room {rooms}");
+        assert!(
+            lanes_agree(&scene, st, &[(0, 6)], |s, st| Renderer::new(s, st)
+                .with_mis_vertex_in_lanes(None)),
+            "room {rooms}"
+        );
+        rooms += 1;
+    }
+    // two lamps (a choice of emitter to weigh): one path at a time
+    let two = small_room_lit(&mut rng, true);
+    let st = settings(8, 1, 20, Strategy::default(), 0.5);
+    assert!(Renderer::new(&two, st).mis_vertex_in_lanes().is_none());
+}
+
+#[test]
+fn the_image_check_catches_a_mis_vertex_with_another_share() {
+    // The lanes' share of the other targets one ulp above the integrator's.
+    let scene = builtin("cornell");
+    let st = settings(10, 1, 50, Strategy::default(), 0.5);
+    fn wrong(scene: &Scene, st: RenderSettings) -> Renderer<'_> {
+        let r = Renderer::new(scene, st);
+        let share = f64::from_bits(rtl_render::integrator::OTHERS_SHARE.to_bits() + 1);
+        let m = rtl_render::mis_vertex8::MisLanes::with_share(&r.lights, share);
+        assert!(m.is_some());
+        r.with_mis_vertex_in_lanes(m)
+    }
+    assert!(lanes_agree(&scene, st, &[(0, 4)], plain));
+    if !tiers().is_empty() {
+        assert!(!lanes_agree(&scene, st, &[(0, 4)], wrong));
+    }
+}
+
 #[test]
 fn the_image_check_catches_lanes_with_another_mixture_weight() {
     // Lanes drawing with a weight one ulp above the one the single path uses.
