@@ -51,6 +51,43 @@ pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
 /// [`Renderer::render_pass_until`]'s work on row `j` for `mis`: samples `k0..k1` of each of its
 /// pixels, sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample)
 /// said to stop. Called only where [`applies`] said so (an AVX tier runs).
+/// A batch of up to eight Lambertian vertices gathered from both packets for the lanes: their
+/// quads' hits, their rays, their throughputs, their numbers, and the lanes that take a light
+/// sample.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy, Default)]
+struct MisBatch {
+    found: crate::ray8::Closest8,
+    rays: Rays8,
+    throughput: [F64x8; 3],
+    u_light: [F64x8; 2],
+    u_material: [F64x8; 2],
+    light: u8,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl MisBatch {
+    /// Lane `l` of a packet (what it met, `found`, its ray in `rays`, its `throughput`) into
+    /// batch lane `i`.
+    #[inline(always)]
+    fn take(
+        &mut self,
+        i: usize,
+        found: &crate::ray8::Closest8,
+        rays: &Rays8,
+        l: usize,
+        throughput: Color,
+    ) {
+        self.found.hit[i] = found.hit[l];
+        self.found.alpha[i] = found.alpha[l];
+        self.found.beta[i] = found.beta[l];
+        for a in 0..3 {
+            self.rays.direction[a].0[i] = rays.direction[a].0[l];
+            self.throughput[a].0[i] = throughput[a];
+        }
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_row(
@@ -88,11 +125,14 @@ pub(crate) fn render_row(
     let mut per_lane = [[crate::traversal::Found::NOTHING; LANES]; PACKETS];
     let mut closest = [crate::ray8::Closest8::default(); PACKETS];
     let mut active = [0u8; PACKETS];
-    // The Lambertian vertex in the lanes ([`crate::mis_vertex8`]): its numbers and its answers.
+    // The Lambertian vertex in the lanes ([`crate::mis_vertex8`]), in batches of eight gathered
+    // from both packets (`from[n]` is batch lane `n % 8` of batch `n / 8`): the batches' hits,
+    // rays, throughputs and numbers, their answers, and each path's place in them.
     let in_lanes = r.mis_vertex_in_lanes();
-    let mut throughput = [F64x8::ZERO; 3];
-    let (mut u_light, mut u_material) = ([F64x8::ZERO; 2], [F64x8::ZERO; 2]);
-    let mut out = MisOut::default();
+    let mut batch = [MisBatch::default(); PACKETS];
+    let mut out = [MisOut::default(); PACKETS];
+    let mut slot = [[0u8; LANES]; PACKETS];
+    let mut in_batch = [0u8; PACKETS];
     loop {
         // Each idle path takes the row's next sample, if the ring has room for it.
         for g in 0..PACKETS {
@@ -114,71 +154,94 @@ pub(crate) fn render_row(
         if active == [0; PACKETS] {
             break;
         }
+        // Both packets' rays intersected.
+        let mut found = [None, None];
         for g in 0..PACKETS {
-            let traced = active[g];
-            if traced == 0 {
+            if active[g] == 0 {
                 continue;
             }
             // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
-            let found = unsafe {
+            found[g] = Some(unsafe {
                 scene.hit8_small(
                     tier,
                     GroupId(0),
                     &rays[g],
                     &lanes[g],
-                    traced,
+                    active[g],
                     Interval::FORWARD,
                     &mut ctxs[g],
                     &mut closest[g],
                     &mut per_lane[g],
                 )
+            });
+        }
+        // The paths whose ray met a Lambertian quad of constant albedo, outside any dielectric,
+        // gathered into batches for their vertex in the lanes, with their numbers drawn lane by
+        // lane in the order one path at a time draws them (the light sample's, the bounce's).
+        if let Some((surfaces, mis)) = in_lanes {
+            let mut n = 0usize;
+            for g in 0..PACKETS {
+                let mut lambertian = 0u8;
+                for (l, &h) in closest[g].hit.iter().enumerate() {
+                    lambertian |= (surfaces.lambertian(h) as u8) << l;
+                }
+                lambertian &= active[g] & !shadows[g];
+                let mut bits = lambertian;
+                while bits != 0 {
+                    let l = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    let path = &paths[g][l];
+                    if !path.takes_light_samples() {
+                        lambertian &= !(1 << l);
+                        continue;
+                    }
+                    let (b, i) = (n / LANES, n % LANES);
+                    let (into, ctx, depth) = (&mut batch[b], &mut ctxs[g][l], depths[g][l]);
+                    into.take(i, &closest[g], &lanes[g], l, path.throughput);
+                    if depth + 1 < max_depth {
+                        let u = ctx.sample_2d(Dimension::Light(depth));
+                        (into.u_light[0].0[i], into.u_light[1].0[i]) = (u.x, u.y);
+                        into.light |= 1 << i;
+                    }
+                    let u = ctx.sample_2d(Dimension::Material(depth));
+                    (into.u_material[0].0[i], into.u_material[1].0[i]) = (u.x, u.y);
+                    slot[g][l] = n as u8;
+                    n += 1;
+                }
+                in_batch[g] = lambertian;
+            }
+            for (b, (batch, out)) in batch.iter_mut().zip(&mut out).enumerate() {
+                let count = n.saturating_sub(b * LANES).min(LANES);
+                if count == 0 {
+                    break;
+                }
+                let input = MisIn {
+                    surfaces,
+                    found: &batch.found,
+                    rays: &batch.rays,
+                    throughput: &batch.throughput,
+                    u_light: &batch.u_light,
+                    u_material: &batch.u_material,
+                };
+                let all = (((1u16 << count) - 1) & 0xff) as u8;
+                let all = if count == LANES { u8::MAX } else { all };
+                // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+                unsafe { mis.vertex(tier, &input, all, batch.light, out) };
+                batch.light = 0;
+            }
+        }
+        let at = |v: &[F64x8; 3], i: usize| Vec3::new(v[0].0[i], v[1].0[i], v[2].0[i]);
+        for g in 0..PACKETS {
+            let traced = active[g];
+            let Some(found) = found[g].as_ref() else {
+                continue;
             };
             let (ctxs, paths, rays, lanes) =
                 (&mut ctxs[g], &mut paths[g], &mut rays[g], &mut lanes[g]);
             let (depths, after_shadow, shadows) =
                 (&mut depths[g], &mut after_shadow[g], &mut shadows[g]);
             let (active, seqs) = (&mut active[g], &seqs[g]);
-            // The paths whose ray met a Lambertian quad of constant albedo, outside any
-            // dielectric, have their vertex computed in the lanes: its numbers drawn lane by
-            // lane, in the order one path at a time draws them (the light sample's, the bounce's).
-            let mut lambertian = 0u8;
-            if let Some((surfaces, mis)) = in_lanes {
-                for (l, &h) in closest[g].hit.iter().enumerate() {
-                    lambertian |= (surfaces.lambertian(h) as u8) << l;
-                }
-                lambertian &= traced & !*shadows;
-                let (mut bits, mut light_lanes) = (lambertian, 0u8);
-                while bits != 0 {
-                    let l = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    if !paths[l].takes_light_samples() {
-                        lambertian &= !(1 << l);
-                        continue;
-                    }
-                    let (ctx, depth) = (&mut ctxs[l], depths[l]);
-                    if depth + 1 < max_depth {
-                        let u = ctx.sample_2d(Dimension::Light(depth));
-                        (u_light[0].0[l], u_light[1].0[l]) = (u.x, u.y);
-                        light_lanes |= 1 << l;
-                    }
-                    let u = ctx.sample_2d(Dimension::Material(depth));
-                    (u_material[0].0[l], u_material[1].0[l]) = (u.x, u.y);
-                    for (a, t) in throughput.iter_mut().enumerate() {
-                        t.0[l] = paths[l].throughput[a];
-                    }
-                }
-                let input = MisIn {
-                    surfaces,
-                    found: &closest[g],
-                    rays: lanes,
-                    throughput: &throughput,
-                    u_light: &u_light,
-                    u_material: &u_material,
-                };
-                // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
-                unsafe { mis.vertex(tier, &input, lambertian, light_lanes, &mut out) };
-            }
-            let at = |v: &[F64x8; 3], l: usize| Vec3::new(v[0].0[l], v[1].0[l], v[2].0[l]);
+            let (in_batch, slot) = (in_batch[g], &slot[g]);
             let mut bits = traced;
             while bits != 0 {
                 let l = bits.trailing_zeros() as usize;
@@ -201,24 +264,26 @@ pub(crate) fn render_row(
                     }
                     after_shadow[l]
                 } else {
-                    let step = if lambertian & (1 << l) != 0 {
-                        let waiting = (out.shadow & (1 << l) != 0)
-                            .then(|| (at(&out.carried, l), out.weight.0[l]));
-                        let bounce = (out.next & (1 << l) != 0)
-                            .then(|| (at(&out.throughput, l), at(&out.p, l), out.pdf.0[l]));
+                    let step = if in_batch & (1 << l) != 0 {
+                        let n = slot[l] as usize;
+                        let (out, i) = (&out[n / LANES], n % LANES);
+                        let waiting = (out.shadow & (1 << i) != 0)
+                            .then(|| (at(&out.carried, i), out.weight.0[i]));
+                        let bounce = (out.next & (1 << i) != 0)
+                            .then(|| (at(&out.throughput, i), at(&out.p, i), out.pdf.0[i]));
                         let time = rays[l].time;
-                        let goes_on = paths[l]
-                            .lambertian_from_lanes(waiting, bounce, depths[l], options, ctx);
+                        let goes_on =
+                            paths[l].lambertian_from_lanes(waiting, bounce, depths[l], options, ctx);
                         MisStep {
                             shadow: waiting.map(|_| {
                                 Ray::new(
-                                    at(&out.shadow_origin, l),
-                                    at(&out.shadow_direction, l),
+                                    at(&out.shadow_origin, i),
+                                    at(&out.shadow_direction, i),
                                     time,
                                 )
                             }),
                             next: goes_on.then(|| {
-                                Ray::new(at(&out.next_origin, l), at(&out.next_direction, l), time)
+                                Ray::new(at(&out.next_origin, i), at(&out.next_direction, i), time)
                             }),
                         }
                     } else {

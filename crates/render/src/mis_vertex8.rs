@@ -22,6 +22,10 @@ use crate::lanes::F64x8;
 use crate::lights::Lights;
 use crate::mixture8::{Mixture8, Target8};
 
+/// The most non-emitting targets the vertex in the lanes takes (their views from the eight points
+/// are kept on the stack, a few hundred bytes each).
+pub const MAX_OTHERS: usize = 2;
+
 /// What the `mis` vertex in the lanes needs of the scene's targets: its one emitter and the
 /// non-emitting targets mixed into material sampling. Built once per render.
 #[derive(Clone, Debug)]
@@ -34,8 +38,8 @@ pub struct MisLanes {
 
 impl MisLanes {
     /// The vertex in the lanes for `lights`, where the scene has exactly one emitter (no choice of
-    /// emitter to weigh) and non-emitting targets (the Cornell box's glass ball), none of them a
-    /// quad sampled by spherical rectangles; else `None` (the vertex is computed one path at a
+    /// emitter to weigh) and one or two ([`MAX_OTHERS`]) non-emitting targets (the Cornell box's
+    /// glass ball), none of them a quad sampled by spherical rectangles; else `None` (the vertex is computed one path at a
     /// time).
     pub fn new(lights: &Lights) -> Option<MisLanes> {
         Self::with_share(lights, crate::integrator::OTHERS_SHARE)
@@ -48,6 +52,9 @@ impl MisLanes {
         let [emitter] = lights.emitters.as_slice() else {
             return None;
         };
+        if lights.others.len() > MAX_OTHERS {
+            return None;
+        }
         Some(MisLanes {
             emitter: Target8::new(emitter)?,
             others: Mixture8::new(&lights.others, share)?,
@@ -79,7 +86,7 @@ pub struct MisOut {
 mod wide {
     use super::{MisLanes, MisOut};
     use crate::lanes::F64x8;
-    use crate::mixture8::MAX_TARGETS;
+    use super::MAX_OTHERS;
     use crate::mixture8::wide::View8;
     use crate::ray8::{Closest8, Rays8};
     use crate::traversal::HitTier;
@@ -219,8 +226,9 @@ mod wide {
             let push = zero.splat_like(4.0) * err;
             let offset = [normal[0] * push, normal[1] * push, normal[2] * push];
             let (below, above) = (sub3(p, offset), add3(p, offset));
-            let mut views = [View8::NONE; MAX_TARGETS];
-            self.others.see_from(p, &mut views);
+            let mut views = [View8::NONE; MAX_OTHERS];
+            let views = &mut views[..self.others.targets()];
+            self.others.see_from(p, views);
             let (wa, rest) = (
                 zero.splat_like(self.share),
                 zero.splat_like(1.0 - self.share),
@@ -238,7 +246,7 @@ mod wide {
                     & ls.pdf.gt(zero)
                     & s_l.gt(zero)
                     & ratio.le(zero.splat_like(f64::MAX));
-                let p_material = wa * self.others.targets_pdf(&views, p, ls.direction) + rest * s_l;
+                let p_material = wa * self.others.targets_pdf(views, p, ls.direction) + rest * s_l;
                 let w = power_heuristic(ls.pdf, p_material);
                 out.shadow = ok.bits();
                 out.shadow_origin = store3(spawn(below, above, normal, ls.direction));
@@ -250,7 +258,7 @@ mod wide {
             }
 
             // material sampling mixed with the other targets: the next ray
-            let (d, r, mix, ok) = self.others.sample_seen(&views, p, normal, um, lanes);
+            let (d, r, mix, ok) = self.others.sample_seen(views, p, normal, um, lanes);
             let times = [
                 tp[0] * (albedo[0] * r),
                 tp[1] * (albedo[1] * r),

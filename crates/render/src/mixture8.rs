@@ -46,6 +46,11 @@ pub struct Mixture8 {
 }
 
 impl Mixture8 {
+    /// How many targets.
+    pub fn targets(&self) -> usize {
+        self.targets.len()
+    }
+
     /// The mixture of the targets `lights` (the book's list) with share `weight` in `(0, 1)`; `None`
     /// if there are no targets (the strategy then samples the material alone) or a quad samples by
     /// spherical rectangles, which the lanes do not.
@@ -367,20 +372,21 @@ pub(crate) mod wide {
         }
 
         /// Each target's [`View8`] from the points `p`, one a target from the first entry of
-        /// `views` on (in place: the array is large, and returned it would be copied).
+        /// `views` on, which has room for them all (in place: the views are large, and returned
+        /// they would be copied).
         #[inline(always)]
-        pub(crate) fn see_from<W: Wide8>(&self, p: V3<W>, views: &mut [View8<W>; MAX_TARGETS]) {
+        pub(crate) fn see_from<W: Wide8>(&self, p: V3<W>, views: &mut [View8<W>]) {
             for (view, t) in views.iter_mut().zip(&self.targets) {
                 *view = t.view(p);
             }
         }
 
         /// The targets' density `(1 / n) sum_j p_j(direction)` from the points their `views` are
-        /// of, in order (`HittablePdf::pdf`, uniform choice).
+        /// of (one a target), in order (`HittablePdf::pdf`, uniform choice).
         #[inline(always)]
         pub(crate) fn targets_pdf<W: Wide8>(
             &self,
-            views: &[View8<W>; MAX_TARGETS],
+            views: &[View8<W>],
             p: V3<W>,
             direction: V3<W>,
         ) -> W {
@@ -402,7 +408,7 @@ pub(crate) mod wide {
         #[inline(always)]
         pub(crate) fn sample_seen<W: Wide8>(
             &self,
-            views: &[View8<W>; MAX_TARGETS],
+            views: &[View8<W>],
             p: V3<W>,
             normal: V3<W>,
             u: [W; 2],
