@@ -272,8 +272,8 @@ pub(crate) fn render_row(
                         let bounce = (out.next & (1 << i) != 0)
                             .then(|| (at(&out.throughput, i), at(&out.p, i), out.pdf.0[i]));
                         let time = rays[l].time;
-                        let goes_on =
-                            paths[l].lambertian_from_lanes(waiting, bounce, depths[l], options, ctx);
+                        let goes_on = paths[l]
+                            .lambertian_from_lanes(waiting, bounce, depths[l], options, ctx);
                         MisStep {
                             shadow: waiting.map(|_| {
                                 Ray::new(

@@ -23,8 +23,8 @@ use crate::lights::Lights;
 use crate::mixture8::{Mixture8, Target8};
 
 /// The most non-emitting targets the vertex in the lanes takes (their views from the eight points
-/// are kept on the stack, a few hundred bytes each).
-pub const MAX_OTHERS: usize = 2;
+/// are kept on the stack, a few hundred bytes each, and the array is cleared for each batch).
+pub const MAX_OTHERS: usize = crate::mixture8::FEW_TARGETS;
 
 /// What the `mis` vertex in the lanes needs of the scene's targets: its one emitter and the
 /// non-emitting targets mixed into material sampling. Built once per render.
@@ -84,9 +84,9 @@ pub struct MisOut {
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
+    use super::MAX_OTHERS;
     use super::{MisLanes, MisOut};
     use crate::lanes::F64x8;
-    use super::MAX_OTHERS;
     use crate::mixture8::wide::View8;
     use crate::ray8::{Closest8, Rays8};
     use crate::traversal::HitTier;

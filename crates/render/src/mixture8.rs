@@ -101,9 +101,13 @@ impl Target8 {
 /// The most targets the lanes take (their views are kept on the stack).
 pub const MAX_TARGETS: usize = 8;
 
+/// The targets of the book's scenes (the Cornell box's light and glass ball): up to this many,
+/// their views are kept in an array of this size.
+pub const FEW_TARGETS: usize = 2;
+
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod wide {
-    use super::{MAX_TARGETS, Mixture8, Target8};
+    use super::{FEW_TARGETS, MAX_TARGETS, Mixture8, Target8};
     use crate::lanes::F64x8;
     use crate::warp8::*;
     use crate::wide8::*;
@@ -365,9 +369,18 @@ pub(crate) mod wide {
             u: [W; 2],
             lanes: u8,
         ) -> (V3<W>, W, W::Mask) {
-            let mut views = [View8::NONE; MAX_TARGETS];
-            self.see_from(p, &mut views);
-            let (d, r, _, ok) = self.sample_seen(&views, p, normal, u, lanes);
+            // (the views on the stack, a few hundred bytes each: as many as the book's scenes
+            // have where that is enough, since the whole array is cleared)
+            let (d, r, _, ok) = if self.targets.len() <= FEW_TARGETS {
+                let mut views = [View8::NONE; FEW_TARGETS];
+                let views = &mut views[..self.targets.len()];
+                self.see_from(p, views);
+                self.sample_seen(views, p, normal, u, lanes)
+            } else {
+                let mut views = [View8::NONE; MAX_TARGETS];
+                self.see_from(p, &mut views);
+                self.sample_seen(&views, p, normal, u, lanes)
+            };
             (d, r, ok)
         }
 
