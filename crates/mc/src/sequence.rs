@@ -93,12 +93,15 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
 #[inline]
 pub fn laine_karras(mut x: u32, seed: u32) -> u32 {
     x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
+    for c in LAINE_KARRAS_MULTIPLIERS {
+        x ^= x.wrapping_mul(c);
+    }
     x
 }
+
+/// The multipliers of [`laine_karras`]'s four rounds `x ^= x * c` (each even, so that bit `k` of
+/// the product depends only on bits below it).
+pub const LAINE_KARRAS_MULTIPLIERS: [u32; 4] = [0x6c50_b47c, 0xb82f_1e52, 0xc7af_e638, 0x8d22_f6e6];
 
 /// SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijective 64-bit hash.
 #[inline]

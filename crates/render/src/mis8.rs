@@ -32,7 +32,7 @@ use crate::{
     ray8::NO_HIT,
     ray8::Rays8,
     render::Renderer,
-    sampler::{Ctx, Dimension, Stats},
+    sampler::{Ctx, Dimension, PaddedIndex, Stats, points_2d_avx2},
     vec::{Color, Point3, Vec3},
 };
 
@@ -63,6 +63,11 @@ struct MisBatch {
     u_light: [F64x8; 2],
     u_material: [F64x8; 2],
     light: u8,
+    /// Low-discrepancy numbers: each lane's sample and pairs, computed for the batch at once.
+    light_index: [PaddedIndex; LANES],
+    light_pair: [u32; LANES],
+    material_index: [PaddedIndex; LANES],
+    material_pair: [u32; LANES],
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -129,6 +134,8 @@ pub(crate) fn render_row(
     // from both packets (`from[n]` is batch lane `n % 8` of batch `n / 8`): the batches' hits,
     // rays, throughputs and numbers, their answers, and each path's place in them.
     let in_lanes = r.mis_vertex_in_lanes();
+    // (every sample of a render draws its numbers the same way)
+    let lds = r.low_discrepancy();
     let mut batch = [MisBatch::default(); PACKETS];
     let mut out = [MisOut::default(); PACKETS];
     let mut slot = [[0u8; LANES]; PACKETS];
@@ -198,13 +205,23 @@ pub(crate) fn render_row(
                     let (b, i) = (n / LANES, n % LANES);
                     let (into, ctx, depth) = (&mut batch[b], &mut ctxs[g][l], depths[g][l]);
                     into.take(i, &closest[g], &lanes[g], l, path.throughput);
-                    if depth + 1 < max_depth {
-                        let u = ctx.sample_2d(Dimension::Light(depth));
-                        (into.u_light[0].0[i], into.u_light[1].0[i]) = (u.x, u.y);
-                        into.light |= 1 << i;
+                    let (light, material) = (Dimension::Light(depth), Dimension::Material(depth));
+                    if lds {
+                        // (computed for the whole batch below)
+                        if depth + 1 < max_depth {
+                            (into.light_index[i], into.light_pair[i]) = ctx.defer_2d(light);
+                            into.light |= 1 << i;
+                        }
+                        (into.material_index[i], into.material_pair[i]) = ctx.defer_2d(material);
+                    } else {
+                        if depth + 1 < max_depth {
+                            let u = ctx.sample_2d(light);
+                            (into.u_light[0].0[i], into.u_light[1].0[i]) = (u.x, u.y);
+                            into.light |= 1 << i;
+                        }
+                        let u = ctx.sample_2d(material);
+                        (into.u_material[0].0[i], into.u_material[1].0[i]) = (u.x, u.y);
                     }
-                    let u = ctx.sample_2d(Dimension::Material(depth));
-                    (into.u_material[0].0[i], into.u_material[1].0[i]) = (u.x, u.y);
                     slot[g][l] = n as u8;
                     n += 1;
                 }
@@ -214,6 +231,15 @@ pub(crate) fn render_row(
                 let count = n.saturating_sub(b * LANES).min(LANES);
                 if count == 0 {
                     break;
+                }
+                if lds {
+                    // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
+                    unsafe {
+                        let (x, y) = points_2d_avx2(&batch.light_index, &batch.light_pair);
+                        batch.u_light = [x, y];
+                        let (x, y) = points_2d_avx2(&batch.material_index, &batch.material_pair);
+                        batch.u_material = [x, y];
+                    }
                 }
                 let input = MisIn {
                     surfaces,

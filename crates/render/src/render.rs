@@ -181,6 +181,11 @@ impl<'a> Renderer<'a> {
         }
     }
 
+    /// Whether every dimension after the pixel position is a padded Sobol pair (`mis`'s option).
+    pub(crate) fn low_discrepancy(&self) -> bool {
+        self.low_discrepancy
+    }
+
     /// Whether paths are traced side by side in the lanes ([`crate::paths8`], [`crate::mis8`]): in a
     /// scene whose rays meet a small group (no tree), on a processor with AVX2 or AVX-512, for the
     /// book's one-sample strategies and for `mis` where the scene has no media.

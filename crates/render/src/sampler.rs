@@ -154,6 +154,108 @@ impl PaddedIndex {
 }
 // ANCHOR_END: padded_sobol
 
+/// [`PaddedIndex::point_2d`] of eight samples at once (`indices[i]`, pair `dims[i]`), as uniform
+/// numbers in `[0, 1)` ([`Ctx::sample_2d`]'s): each pair's hash and the assembly of its 64 bits lane
+/// by lane, the three Laine-Karras hashes and the bit reversals, which are most of the work, in the
+/// lanes of AVX2 registers. Integer arithmetic, so the numbers are the same bit for bit.
+///
+/// # Safety
+/// Only where the processor has AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+pub unsafe fn points_2d_avx2(
+    indices: &[PaddedIndex; 8],
+    dims: &[u32; 8],
+) -> (crate::lanes::F64x8, crate::lanes::F64x8) {
+    use std::arch::x86_64::*;
+    let (mut hashes, mut reversed) = ([0u64; 8], [0u32; 8]);
+    let (mut seed_r, mut seed_x, mut seed_y) = ([0u32; 8], [0u32; 8], [0u32; 8]);
+    for i in 0..8 {
+        let h = indices[i].pair_hash(dims[i]);
+        hashes[i] = h;
+        reversed[i] = indices[i].reversed;
+        seed_r[i] = (h >> 32) as u32;
+        seed_x[i] = h as u32;
+        seed_y[i] = (h >> 16) as u32 ^ 0x5bd1_e995;
+    }
+    let load = |a: &[u32; 8]| {
+        // SAFETY: 32 bytes read from an array of 32 bytes (unaligned load).
+        unsafe { _mm256_loadu_si256(a.as_ptr().cast()) }
+    };
+    let store = |v: __m256i| {
+        let mut a = [0u32; 8];
+        // SAFETY: 32 bytes written to an array of 32 bytes (unaligned store).
+        unsafe { _mm256_storeu_si256(a.as_mut_ptr().cast(), v) };
+        a
+    };
+    // `r = laine_karras(reversed, h >> 32)`, then `x` from `reverse(r)` and `y` from Sobol
+    // dimension 1 of `r` (four table lookups, lane by lane)
+    let r = laine_karras8(load(&reversed), load(&seed_r));
+    let x = laine_karras8(reverse_bits8(r), load(&seed_x));
+    let r = store(r);
+    let mut sobol1 = [0u32; 8];
+    for i in 0..8 {
+        sobol1[i] = sobol1_reversed(r[i]);
+    }
+    let y = laine_karras8(load(&sobol1), load(&seed_y));
+    let (x, y) = (store(reverse_bits8(x)), store(reverse_bits8(y)));
+    let (mut ux, mut uy) = (crate::lanes::F64x8::ZERO, crate::lanes::F64x8::ZERO);
+    for i in 0..8 {
+        let low = hashes[i].rotate_left(23) ^ indices[i].low;
+        ux.0[i] = unit(((x[i] as u64) << 32) | (low & 0xffff_ffff));
+        uy.0[i] = unit(((y[i] as u64) << 32) | (low >> 32));
+    }
+    (ux, uy)
+}
+
+/// [`laine_karras`] of eight 32-bit lanes with their own seeds (wrapping adds and multiplies, as
+/// the scalar hash).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn laine_karras8(
+    x: std::arch::x86_64::__m256i,
+    seed: std::arch::x86_64::__m256i,
+) -> std::arch::x86_64::__m256i {
+    use std::arch::x86_64::*;
+    let mut x = _mm256_add_epi32(x, seed);
+    for c in rtl_mc::sequence::LAINE_KARRAS_MULTIPLIERS {
+        x = _mm256_xor_si256(x, _mm256_mullo_epi32(x, _mm256_set1_epi32(c as i32)));
+    }
+    x
+}
+
+/// `u32::reverse_bits` of eight lanes: the bytes of each lane reversed, then the bits of each byte
+/// by two nibble tables.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn reverse_bits8(v: std::arch::x86_64::__m256i) -> std::arch::x86_64::__m256i {
+    use std::arch::x86_64::*;
+    /// A nibble reversed: `n = b3 b2 b1 b0` to `b0 b1 b2 b3`.
+    const REV4: [u8; 16] = [0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15];
+    let table = |shift: u32| {
+        let mut t = [0u8; 32];
+        for (i, b) in t.iter_mut().enumerate() {
+            *b = REV4[i % 16] << shift;
+        }
+        // SAFETY: 32 bytes read from an array of 32 bytes (unaligned load).
+        unsafe { _mm256_loadu_si256(t.as_ptr().cast()) }
+    };
+    let bytes = _mm256_setr_epi8(
+        3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, 3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8,
+        15, 14, 13, 12,
+    );
+    let v = _mm256_shuffle_epi8(v, bytes);
+    let nibble = _mm256_set1_epi8(0x0f);
+    let low = _mm256_and_si256(v, nibble);
+    let high = _mm256_and_si256(_mm256_srli_epi16(v, 4), nibble);
+    _mm256_or_si256(
+        _mm256_shuffle_epi8(table(4), low),
+        _mm256_shuffle_epi8(table(0), high),
+    )
+}
+
 /// The first coordinate of [`padded_sobol_2d`] alone (a 1D dimension), without the second's work.
 #[inline]
 pub fn padded_sobol_1d(pixel_key: u64, dim: u32, k: u64) -> u64 {
@@ -533,6 +635,21 @@ impl Ctx {
         }
     }
 
+    /// Whether the dimensions are padded Sobol pairs ([`Ctx::defer_2d`] may be used).
+    #[inline(always)]
+    pub fn low_discrepancy(&self) -> bool {
+        self.sampler.low_discrepancy
+    }
+
+    /// Dimension `d` of this low-discrepancy sample, counted as drawn but left to be computed
+    /// with seven others ([`points_2d_avx2`]): the sample's padded index and `d`'s pair.
+    #[inline(always)]
+    pub fn defer_2d(&mut self, d: Dimension) -> (PaddedIndex, u32) {
+        debug_assert!(self.sampler.low_discrepancy);
+        self.stats.random_numbers += 2;
+        (self.sampler.padded, d.pair())
+    }
+
     /// The number [`Ctx::sample_1d`] would return for dimension `d`, without drawing it:
     /// [`Ctx::take_1d`] then draws it, if it is used. (A vertex computed in the lanes,
     /// [`crate::glass8`], learns whether it needs its number only after the lanes have used it.)
@@ -726,6 +843,61 @@ mod tests {
                 padded_sobol_2d_reference(key, dim, k)
             );
         }
+    }
+
+    /// How many of `n` batches of eight random samples and pairs (`k` up to past 2^32) the lanes'
+    /// points give other bits for than [`Ctx::sample_2d`] one sample at a time; `wrong` flips one
+    /// pair's dimension in the lanes (an index or a scramble the check must see).
+    #[cfg(target_arch = "x86_64")]
+    fn points_2d_mismatches(n: usize, wrong: bool) -> usize {
+        let mut bad = 0;
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..n {
+            let mut ctxs: [Ctx; 8] = std::array::from_fn(|_| Ctx::new());
+            let (mut indices, mut dims) = ([PaddedIndex::default(); 8], [0u32; 8]);
+            let mut ds = [Dimension::Lens; 8];
+            for i in 0..8 {
+                let k = if next() % 4 == 0 {
+                    (1 << 32) + next() % 9
+                } else {
+                    next() % 4096
+                };
+                ctxs[i].sampler = Sampler::new(true, next(), k);
+                ds[i] = Dimension::Material((next() % 50) as u32);
+                (indices[i], dims[i]) = ctxs[i].defer_2d(ds[i]);
+                dims[i] ^= (wrong && i == 3) as u32;
+            }
+            // SAFETY: the caller checked that the processor has AVX2.
+            let (ux, uy) = unsafe { points_2d_avx2(&indices, &dims) };
+            for (i, ctx) in ctxs.iter_mut().enumerate() {
+                let mut one = Ctx::new();
+                one.sampler = ctx.sampler;
+                let u = one.sample_2d(ds[i]);
+                bad += (u.x.to_bits() != ux.0[i].to_bits() || u.y.to_bits() != uy.0[i].to_bits())
+                    as usize;
+                // counted as drawn, as one at a time counts them
+                assert_eq!(ctx.stats.random_numbers, one.stats.random_numbers);
+            }
+        }
+        bad
+    }
+
+    /// The lanes' padded Sobol pairs ([`points_2d_avx2`]) are the one-sample numbers bit for bit,
+    /// and a lane of another pair is seen.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn eight_samples_pairs_at_once_are_the_pairs_one_at_a_time() {
+        if !std::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        assert_eq!(points_2d_mismatches(2000, false), 0);
+        assert_eq!(points_2d_mismatches(200, true), 200);
     }
 
     #[test]
