@@ -90,7 +90,7 @@ mod wide {
     use crate::mixture8::wide::View8;
     use crate::ray8::{Closest8, Rays8};
     use crate::traversal::HitTier;
-    use crate::vertex8::{QuadSurfaces, Row};
+    use crate::vertex8::QuadSurfaces;
     use crate::warp8::cosine_hemisphere_pdf;
     use crate::wide8::*;
 
@@ -132,14 +132,6 @@ mod wide {
         let w = w.select(a.eq(b), a.splat_like(0.5));
         let w = w.select(b.is_nan() | b.le(zero), one);
         w.select(a.is_nan() | a.le(zero), zero)
-    }
-
-    /// `Hit::spawn_origin` of a ray leaving in direction `d`: `above` (the point pushed off along
-    /// the normal) where `d . normal >= 0`, else `below`. (A function, not a closure: a closure
-    /// does not take its caller's target features, and its intrinsics would be calls.)
-    #[inline(always)]
-    fn spawn<W: Wide8>(below: V3<W>, above: V3<W>, normal: V3<W>, d: V3<W>) -> V3<W> {
-        select3(below, dot(d, normal).ge(d[0].zero_like()), above)
     }
 
     impl MisLanes {
@@ -193,39 +185,18 @@ mod wide {
             light_lanes: u8,
             out: &mut MisOut,
         ) {
-            let (s, found) = (input.surfaces, input.found);
-            // each lane's quad (the first lane's where a lane takes no part)
-            let first = s.row(found.hit[lanes.trailing_zeros() as usize]);
-            let mut rows: [&Row; 8] = [first; 8];
-            for (i, row) in rows.iter_mut().enumerate() {
-                if lanes & (1 << i) != 0 {
-                    *row = s.row(found.hit[i]);
-                }
-            }
             // SAFETY: as this function's.
-            let (c, alpha, beta, dir, tp, ul, um) = unsafe {
+            let (at, tp, ul, um) = unsafe {
+                let dir = load3::<W>(&input.rays.direction);
                 (
-                    W::columns16(&rows),
-                    W::load_unaligned(&found.alpha),
-                    W::load_unaligned(&found.beta),
-                    load3::<W>(&input.rays.direction),
+                    input.surfaces.surface_in(input.found, dir, lanes),
                     load3::<W>(input.throughput),
                     [W::load(&input.u_light[0]), W::load(&input.u_light[1])],
                     [W::load(&input.u_material[0]), W::load(&input.u_material[1])],
                 )
             };
-            let zero = alpha.zero_like();
-            let (q, e1, e2) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
-            let (outward, err, albedo) = ([c[9], c[10], c[11]], c[12], [c[13], c[14], c[15]]);
-            // `Quad::hit_at`: p = Q + alpha u + beta v, the normal against the ray
-            let p = add3(add3(q, scale3(alpha, e1)), scale3(beta, e2));
-            let front = dot(dir, outward).lt(zero);
-            let normal = select3(neg3(outward), front, outward);
-            // `Hit::spawn_origin`: p pushed off by 4 err along the normal, to the side a
-            // direction leaves on
-            let push = zero.splat_like(4.0) * err;
-            let offset = [normal[0] * push, normal[1] * push, normal[2] * push];
-            let (below, above) = (sub3(p, offset), add3(p, offset));
+            let (p, normal, albedo) = (at.p, at.normal, at.albedo);
+            let zero = p[0].zero_like();
             let mut views = [View8::NONE; MAX_OTHERS];
             let views = &mut views[..self.others.targets()];
             self.others.see_from(p, views);
@@ -249,7 +220,7 @@ mod wide {
                 let p_material = wa * self.others.targets_pdf(views, p, ls.direction) + rest * s_l;
                 let w = power_heuristic(ls.pdf, p_material);
                 out.shadow = ok.bits();
-                out.shadow_origin = store3(spawn(below, above, normal, ls.direction));
+                out.shadow_origin = store3(at.spawn(ls.direction));
                 out.shadow_direction = store3(ls.direction);
                 out.carried = store3([tp[0] * albedo[0], tp[1] * albedo[1], tp[2] * albedo[2]]);
                 out.weight = (w * ratio).store();
@@ -266,7 +237,7 @@ mod wide {
             ];
             out.next = (zero.mask(lanes) & ok).bits();
             out.p = store3(p);
-            out.next_origin = store3(spawn(below, above, normal, d));
+            out.next_origin = store3(at.spawn(d));
             out.next_direction = store3(d);
             out.throughput = store3(times);
             out.pdf = mix.store();

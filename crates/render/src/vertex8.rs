@@ -21,7 +21,7 @@ use crate::scene::{GroupId, Object, Scene};
 
 /// A quad's numbers: `Q`, `u`, `v`, the unit outward normal, the error bound of a hit point, the
 /// albedo.
-pub(crate) type Row = [f64; 16];
+type Row = [f64; 16];
 
 /// The quads of a small group in the order of its packets (quad `k` is lane `k % 4` of packet
 /// `k / 4`, the numbering of [`crate::ray8::Closest8::hit`]), for the vertex in the lanes.
@@ -118,13 +118,6 @@ impl QuadSurfaces {
         self.lambertian.get(h as usize).copied().unwrap_or(false)
     }
 
-    /// Quad `h`'s numbers (`Q`, `u`, `v`, the unit outward normal, the error bound, the albedo;
-    /// zeros for a quad that is not Lambertian of a constant albedo).
-    #[inline(always)]
-    pub(crate) fn row(&self, h: u32) -> &Row {
-        &self.rows[h as usize]
-    }
-
     /// The light of constant radiance a lane's hit `h` is on, if it is on one.
     #[inline(always)]
     pub fn light(&self, h: u32) -> Option<&QuadLight> {
@@ -143,6 +136,81 @@ mod wide {
     use crate::ray8::{Closest8, Rays8};
     use crate::traversal::HitTier;
     use crate::wide8::*;
+
+    /// What the lanes' quads are where their rays met them: the hit point, the unit normal turned
+    /// against the ray, the point's error bound, the albedo; and the point pushed off the surface
+    /// for a ray leaving it either way.
+    pub(crate) struct Surface8<W: Wide8> {
+        pub p: V3<W>,
+        pub normal: V3<W>,
+        pub albedo: V3<W>,
+        /// `p` pushed off by four times the error bound against the normal, and along it.
+        below: V3<W>,
+        above: V3<W>,
+    }
+
+    impl<W: Wide8> Surface8<W> {
+        /// `Hit::spawn_origin` of a ray leaving in direction `d`: `above` where
+        /// `d . normal >= 0`, else `below`. (A function, not a closure: a closure does not take its
+        /// caller's target features, and its intrinsics would be calls.)
+        #[inline(always)]
+        pub fn spawn(&self, d: V3<W>) -> V3<W> {
+            select3(
+                self.below,
+                dot(d, self.normal).ge(d[0].zero_like()),
+                self.above,
+            )
+        }
+    }
+
+    impl QuadSurfaces {
+        /// The surfaces the rays of direction `dir` met in the lanes of `lanes`, Lambertian quads
+        /// of constant albedo (`found`, numbered as these): their rows transposed into columns,
+        /// `Quad::hit_at`'s point `p = Q + alpha u + beta v` and `Hit::face`'s normal.
+        ///
+        /// # Safety
+        /// As [`Wide8::splat`]; `lanes` is not empty.
+        #[inline(always)]
+        pub(crate) unsafe fn surface_in<W: Wide8>(
+            &self,
+            found: &Closest8,
+            dir: V3<W>,
+            lanes: u8,
+        ) -> Surface8<W> {
+            // each lane's quad (the first lane's where a lane takes no part)
+            let first = &self.rows[found.hit[lanes.trailing_zeros() as usize] as usize];
+            let mut rows: [&Row; 8] = [first; 8];
+            for (i, row) in rows.iter_mut().enumerate() {
+                if lanes & (1 << i) != 0 {
+                    *row = &self.rows[found.hit[i] as usize];
+                }
+            }
+            // SAFETY: as this function's.
+            let (c, alpha, beta) = unsafe {
+                (
+                    W::columns16(&rows),
+                    W::load_unaligned(&found.alpha),
+                    W::load_unaligned(&found.beta),
+                )
+            };
+            let zero = alpha.zero_like();
+            let (q, e1, e2) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
+            let (outward, err, albedo) = ([c[9], c[10], c[11]], c[12], [c[13], c[14], c[15]]);
+            let p = add3(add3(q, scale3(alpha, e1)), scale3(beta, e2));
+            let front = dot(dir, outward).lt(zero);
+            let normal = select3(neg3(outward), front, outward);
+            // `Hit::spawn_origin`: p pushed off by 4 err along the normal
+            let push = zero.splat_like(4.0) * err;
+            let offset = [normal[0] * push, normal[1] * push, normal[2] * push];
+            Surface8 {
+                p,
+                normal,
+                albedo,
+                below: sub3(p, offset),
+                above: add3(p, offset),
+            }
+        }
+    }
 
     /// The Lambertian vertex of the lanes of `lanes`, whose rays (`rays`) met Lambertian quads of
     /// constant albedo (`found`, numbered as `surfaces`), with the bounce's numbers `u` and the
@@ -218,33 +286,21 @@ mod wide {
         u: &[F64x8; 2],
         lanes: u8,
     ) -> u8 {
-        // each lane's quad (the first lane's where a lane takes no part)
-        let first = &s.rows[found.hit[lanes.trailing_zeros() as usize] as usize];
-        let mut rows: [&Row; 8] = [first; 8];
-        for (i, row) in rows.iter_mut().enumerate() {
-            if lanes & (1 << i) != 0 {
-                *row = &s.rows[found.hit[i] as usize];
-            }
-        }
         // SAFETY: as this function's.
-        let (c, alpha, beta, o, dir, tp, u) = unsafe {
+        let (at, o, dir, tp, u) = unsafe {
+            let dir = load3::<W>(&rays.direction);
             (
-                W::columns16(&rows),
-                W::load_unaligned(&found.alpha),
-                W::load_unaligned(&found.beta),
+                s.surface_in(found, dir, lanes),
                 load3::<W>(&rays.origin),
-                load3::<W>(&rays.direction),
+                dir,
                 load3::<W>(throughput),
                 [W::load(&u[0]), W::load(&u[1])],
             )
         };
-        let zero = alpha.zero_like();
-        let (q, e1, e2) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
-        let (outward, err, albedo) = ([c[9], c[10], c[11]], c[12], [c[13], c[14], c[15]]);
-        // `Quad::hit_at`: p = Q + alpha u + beta v, the normal against the ray
-        let p = add3(add3(q, scale3(alpha, e1)), scale3(beta, e2));
-        let front = dot(dir, outward).lt(zero);
-        let normal = select3(neg3(outward), front, outward);
+        let Surface8 {
+            p, normal, albedo, ..
+        } = at;
+        let zero = p[0].zero_like();
         // the mixture's direction and `s / p`
         let (d, w, ok) = m.sample_in(p, normal, u, lanes);
         // `OneSamplePath::diffuse`: the throughput times `albedo * (s / p)`
@@ -257,11 +313,7 @@ mod wide {
         let tp = select3(tp, go, times);
         let black = times[0].eq(zero) & times[1].eq(zero) & times[2].eq(zero);
         let go = go & !black;
-        // `Hit::spawn_origin`: p pushed off by 4 err along the normal, to the side `d` leaves on
-        let push = zero.splat_like(4.0) * err;
-        let offset = [normal[0] * push, normal[1] * push, normal[2] * push];
-        let out = dot(d, normal).ge(zero);
-        let origin = select3(sub3(p, offset), out, add3(p, offset));
+        let origin = at.spawn(d);
         *throughput = store3(tp);
         rays.origin = store3(select3(o, go, origin));
         rays.direction = store3(select3(dir, go, d));
