@@ -9,11 +9,11 @@
 //! comes back, then the next ray in the following round (so every packet's lanes hold one kind of
 //! ray or the other, mixed as the paths happen to be). A vertex on a Lambertian quad of constant
 //! albedo (where the scene has one emitter and other targets: the Cornell box) is computed in the
-//! lanes, a packet's such vertices at once ([`crate::mis_vertex8`]): its light sample, its
-//! material sample and their weights; a shadow ray that meets a light of constant radiance, a
-//! Lambertian quad or nothing is read without building its hit's record. Every other vertex is
-//! computed on its own, as one
-//! path at a time computes it, with the lane's own numbers ([`crate::sampler::Ctx`]); the rays'
+//! lanes, such vertices of both packets gathered eight at a time ([`crate::mis_vertex8`]): its
+//! light sample, its material sample, their weights and the numbers they draw; a shadow ray that
+//! meets a light of constant radiance, a Lambertian quad or nothing is read without building its
+//! hit's record. Every other vertex is computed on its own, as one path at a time computes it,
+//! with the lane's own numbers ([`crate::sampler::Ctx`]); the rays'
 //! hits are the ones [`Scene::hit`] finds, bit for bit ([`Scene::hit8_small`]). Only scenes
 //! without media take this form (a shadow ray through a medium records what it crosses, a ray
 //! through one may scatter in it: both one ray at a time), and each pixel's samples are summed in
@@ -48,9 +48,6 @@ pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
         && scene.hits_eight_at_once(GroupId(0))
 }
 
-/// [`Renderer::render_pass_until`]'s work on row `j` for `mis`: samples `k0..k1` of each of its
-/// pixels, sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample)
-/// said to stop. Called only where [`applies`] said so (an AVX tier runs).
 /// A batch of up to eight Lambertian vertices gathered from both packets for the lanes: their
 /// quads' hits, their rays, their throughputs, their numbers, and the lanes that take a light
 /// sample.
@@ -93,6 +90,9 @@ impl MisBatch {
     }
 }
 
+/// [`Renderer::render_pass_until`]'s work on row `j` for `mis`: samples `k0..k1` of each of its
+/// pixels, sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample)
+/// said to stop. Called only where [`applies`] said so (an AVX tier runs).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_row(
@@ -131,8 +131,9 @@ pub(crate) fn render_row(
     let mut closest = [crate::ray8::Closest8::default(); PACKETS];
     let mut active = [0u8; PACKETS];
     // The Lambertian vertex in the lanes ([`crate::mis_vertex8`]), in batches of eight gathered
-    // from both packets (`from[n]` is batch lane `n % 8` of batch `n / 8`): the batches' hits,
-    // rays, throughputs and numbers, their answers, and each path's place in them.
+    // from both packets: the batches' hits, rays, throughputs and numbers, their answers, each
+    // path's place in them (`slot[g][l] = n`: lane `n % 8` of batch `n / 8`) and which paths of
+    // each packet are in one.
     let in_lanes = r.mis_vertex_in_lanes();
     // (every sample of a render draws its numbers the same way)
     let lds = r.low_discrepancy();
@@ -183,8 +184,9 @@ pub(crate) fn render_row(
             });
         }
         // The paths whose ray met a Lambertian quad of constant albedo, outside any dielectric,
-        // gathered into batches for their vertex in the lanes, with their numbers drawn lane by
-        // lane in the order one path at a time draws them (the light sample's, the bounce's).
+        // gathered into batches for their vertex in the lanes, with the numbers one path at a
+        // time would draw there (the light sample's pair, the bounce's): low-discrepancy pairs
+        // computed for the whole batch, else drawn lane by lane in that order.
         if let Some((surfaces, mis)) = in_lanes {
             let mut n = 0usize;
             for g in 0..PACKETS {
@@ -249,8 +251,7 @@ pub(crate) fn render_row(
                     u_light: &batch.u_light,
                     u_material: &batch.u_material,
                 };
-                let all = (((1u16 << count) - 1) & 0xff) as u8;
-                let all = if count == LANES { u8::MAX } else { all };
+                let all = ((1u16 << count) - 1) as u8;
                 // SAFETY: `applies` chose this form only where the processor runs an AVX tier.
                 unsafe { mis.vertex(tier, &input, all, batch.light, out) };
                 batch.light = 0;
