@@ -109,7 +109,7 @@ mod wide {
     /// smaller to the larger; 0 where `a` is not positive (or NaN), else 1 where `b` is not, 1/2
     /// where they are equal.
     #[inline(always)]
-    pub(super) fn power_heuristic<W: Wide8>(a: W, b: W) -> W {
+    fn power_heuristic<W: Wide8>(a: W, b: W) -> W {
         heuristic::<W, true>(a, b)
     }
 
