@@ -61,6 +61,10 @@ pub struct RenderArgs {
     /// `mis` with independent random numbers instead of low-discrepancy samples.
     #[arg(long)]
     pub no_lds: bool,
+    /// `mis` without manifold next-event estimation through dielectric spheres (light reaching a
+    /// medium or surface inside a glass ball then comes only by material sampling).
+    #[arg(long)]
+    pub no_manifold: bool,
     /// Output PNG (default: `<scene>.png`).
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
@@ -391,6 +395,14 @@ fn explain(
             s => format!("not used by the '{}' strategy", s.name()),
         }
     );
+    println!(
+        "  manifold connections: {}",
+        match settings.strategy {
+            Strategy::Mis(o) if o.manifold => lights.manifold.describe(),
+            Strategy::Mis(_) => "off (--no-manifold)".to_string(),
+            s => format!("not used by the '{}' strategy", s.name()),
+        }
+    );
     let background = match scene.background {
         rtl_render::scene::Background::Solid(c) => format!("solid ({}, {}, {})", c.x, c.y, c.z),
         rtl_render::scene::Background::Sky => "book 1's sky gradient".to_string(),
@@ -497,6 +509,7 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
                 o.russian_roulette &= !args.no_rr;
                 o.spherical_rectangles |= args.sph_rect;
                 o.low_discrepancy &= !args.no_lds;
+                o.manifold &= !args.no_manifold;
                 Strategy::Mis(o)
             }
             other => other,
@@ -867,6 +880,7 @@ fn report(
         println!("time samples         {}", stats.time_samples);
         println!("medium evaluations   {}", stats.medium_evaluations);
         println!("texture evaluations  {}", stats.texture_evaluations);
+        println!("manifold connections {}", stats.manifold_connections);
         println!("non-finite dropped   {}", stats.non_finite);
         println!("wall time            {secs:.3} s");
         println!("samples/s            {:.0}", samples / secs);

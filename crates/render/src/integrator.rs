@@ -29,6 +29,10 @@ pub struct MisOptions {
     /// Take every dimension after the pixel position (lens, time, light, material, roulette) from
     /// low-discrepancy (padded Owen-scrambled Sobol) points instead of independent random numbers.
     pub low_discrepancy: bool,
+    /// Inside a dielectric sphere, connect to the emitters through its surface by manifold
+    /// next-event estimation ([`crate::manifold`]), where the scene has such a sphere holding
+    /// something that scatters.
+    pub manifold: bool,
 }
 
 impl MisOptions {
@@ -39,6 +43,7 @@ impl MisOptions {
         russian_roulette: true,
         spherical_rectangles: false,
         low_discrepancy: true,
+        manifold: true,
     };
 }
 
@@ -153,11 +158,12 @@ impl Strategy {
                     "next-event estimation to every emitter (through media with their \
                      transmittance) + material sampling mixed with the other targets ({:.0}% \
                      towards them), power heuristic; Russian roulette {}, spherical rectangles \
-                     {}, low-discrepancy samples {}",
+                     {}, low-discrepancy samples {}, manifold connections {}",
                     100.0 * OTHERS_SHARE,
                     on_off(o.russian_roulette),
                     on_off(o.spherical_rectangles),
-                    on_off(o.low_discrepancy)
+                    on_off(o.low_discrepancy),
+                    on_off(o.manifold)
                 )
             }
         }
@@ -487,6 +493,118 @@ fn light_sample(
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
     Some((hit.spawn(ls.direction, time), w * s_over_p))
 }
+
+// ANCHOR: manifold_connection
+/// The manifold connection ([`crate::manifold`]) of a vertex at `hit` inside interface `k`, whose
+/// material density is `pdf` (drawn from, mixed with `towards_others`), for the numbers `u`: a point
+/// `y` drawn on an emitter by area, and through every refraction point `x` found towards it
+///
+/// `s(omega) G (1 - F) T_in T_out L_e(y) / p_A(y)`,
+///
+/// weighted by the power heuristic against material sampling's density of the same point, `p_m G`
+/// (area measure at `y`). Each leg is a shadow ray: from the vertex it must meet the interface
+/// first, at `x`; from there the emitter, at `y`; each carries the transmittance of the media it
+/// crosses. The vertex's attenuation and the path's throughput are the caller's.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn manifold_connection(
+    scene: &Scene,
+    lights: &Lights,
+    hit: &Hit,
+    k: u16,
+    pdf: &VertexPdf,
+    towards_others: Option<&HittablePdf<'_, LightTarget>>,
+    time: f64,
+    u: glam::DVec2,
+    variant: MisVariant,
+    ctx: &mut Ctx,
+) -> Color {
+    let manifold = &lights.manifold;
+    let iface = &manifold.interfaces[k as usize];
+    // The connection's roulette on the first number, whose rest is handed on.
+    let q = iface.roulette(hit.p);
+    if u.x >= q {
+        return Color::ZERO;
+    }
+    let u = glam::DVec2::new((u.x / q).min(1.0 - f64::EPSILON / 2.0), u.y);
+    ctx.stats.manifold_connections += 1;
+    let Some(e) = manifold.sample_emitter(u) else {
+        return Color::ZERO;
+    };
+    let mut sum = Color::ZERO;
+    for r in iface.refractions(hit.p, e.y).as_slice() {
+        let s = pdf.pdf(r.dir_in);
+        if s.is_nan() || s <= 0.0 {
+            continue;
+        }
+        let p_material = match towards_others {
+            Some(t) => with_others(*t, *pdf).pdf_given_b(r.dir_in, s),
+            None => s,
+        };
+        let mut geometry = r.geometry * e.normal.dot(r.dir_out).abs();
+        if variant == MisVariant::WrongManifoldGeometry {
+            geometry /= r.across;
+        }
+        let w = power_heuristic(1.0, e.density, 1.0, p_material * geometry);
+        let factor = s * geometry / (e.density * q) * iface.transmission(r.cos_in) * w;
+        if !(factor > 0.0 && factor.is_finite()) {
+            continue;
+        }
+        // Inside: from the vertex to x, where the ray must leave the interface.
+        let Some((inner, t_in)) = trace_shadow(scene, &hit.spawn(r.dir_in, time), ctx) else {
+            continue;
+        };
+        if inner.material != iface.material
+            || inner.front_face
+            || (inner.p - r.x).length() > 1e-6 * iface.radius + 8.0 * inner.err
+        {
+            continue;
+        }
+        // Outside: from x to the emitter, which it must meet at y.
+        let Some((outer, t_out)) = trace_shadow(scene, &inner.spawn(e.y - inner.p, time), ctx)
+        else {
+            continue;
+        };
+        let m = &scene.materials[outer.material.index()];
+        if !m.is_emitter()
+            || (outer.p - e.y).length() > 1e-6 * (r.len_out + iface.radius) + 8.0 * outer.err
+        {
+            continue;
+        }
+        sum += m.emitted(&outer, &scene.textures, ctx) * (factor * t_in * t_out);
+    }
+    sum
+}
+
+/// The weight of emission that material sampling meets at `hit` right after refracting out of
+/// interface `k` at `x`, from a vertex at `p` whose direction was drawn with density `pdf` and which
+/// made a manifold connection: the power heuristic against the connection, if solving from `p`
+/// towards the point met finds `x` (the connection could have made this path); 1 otherwise.
+#[inline(never)]
+fn material_weight_through(
+    lights: &Lights,
+    hit: &Hit,
+    p: Point3,
+    pdf: f64,
+    k: u16,
+    x: Point3,
+) -> f64 {
+    let manifold = &lights.manifold;
+    let Some(e) = manifold.emitter_point(hit) else {
+        return 1.0;
+    };
+    let iface = &manifold.interfaces[k as usize];
+    iface
+        .refractions(p, e.y)
+        .as_slice()
+        .iter()
+        .find(|r| (r.x - x).length() <= 1e-6 * iface.radius)
+        .map_or(1.0, |r| {
+            let geometry = r.geometry * e.normal.dot(r.dir_out).abs();
+            power_heuristic(1.0, pdf * geometry, 1.0, e.density)
+        })
+}
+// ANCHOR_END: manifold_connection
 
 // ANCHOR: segment_sampling
 /// How often a path segment through media takes its light sample: with probability
@@ -982,6 +1100,12 @@ pub enum MisVariant {
     /// Wrong: material sampling draws towards the non-emitting targets with [`OTHERS_SHARE`] but
     /// divides by the density of the book's even mixture.
     WrongOthersShare,
+    /// Wrong: the emission that material sampling meets through a dielectric sphere keeps weight 1
+    /// where the manifold connection covers it too (that light counted twice).
+    WrongManifoldWeight,
+    /// Wrong: the manifold connection's geometry term without its rotation about the axis
+    /// (`rho_x / rho_y`), the term of a flat (two-dimensional) world.
+    WrongManifoldGeometry,
 }
 
 /// The density a `mis` vertex samples its direction from and weighs light samples by: a diffuse
@@ -1178,8 +1302,26 @@ pub(crate) struct MisPath {
     /// `None` after the camera or a specular bounce.
     previous: Option<(Point3, f64)>,
     inside_dielectrics: u32,
+    /// The interface ([`crate::manifold::Manifold::interfaces`]) the path entered, while it is inside
+    /// that one dielectric and no other.
+    interface: Option<u16>,
+    /// Since the last vertex made a manifold connection: where it was, the rest of its state, and
+    /// whether the path has refracted out of the interface since (the emission it meets next is then
+    /// weighed against the connection).
+    through: Option<Through>,
     /// The light sample's throughput times attenuation, and its `w_l s / p_l`.
     waiting: Option<(Color, f64)>,
+}
+
+/// A vertex inside an interface that made a manifold connection: its point `p`, the density its
+/// material sampling drew the path's next direction with, the interface, and the point the path
+/// refracted out at (`None` until it has).
+#[derive(Clone, Copy, Debug)]
+struct Through {
+    p: Point3,
+    pdf: f64,
+    interface: u16,
+    exit: Option<Point3>,
 }
 
 impl Default for MisPath {
@@ -1189,6 +1331,8 @@ impl Default for MisPath {
             throughput: Color::ONE,
             previous: None,
             inside_dielectrics: 0,
+            interface: None,
+            through: None,
             waiting: None,
         }
     }
@@ -1233,7 +1377,17 @@ impl MisPath {
             let emitted = material.emitted(hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
                 let weight = match self.previous {
-                    None => 1.0,
+                    None => match self.through {
+                        Some(Through {
+                            p,
+                            pdf,
+                            interface,
+                            exit: Some(x),
+                        }) if variant != MisVariant::WrongManifoldWeight => {
+                            material_weight_through(lights, hit, p, pdf, interface, x)
+                        }
+                        _ => 1.0,
+                    },
                     Some((origin, p_material)) => {
                         let p_light = if variant == MisVariant::WrongUniformLightWeight {
                             HittablePdf::new(origin, &lights.emitters)
@@ -1273,16 +1427,36 @@ impl MisPath {
                     attenuation,
                     direction,
                 }) => {
+                    let through = self.through.take();
                     // Refracted (not reflected) through a dielectric: into it from its front, out of it
                     // from its back.
                     if matches!(material, Material::Dielectric { .. })
                         && direction.dot(hit.normal) < 0.0
                     {
+                        let was_in = self.interface.take();
                         self.inside_dielectrics = if hit.front_face {
                             self.inside_dielectrics + 1
                         } else {
                             self.inside_dielectrics.saturating_sub(1)
                         };
+                        if hit.front_face {
+                            if self.inside_dielectrics == 1 && lights.manifold.is_active() {
+                                self.interface = lights.manifold.interface_at(hit);
+                            }
+                        } else if self.inside_dielectrics == 0
+                            && let Some(t) = through
+                            && t.exit.is_none()
+                            && was_in == Some(t.interface)
+                            && lights.manifold.interfaces[t.interface as usize]
+                                .on_surface(hit.p, hit.err)
+                        {
+                            // out of the interface the connection was made through: the emission met
+                            // next is weighed against it
+                            self.through = Some(Through {
+                                exit: Some(hit.p),
+                                ..t
+                            });
+                        }
                     }
                     self.throughput *= attenuation;
                     self.previous = None;
@@ -1297,6 +1471,7 @@ impl MisPath {
             },
         };
         let towards_others = HittablePdf::new(hit.p, &lights.others);
+        self.through = None;
 
         // Next-event estimation: only if the shadow ray's hit is within the path's depth.
         // (A medium's point takes it on its segment, unless the segment could not be recorded.)
@@ -1317,6 +1492,34 @@ impl MisPath {
             self.waiting = Some((self.throughput * attenuation, weight));
             shadow = Some(ray_to_light);
         }
+        // Inside one dielectric sphere the light comes through its surface: the manifold connection,
+        // if its emitter would be within the path's depth (two segments away).
+        let connected = match self.interface {
+            Some(k)
+                if !light_strategy
+                    && options.manifold
+                    && self.inside_dielectrics == 1
+                    && depth + 2 < max_depth
+                    && lights.manifold.interfaces[k as usize].connects_from(hit.p) =>
+            {
+                let u = ctx.sample_2d(Dimension::Light(depth));
+                let c = manifold_connection(
+                    scene,
+                    lights,
+                    hit,
+                    k,
+                    &pdf,
+                    towards_others.as_ref(),
+                    ray.time,
+                    u,
+                    variant,
+                    ctx,
+                );
+                self.l += self.throughput * attenuation * c;
+                Some(k)
+            }
+            _ => None,
+        };
         let end = MisStep { shadow, next: None };
 
         // Material sampling (mixed with the non-emitting targets by OTHERS_SHARE): the path goes on
@@ -1341,6 +1544,12 @@ impl MisPath {
         self.throughput *= attenuation * s_over_p;
         self.previous = (light_strategy || variant == MisVariant::WrongWeightInsideDielectrics)
             .then_some((hit.p, ms.pdf));
+        self.through = connected.map(|interface| Through {
+            p: hit.p,
+            pdf: ms.pdf,
+            interface,
+            exit: None,
+        });
         let next = hit.spawn(ms.direction, ray.time);
 
         let in_medium = matches!(material, Material::Isotropic { .. });
@@ -1407,6 +1616,7 @@ impl MisPath {
         };
         self.throughput = throughput;
         self.previous = Some((p, pdf));
+        self.through = None;
         self.survives_roulette(depth, false, options, MisVariant::Book, ctx)
     }
 

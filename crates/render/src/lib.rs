@@ -42,6 +42,7 @@ pub mod integrator;
 pub mod lanes;
 pub mod lights;
 pub mod limits;
+pub mod manifold;
 pub mod material;
 pub mod metal_pdf;
 pub mod mis8;

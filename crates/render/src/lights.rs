@@ -17,6 +17,7 @@
 //! angle it subtends ([`EmitterWeight::at`]; pbrt-v4's light samplers, Conty Estevez and Kulla 2018),
 //! mixed with a uniform share so that no emitter that can contribute is left out.
 
+use crate::manifold::{FoundShape, Manifold};
 use crate::material::{Albedo, Material};
 use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, Scene, Transform};
 use crate::vec::{Point3, Vec3};
@@ -96,6 +97,9 @@ pub struct Lights {
     pub listed_emitters: usize,
     /// Per emitter of `emitters`, what its weight in next-event estimation's choice needs.
     pub emitter_weights: Vec<EmitterWeight>,
+    /// The dielectric spheres that light reaches the inside of only by refraction, and the emitters
+    /// to connect to through them ([`crate::manifold`]).
+    pub manifold: Manifold,
 }
 
 /// The most emitters whose choice is weighed per shading point: their probabilities live in a
@@ -252,7 +256,16 @@ impl Lights {
         // Every emitter placed in the scene, in world space.
         let mut found = Vec::new();
         collect_emitters(scene, GroupId(0), Transform::IDENTITY, 0, &mut found);
-        for (shape, two_sided, radiance) in found {
+        let placed: Vec<(FoundShape, MaterialId)> =
+            found.iter().map(|f| (f.placed, f.material)).collect();
+        lights.manifold = Manifold::new(scene, &placed);
+        for Found {
+            target: shape,
+            two_sided,
+            radiance,
+            ..
+        } in found
+        {
             let target = match shape {
                 LightTarget::Quad { quad, .. } => LightTarget::Quad {
                     quad: quad.with_spherical_rectangles(spherical_rectangles),
@@ -415,15 +428,24 @@ fn same_shape(t: &SceneShape, shape: &LightTarget) -> bool {
 /// Groups nest at most this deep (a guard against a cycle, which the scene builder refuses anyway).
 const MAX_NESTING: u32 = 64;
 
-/// The emitting spheres and quads of group `g` placed by `to_world`, with their two-sidedness and
-/// their radiance (see [`EmitterWeight`]); media boundaries are shapes of no material and
-/// are skipped.
+/// An emitter placed in the scene: its target, two-sidedness and radiance (see [`EmitterWeight`]),
+/// and its shape in world space with its material.
+struct Found {
+    target: LightTarget,
+    two_sided: bool,
+    radiance: f64,
+    placed: FoundShape,
+    material: MaterialId,
+}
+
+/// The emitting spheres and quads of group `g` placed by `to_world`; media boundaries are shapes of
+/// no material and are skipped.
 fn collect_emitters(
     scene: &Scene,
     g: GroupId,
     to_world: Transform,
     depth: u32,
-    out: &mut Vec<(LightTarget, bool, f64)>,
+    out: &mut Vec<Found>,
 ) {
     let Some(group) = scene.groups.get(g.0 as usize) else {
         return;
@@ -450,25 +472,37 @@ fn collect_emitters(
         match o {
             Object::Sphere(s) => {
                 if let Some((ts, radiance)) = two_sided(s.material) {
-                    let target = SphereTarget::new(to_world.point(s.center), s.radius);
-                    out.push((LightTarget::Sphere(target), ts, radiance));
+                    let centre = to_world.point(s.center);
+                    out.push(Found {
+                        target: LightTarget::Sphere(SphereTarget::new(centre, s.radius)),
+                        two_sided: ts,
+                        radiance,
+                        placed: FoundShape::Sphere {
+                            centre,
+                            radius: s.radius,
+                            moving: s.is_moving(),
+                        },
+                        material: s.material,
+                    });
                 }
             }
             Object::Quad(q) => {
                 if let Some((ts, radiance)) = two_sided(q.material) {
-                    let quad = QuadTarget::new(
+                    let (q0, u, v) = (
                         to_world.point(q.q),
                         to_world.vector(q.u),
                         to_world.vector(q.v),
                     );
-                    out.push((
-                        LightTarget::Quad {
-                            quad,
+                    out.push(Found {
+                        target: LightTarget::Quad {
+                            quad: QuadTarget::new(q0, u, v),
                             one_sided: false,
                         },
-                        ts,
+                        two_sided: ts,
                         radiance,
-                    ));
+                        placed: FoundShape::Quad { q: q0, u, v },
+                        material: q.material,
+                    });
                 }
             }
             Object::Instance { transform, group } => {

@@ -21,6 +21,7 @@
 //! (tested in `crates/render/tests/paths8.rs`).
 
 use crate::integrator::Strategy;
+use crate::lights::Lights;
 use crate::scene::{GroupId, Scene};
 #[cfg(target_arch = "x86_64")]
 use crate::{
@@ -41,11 +42,17 @@ const PACKETS: usize = 2;
 
 /// Whether a render of `scene` by `strategy` traces `mis` paths side by side in the lanes: for
 /// `mis`, in a scene without media whose rays meet a small group, on a processor with AVX2 or
-/// AVX-512 ([`Scene::hits_eight_at_once`]).
-pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
-    matches!(strategy, Strategy::Mis(_))
-        && scene.features.media == 0
-        && scene.hits_eight_at_once(GroupId(0))
+/// AVX-512 ([`Scene::hits_eight_at_once`]), unless it makes manifold connections (`lights`: a
+/// dielectric sphere holds something that scatters), which the lanes' vertex does not.
+pub fn applies(scene: &Scene, strategy: Strategy, lights: &Lights) -> bool {
+    match strategy {
+        Strategy::Mis(options) => {
+            scene.features.media == 0
+                && scene.hits_eight_at_once(GroupId(0))
+                && !(options.manifold && lights.manifold.is_active())
+        }
+        _ => false,
+    }
 }
 
 /// A batch of up to eight Lambertian vertices gathered from both packets for the lanes: their

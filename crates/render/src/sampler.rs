@@ -379,6 +379,9 @@ pub struct Stats {
     pub texture_evaluations: u64,
     /// Samples whose value was NaN or infinite, dropped from their pixel.
     pub non_finite: u64,
+    /// Manifold connections made (vertices inside a dielectric sphere connected to an emitter
+    /// through its surface).
+    pub manifold_connections: u64,
 }
 
 impl std::ops::Add for Stats {
@@ -392,6 +395,7 @@ impl std::ops::Add for Stats {
         self.medium_evaluations += o.medium_evaluations;
         self.texture_evaluations += o.texture_evaluations;
         self.non_finite += o.non_finite;
+        self.manifold_connections += o.manifold_connections;
         self
     }
 }

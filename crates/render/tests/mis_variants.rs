@@ -22,7 +22,7 @@ use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, MisVariant, Strategy};
 use rtl_render::material::{Albedo, Material};
-use rtl_render::render::{RenderSettings, render};
+use rtl_render::render::{RenderSettings, Renderer, render};
 use rtl_render::scene::{Background, GroupId, ImportanceTarget, MaterialId, Scene, SceneBuilder};
 use rtl_render::shapes::Sphere;
 use rtl_render::vec::{Point3, Vec3};
@@ -244,6 +244,18 @@ fn mis_inside_glass_agrees_with_cosine_and_the_wrong_variants_are_caught() {
         !disagreements(&cosine, &wrong).is_empty(),
         "roulette in media without reweighting went unnoticed"
     );
+    // The lamp's light reaches the medium through the glass: the manifold connection finds it,
+    // material sampling too, and their weights must sum to 1.
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongManifoldWeight));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "light through the glass counted twice went unnoticed"
+    );
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongManifoldGeometry));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the connection's geometry term without its rotation went unnoticed"
+    );
 }
 
 /// A floor under two emitters of very different importance: a wide one-sided 6 x 6 lamp low above
@@ -361,6 +373,71 @@ fn material_sampling_mixed_with_a_listed_ball_agrees_and_a_wrong_share_is_caught
     assert!(
         !disagreements(&cosine, &wrong).is_empty(),
         "dividing by the even mixture's density went unnoticed"
+    );
+}
+
+/// A floor under a small one-sided lamp, and on it a clear glass ball (radius 1) with a white
+/// Lambertian ball (radius 0.45) inside, off its centre: the light reaches the inner ball only
+/// through the glass, by material sampling and by the manifold connection from its surface (seen
+/// through the far side of the glass too, where a point may have several refraction points).
+pub fn diffuse_ball_in_glass() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let lamp = b.material(one_sided_lamp(12.0));
+    floor(&mut b, w, white);
+    b.quad(
+        w,
+        Point3::new(-0.6, 3.0, -0.9),
+        Vec3::new(1.2, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.2),
+        lamp,
+    )
+    .unwrap();
+    b.sphere(w, Point3::new(0.0, 1.0, 0.0), 1.0, glass).unwrap();
+    b.sphere(w, Point3::new(0.2, 0.8, 0.25), 0.45, white)
+        .unwrap();
+    framed(
+        b,
+        Point3::new(0.0, 1.6, 4.0),
+        Point3::new(0.0, 1.0, 0.0),
+        35.0,
+    )
+}
+
+#[test]
+fn a_diffuse_ball_in_glass_agrees_with_cosine_and_double_counting_is_caught() {
+    let scene = diffuse_ball_in_glass();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert!(
+        lights.manifold.is_active(),
+        "the glass holds a diffuse ball"
+    );
+    // The lanes do not make manifold connections: the scene (one small group) takes one path at a
+    // time, unless the connections are off.
+    let with = Renderer::new(&scene, settings(1, Strategy::Mis(MisOptions::DEFAULT)));
+    assert!(!with.paths_in_lanes());
+    let (_, stats) = render(&scene, settings(1, Strategy::Mis(MisOptions::DEFAULT)), 4);
+    assert!(
+        stats.manifold_connections > 200,
+        "{} connections",
+        stats.manifold_connections
+    );
+    let off = MisOptions {
+        manifold: false,
+        ..MisOptions::DEFAULT
+    };
+    let (_, stats) = render(&scene, settings(1, Strategy::Mis(off)), 4);
+    assert_eq!(stats.manifold_connections, 0);
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongManifoldWeight));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "light through the glass counted twice went unnoticed"
     );
 }
 

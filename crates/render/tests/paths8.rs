@@ -290,11 +290,13 @@ fn mis_paths_side_by_side_give_the_image_of_one_at_a_time() {
             russian_roulette: false,
             spherical_rectangles: true,
             low_discrepancy: false,
+            manifold: true,
         },
         MisOptions {
             russian_roulette: true,
             spherical_rectangles: true,
             low_discrepancy: true,
+            manifold: true,
         },
     ];
     for (i, name) in ["cornell", "cornell-book2", "quads"]
@@ -347,11 +349,13 @@ fn the_mis_vertex_in_the_lanes_gives_the_image_of_one_path_at_a_time() {
             russian_roulette: false,
             spherical_rectangles: false,
             low_discrepancy: false,
+            manifold: true,
         },
         MisOptions {
             russian_roulette: true,
             spherical_rectangles: false,
             low_discrepancy: false,
+            manifold: true,
         },
     ];
     let cornell = builtin("cornell");

@@ -49,6 +49,7 @@ pub fn strategy(name: &str, rr: bool, lds: bool, sph_rect: bool) -> Result<Strat
             russian_roulette: rr,
             low_discrepancy: lds,
             spherical_rectangles: sph_rect,
+            ..MisOptions::DEFAULT
         }),
         other => other,
     })
@@ -179,7 +180,8 @@ mod tests {
             Strategy::Mis(MisOptions {
                 russian_roulette: false,
                 low_discrepancy: true,
-                spherical_rectangles: false
+                spherical_rectangles: false,
+                manifold: true,
             })
         );
         assert_eq!(strategy_names().len(), Strategy::ALL.len());

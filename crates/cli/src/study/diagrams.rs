@@ -63,6 +63,11 @@ const DIAGRAMS: &[(&str, &str, Draw)] = &[
         "a path with next-event estimation",
         nee_path,
     ),
+    (
+        "diagram-manifold",
+        "the manifold connection through a glass sphere",
+        manifold,
+    ),
 ];
 
 pub fn run(args: DiagramsArgs) -> anyhow::Result<()> {
@@ -1319,6 +1324,151 @@ fn nee_path() -> anyhow::Result<Svg> {
     s.text(
         (w / 2.0, h - 16.0),
         "that hits the light counts it too, with the other weight, so the two never double-count",
+        13.0,
+        Anchor::Middle,
+        c::INK,
+    );
+    Ok(s)
+}
+
+/// Chapter 12: the manifold connection through a glass sphere (index 1.5), in its plane, each path
+/// found by the renderer's own solver ([`rtl_render::manifold::Interface::refractions`]): on the left
+/// a point deep inside lit through the top by points across a light, on the right a point near the
+/// surface that a point far behind it reaches through three refraction points.
+fn manifold() -> anyhow::Result<Svg> {
+    use rtl_render::manifold::Interface;
+    let (w, h) = (900.0, 470.0);
+    let mut s = Svg::new(w, h);
+    title(
+        &mut s,
+        w,
+        "Manifold next-event estimation: where light refracts out of the glass towards y",
+    );
+    let glass = Interface {
+        centre: DVec3::ZERO,
+        radius: 1.0,
+        ior: 1.5,
+        material: rtl_render::scene::MaterialId(0),
+        filled: 0.0,
+    };
+    let scale = 95.0;
+    // panel centres, in pixels
+    let panels = [(190.0, 300.0), (730.0, 260.0)];
+    let at = |k: usize, p: DVec3| (panels[k].0 + scale * p.x, panels[k].1 - scale * p.y);
+    for &c in &panels {
+        s.circle(c, scale, "#eef6fb", c::SKY, 2.0);
+        s.text(
+            (c.0, c.1 + scale + 22.0),
+            "glass, index 1.5",
+            12.0,
+            Anchor::Middle,
+            c::GREY,
+        );
+    }
+    // Left: a light above, five points on it, one refraction point each.
+    let p = DVec3::new(0.25, -0.35, 0.0);
+    let (l0, l1) = (DVec3::new(-1.1, 2.3, 0.0), DVec3::new(0.7, 2.3, 0.0));
+    s.line(at(0, l0), at(0, l1), c::ORANGE, 6.0);
+    s.text(
+        (at(0, l1).0 + 10.0, at(0, l1).1 + 4.0),
+        "light",
+        13.0,
+        Anchor::Start,
+        c::ORANGE,
+    );
+    for i in 0..5 {
+        let y = l0 + (l1 - l0) * (0.1 + 0.2 * i as f64);
+        let found = glass.refractions(p, y);
+        ensure!(
+            found.as_slice().len() == 1,
+            "expected one refraction point towards the light, found {}",
+            found.as_slice().len()
+        );
+        let r = found.as_slice()[0];
+        s.line(at(0, p), at(0, r.x), c::BLUE, 1.8);
+        s.arrow(at(0, r.x), at(0, y), c::ORANGE, 1.6);
+        s.dot(at(0, r.x), 3.5, c::INK);
+    }
+    // the straight shadow ray, which meets the glass
+    let y_mid = l0 + (l1 - l0) * 0.5;
+    let hit = {
+        let d = (y_mid - p).normalize();
+        let b = p.dot(d);
+        p + d * (-b + (b * b - p.length_squared() + 1.0).sqrt())
+    };
+    s.dashed(at(0, p), at(0, hit), c::GREY, 1.4);
+    let m = at(0, hit);
+    s.line((m.0 - 5.0, m.1 - 5.0), (m.0 + 5.0, m.1 + 5.0), c::INK, 2.0);
+    s.line((m.0 - 5.0, m.1 + 5.0), (m.0 + 5.0, m.1 - 5.0), c::INK, 2.0);
+    s.dot(at(0, p), 5.0, c::INK);
+    italic(
+        &mut s,
+        (at(0, p).0 + 10.0, at(0, p).1 + 16.0),
+        "p",
+        16.0,
+        Anchor::Start,
+        c::INK,
+    );
+    // Right: a point near the surface, and one far behind it seen through the far side.
+    let p = DVec3::new(0.97, 0.0, 0.0);
+    let y = DVec3::new(-3.2, 0.74, 0.0);
+    let found = glass.refractions(p, y);
+    ensure!(
+        found.as_slice().len() >= 2,
+        "expected several refraction points, found {}",
+        found.as_slice().len()
+    );
+    let colours = [c::BLUE, c::GREEN, c::PURPLE, c::RED];
+    for (r, colour) in found.as_slice().iter().zip(colours) {
+        s.line(at(1, p), at(1, r.x), colour, 1.8);
+        s.arrow(at(1, r.x), at(1, y), colour, 1.6);
+        s.dot(at(1, r.x), 3.5, c::INK);
+    }
+    s.dot(at(1, p), 5.0, c::INK);
+    italic(
+        &mut s,
+        (at(1, p).0 - 8.0, at(1, p).1 + 18.0),
+        "p",
+        16.0,
+        Anchor::End,
+        c::INK,
+    );
+    s.dot(at(1, y), 6.0, c::ORANGE);
+    italic(
+        &mut s,
+        (at(1, y).0 - 10.0, at(1, y).1 + 5.0),
+        "y",
+        16.0,
+        Anchor::End,
+        c::ORANGE,
+    );
+    s.text(
+        (panels[1].0 - 120.0, 80.0),
+        &format!(
+            "near the surface, seen through the far side: {} refraction points",
+            found.as_slice().len()
+        ),
+        13.0,
+        Anchor::Middle,
+        c::INK,
+    );
+    s.text(
+        (panels[0].0, 62.0),
+        "from deep inside: one refraction point for each y",
+        13.0,
+        Anchor::Middle,
+        c::INK,
+    );
+    s.text(
+        (w / 2.0, h - 34.0),
+        "a shadow ray from p (grey) meets the glass; the connection instead solves for the point x where",
+        13.0,
+        Anchor::Middle,
+        c::INK,
+    );
+    s.text(
+        (w / 2.0, h - 14.0),
+        "Snell's law bends the ray from p towards y: the stationary points of the optical length 1.5 |x - p| + |y - x|",
         13.0,
         Anchor::Middle,
         c::INK,

@@ -112,6 +112,7 @@ fn strategies() -> Vec<(String, Strategy)> {
                 russian_roulette: false,
                 spherical_rectangles: false,
                 low_discrepancy: false,
+                manifold: false,
             },
         ),
     ] {
