@@ -4,7 +4,7 @@
 //! needs for a given per-pixel noise. Only ratios from one run on one machine are figures to quote.
 
 mod book_cpp;
-mod noise;
+pub(crate) mod noise;
 
 use anyhow::{Context, Result, bail};
 use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};

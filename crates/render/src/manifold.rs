@@ -156,6 +156,11 @@ const MAX_STEPS: usize = 64;
 /// `h(phi)` and `h'(phi)` in the plane of the axis (coordinates along the axis and across it: the
 /// centre at the origin, `p = (p, 0)`, `y = (y1, y2)` with `y2 > 0`), for a sphere of radius `r` and
 /// relative index `eta`.
+///
+/// A point of the arc `y` sees is named by `t = tan(theta / 2)`, `theta` its angle from the
+/// direction `(cy, sy)` of `y`: `cos theta = (1 - t^2) / (1 + t^2)`, `sin theta = 2 t / (1 + t^2)`,
+/// and the arc is `|t| < tan(beta / 2) = sqrt((|y| - R) / (|y| + R))` (`cos beta = R / |y|`), so that
+/// the scan and Newton's steps need no trigonometric function.
 #[derive(Clone, Copy, Debug)]
 struct Plane {
     r: f64,
@@ -163,6 +168,9 @@ struct Plane {
     p: f64,
     y1: f64,
     y2: f64,
+    /// `y`'s direction: `(y1, y2) / |y|`.
+    cy: f64,
+    sy: f64,
 }
 
 impl Plane {
@@ -173,7 +181,9 @@ impl Plane {
     /// `h' = eta p (c / |d| - R p s^2 / |d|^3) - ((-y2 s - y1 c) / |a| + R (y2 c - y1 s)^2 / |a|^3)`.
     #[inline]
     fn h(&self, c: f64, s: f64) -> (f64, f64) {
-        let Plane { r, eta, p, y1, y2 } = *self;
+        let Plane {
+            r, eta, p, y1, y2, ..
+        } = *self;
         let (dx, dy) = (r * c - p, r * s);
         let d2 = dx * dx + dy * dy;
         let d = d2.sqrt();
@@ -187,23 +197,53 @@ impl Plane {
         (h, dh)
     }
 
-    /// The root of `h` in `[lo, hi]`, where `h(lo)` and `h(hi)` lie on either side of 0 (or `h(hi)`
-    /// is 0): Newton's steps, a bisection wherever a step would leave the bracket.
-    fn refine(&self, mut lo: f64, mut hi: f64, h_lo: f64) -> f64 {
-        let rising = h_lo < 0.0;
+    /// The sign of `h` at `(c, s)`, without a division or a square root: `h` is
+    /// `(eta p s |a| - n2 |d|) / (|d| |a|)`, `n2 = y2 c - y1 s`, and the two products compare as their
+    /// squares do when their signs agree. (Near a root it may read rounding; the refinement decides.)
+    #[inline]
+    fn h_positive(&self, c: f64, s: f64) -> bool {
+        let Plane {
+            r, eta, p, y1, y2, ..
+        } = *self;
+        let (dx, dy) = (r * c - p, r * s);
+        let (ax, ay) = (y1 - r * c, y2 - r * s);
+        let (u, w) = (eta * p * s, y2 * c - y1 * s);
+        match (u > 0.0, w > 0.0) {
+            (true, false) => true,
+            (false, true) => false,
+            (positive, _) => {
+                let (uu, ww) = (u * u * (ax * ax + ay * ay), w * w * (dx * dx + dy * dy));
+                if positive { uu > ww } else { uu < ww }
+            }
+        }
+    }
+
+    /// `(cos phi, sin phi)` of the arc's point `t`.
+    #[inline]
+    fn point(&self, t: f64) -> (f64, f64) {
+        let q = 1.0 / (1.0 + t * t);
+        let (ct, st) = ((1.0 - t * t) * q, 2.0 * t * q);
+        (self.cy * ct - self.sy * st, self.sy * ct + self.cy * st)
+    }
+
+    /// The root of `h` for `t` in `[lo, hi]`, where `h` changes sign (positive at `lo` if
+    /// `positive_lo`): Newton's steps in `t` (`dh/dt = h'(phi) 2 / (1 + t^2)`), a bisection wherever
+    /// a step would leave the bracket. Returns the root's `(cos phi, sin phi)`.
+    fn refine(&self, mut lo: f64, mut hi: f64, positive_lo: bool) -> (f64, f64) {
+        let rising = !positive_lo;
         let mut x = 0.5 * (lo + hi);
+        let mut at = self.point(x);
         for _ in 0..MAX_STEPS {
-            let (s, c) = x.sin_cos();
-            let (h, dh) = self.h(c, s);
+            let (h, dh) = self.h(at.0, at.1);
             if h == 0.0 {
-                return x;
+                break;
             }
             if (h < 0.0) == rising {
                 lo = x;
             } else {
                 hi = x;
             }
-            let newton = x - h / dh;
+            let newton = x - h * (1.0 + x * x) / (2.0 * dh);
             let next = if newton > lo && newton < hi {
                 newton
             } else {
@@ -211,11 +251,12 @@ impl Plane {
             };
             let step = (next - x).abs();
             x = next;
-            if step <= 4.0 * f64::EPSILON * (1.0 + x.abs()) || hi - lo <= 4.0 * f64::EPSILON {
+            at = self.point(x);
+            if step <= 4.0 * f64::EPSILON || hi - lo <= 4.0 * f64::EPSILON {
                 break;
             }
         }
-        x
+        at
     }
 }
 
@@ -276,45 +317,43 @@ impl Interface {
             p: p_dist,
             y1,
             y2,
+            cy: y1 / y_dist,
+            sy: y2 / y_dist,
         };
-        // The arc `y` sees: `cos(phi - phi_y) > R / |y|`.
-        let phi_y = y2.atan2(y1);
-        let half = (r / y_dist).acos();
-        let (lo, width) = (phi_y - half, 2.0 * half);
-        let at = |j: usize| lo + width * j as f64 / SCAN as f64;
-        // The scan's points by rotation, one step at a time (a few ulps from the angles `at(j)`,
-        // which only the refinement needs exactly).
-        let (mut s, mut c) = lo.sin_cos();
-        let (ds, dc) = (width / SCAN as f64).sin_cos();
-        let mut previous = plane.h(c, s).0;
+        // The arc `y` sees, `cos(phi - phi_y) > R / |y|`: `|t| < tan(beta / 2)`.
+        let half = ((y_dist - r) / (y_dist + r)).sqrt();
+        let at = |j: usize| half * (2.0 * j as f64 / SCAN as f64 - 1.0);
+        let positive_at = |t: f64| {
+            let (c, s) = plane.point(t);
+            plane.h_positive(c, s)
+        };
+        let mut previous = positive_at(at(0));
         for j in 1..=SCAN {
-            (c, s) = (c * dc - s * ds, s * dc + c * ds);
-            let (h, _) = plane.h(c, s);
-            let brackets = (previous > 0.0 && h <= 0.0) || (previous < 0.0 && h >= 0.0);
-            if brackets {
-                let phi = plane.refine(at(j - 1), at(j), previous);
-                if let Some(found) = self.refraction_at(&plane, phi, e1, e2, y2) {
+            let positive = positive_at(at(j));
+            if positive != previous {
+                let (c, s) = plane.refine(at(j - 1), at(j), previous);
+                if let Some(found) = self.refraction_at(&plane, c, s, e1, e2, y2) {
                     out.push(found);
                 }
             }
-            previous = h;
+            previous = positive;
         }
         out
     }
 
-    /// The refraction at angle `phi` in the plane spanned by `e1` (the axis) and `e2`, with what the
-    /// connection's density needs; `None` where it grazes the sphere on either side or `h'` vanishes
-    /// (a caustic, where the density has no finite value).
+    /// The refraction at `(cos phi, sin phi)` in the plane spanned by `e1` (the axis) and `e2`, with
+    /// what the connection's density needs; `None` where it grazes the sphere on either side or `h'`
+    /// vanishes (a caustic, where the density has no finite value).
     fn refraction_at(
         &self,
         plane: &Plane,
-        phi: f64,
+        c: f64,
+        s: f64,
         e1: Vec3,
         e2: Vec3,
         rho_y: f64,
     ) -> Option<Refraction> {
         let Plane { r, p, y1, y2, .. } = *plane;
-        let (s, c) = phi.sin_cos();
         let (_, dh) = plane.h(c, s);
         let (dx, dy) = (r * c - p, r * s);
         let len_in = (dx * dx + dy * dy).sqrt();

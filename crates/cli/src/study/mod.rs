@@ -5,6 +5,7 @@
 //! (book/src/figures) by accident.
 
 mod diagrams;
+mod manifold;
 pub(crate) mod mc;
 mod pdf;
 pub(crate) mod render;
@@ -35,6 +36,9 @@ pub enum StudyWhat {
     Diagrams(diagrams::DiagramsArgs),
     /// Each chapter's sampler: its samples against the density it claims, as SVG histograms (seconds).
     Samples(samples::SamplesArgs),
+    /// Book 2's final scene by `mis` with and without manifold connections through glass: noise,
+    /// rate, and where the noise is (about a minute on 2 cores).
+    Manifold(manifold::ManifoldArgs),
 }
 
 pub fn run(args: StudyArgs) -> anyhow::Result<()> {
@@ -45,6 +49,7 @@ pub fn run(args: StudyArgs) -> anyhow::Result<()> {
         StudyWhat::Render(a) => render::run(a),
         StudyWhat::Diagrams(a) => diagrams::run(a),
         StudyWhat::Samples(a) => samples::run(a),
+        StudyWhat::Manifold(a) => manifold::run(a),
     }
 }
 
