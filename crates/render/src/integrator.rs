@@ -6,6 +6,7 @@
 //! mixture sampling (one direction per bounce, weighted by `s(omega) / p(omega)`), and `mis`, next-event
 //! estimation combined with material sampling by multiple importance sampling.
 
+use crate::connection::{self, Through};
 use crate::hit::Hit;
 use crate::lights::{LightTarget, Lights};
 use crate::material::{Material, Scatter, ScatterPdf};
@@ -81,7 +82,7 @@ const _: () = assert!(0.0 <= OTHERS_SHARE && OTHERS_SHARE <= 1.0);
 /// `mis`'s material sampling from `hit`: the material's density mixed with the non-emitting
 /// targets by [`OTHERS_SHARE`].
 #[inline]
-fn with_others<'a>(
+pub(crate) fn with_others<'a>(
     towards_others: HittablePdf<'a, LightTarget>,
     pdf: VertexPdf,
 ) -> MixturePdf<HittablePdf<'a, LightTarget>, VertexPdf> {
@@ -446,7 +447,7 @@ pub enum Bounce {
 /// clipped at the surface found. Only if more media were crossed than can be recorded without
 /// allocating is the traversal repeated up to the surface.
 #[inline]
-fn trace_shadow(scene: &Scene, ray: &Ray, ctx: &mut Ctx) -> Option<(Hit, f64)> {
+pub(crate) fn trace_shadow(scene: &Scene, ray: &Ray, ctx: &mut Ctx) -> Option<(Hit, f64)> {
     ctx.stats.rays += 1;
     if scene.features.media == 0 {
         return scene.hit(ray, ctx).map(|h| (h, 1.0));
@@ -493,118 +494,6 @@ fn light_sample(
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
     Some((hit.spawn(ls.direction, time), w * s_over_p))
 }
-
-// ANCHOR: manifold_connection
-/// The manifold connection ([`crate::manifold`]) of a vertex at `hit` inside interface `k`, whose
-/// material density is `pdf` (drawn from, mixed with `towards_others`), for the numbers `u`: a point
-/// `y` drawn on an emitter by area, and through every refraction point `x` found towards it
-///
-/// `s(omega) G (1 - F) T_in T_out L_e(y) / p_A(y)`,
-///
-/// weighted by the power heuristic against material sampling's density of the same point, `p_m G`
-/// (area measure at `y`). Each leg is a shadow ray: from the vertex it must meet the interface
-/// first, at `x`; from there the emitter, at `y`; each carries the transmittance of the media it
-/// crosses. The vertex's attenuation and the path's throughput are the caller's.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn manifold_connection(
-    scene: &Scene,
-    lights: &Lights,
-    hit: &Hit,
-    k: u16,
-    pdf: &VertexPdf,
-    towards_others: Option<&HittablePdf<'_, LightTarget>>,
-    time: f64,
-    u: glam::DVec2,
-    variant: MisVariant,
-    ctx: &mut Ctx,
-) -> Color {
-    let manifold = &lights.manifold;
-    let iface = &manifold.interfaces[k as usize];
-    // The connection's roulette on the first number, whose rest is handed on.
-    let q = iface.roulette(hit.p);
-    if u.x >= q {
-        return Color::ZERO;
-    }
-    let u = glam::DVec2::new((u.x / q).min(1.0 - f64::EPSILON / 2.0), u.y);
-    ctx.stats.manifold_connections += 1;
-    let Some(e) = manifold.sample_emitter(u) else {
-        return Color::ZERO;
-    };
-    let mut sum = Color::ZERO;
-    for r in iface.refractions(hit.p, e.y).as_slice() {
-        let s = pdf.pdf(r.dir_in);
-        if s.is_nan() || s <= 0.0 {
-            continue;
-        }
-        let p_material = match towards_others {
-            Some(t) => with_others(*t, *pdf).pdf_given_b(r.dir_in, s),
-            None => s,
-        };
-        let mut geometry = r.geometry * e.normal.dot(r.dir_out).abs();
-        if variant == MisVariant::WrongManifoldGeometry {
-            geometry /= r.across;
-        }
-        let w = power_heuristic(1.0, e.density, 1.0, p_material * geometry);
-        let factor = s * geometry / (e.density * q) * iface.transmission(r.cos_in) * w;
-        if !(factor > 0.0 && factor.is_finite()) {
-            continue;
-        }
-        // Inside: from the vertex to x, where the ray must leave the interface.
-        let Some((inner, t_in)) = trace_shadow(scene, &hit.spawn(r.dir_in, time), ctx) else {
-            continue;
-        };
-        if inner.material != iface.material
-            || inner.front_face
-            || (inner.p - r.x).length() > 1e-6 * iface.radius + 8.0 * inner.err
-        {
-            continue;
-        }
-        // Outside: from x to the emitter, which it must meet at y.
-        let Some((outer, t_out)) = trace_shadow(scene, &inner.spawn(e.y - inner.p, time), ctx)
-        else {
-            continue;
-        };
-        let m = &scene.materials[outer.material.index()];
-        if !m.is_emitter()
-            || (outer.p - e.y).length() > 1e-6 * (r.len_out + iface.radius) + 8.0 * outer.err
-        {
-            continue;
-        }
-        sum += m.emitted(&outer, &scene.textures, ctx) * (factor * t_in * t_out);
-    }
-    sum
-}
-
-/// The weight of emission that material sampling meets at `hit` right after refracting out of
-/// interface `k` at `x`, from a vertex at `p` whose direction was drawn with density `pdf` and which
-/// made a manifold connection: the power heuristic against the connection, if solving from `p`
-/// towards the point met finds `x` (the connection could have made this path); 1 otherwise.
-#[inline(never)]
-fn material_weight_through(
-    lights: &Lights,
-    hit: &Hit,
-    p: Point3,
-    pdf: f64,
-    k: u16,
-    x: Point3,
-) -> f64 {
-    let manifold = &lights.manifold;
-    let Some(e) = manifold.emitter_point(hit) else {
-        return 1.0;
-    };
-    let iface = &manifold.interfaces[k as usize];
-    iface
-        .refractions(p, e.y)
-        .as_slice()
-        .iter()
-        .find(|r| (r.x - x).length() <= 1e-6 * iface.radius)
-        .map_or(1.0, |r| {
-            let geometry = r.geometry * e.normal.dot(r.dir_out).abs();
-            power_heuristic(1.0, pdf * geometry, 1.0, e.density)
-        })
-}
-// ANCHOR_END: manifold_connection
 
 // ANCHOR: segment_sampling
 /// How often a path segment through media takes its light sample: with probability
@@ -1111,7 +1000,7 @@ pub enum MisVariant {
 /// The density a `mis` vertex samples its direction from and weighs light samples by: a diffuse
 /// material's, or the fuzzy metal's lobe ([`FuzzyMetalPdf`]).
 #[derive(Clone, Copy, Debug)]
-enum VertexPdf {
+pub(crate) enum VertexPdf {
     Material(ScatterPdf),
     Metal(FuzzyMetalPdf),
     /// [`MisVariant::WrongMetalDensity`]: the metal's directions with a cosine lobe's density.
@@ -1313,17 +1202,6 @@ pub(crate) struct MisPath {
     waiting: Option<(Color, f64)>,
 }
 
-/// A vertex inside an interface that made a manifold connection: its point `p`, the density its
-/// material sampling drew the path's next direction with, the interface, and the point the path
-/// refracted out at (`None` until it has).
-#[derive(Clone, Copy, Debug)]
-struct Through {
-    p: Point3,
-    pdf: f64,
-    interface: u16,
-    exit: Option<Point3>,
-}
-
 impl Default for MisPath {
     fn default() -> Self {
         MisPath {
@@ -1377,14 +1255,9 @@ impl MisPath {
             let emitted = material.emitted(hit, &scene.textures, ctx);
             if emitted != Color::ZERO {
                 let weight = match self.previous {
-                    None => match self.through {
-                        Some(Through {
-                            p,
-                            pdf,
-                            interface,
-                            exit: Some(x),
-                        }) if variant != MisVariant::WrongManifoldWeight => {
-                            material_weight_through(lights, hit, p, pdf, interface, x)
+                    None => match &self.through {
+                        Some(t) if variant != MisVariant::WrongManifoldWeight => {
+                            t.material_weight(lights, hit)
                         }
                         _ => 1.0,
                     },
@@ -1433,30 +1306,23 @@ impl MisPath {
                     if matches!(material, Material::Dielectric { .. })
                         && direction.dot(hit.normal) < 0.0
                     {
-                        let was_in = self.interface.take();
+                        self.interface = None;
                         self.inside_dielectrics = if hit.front_face {
                             self.inside_dielectrics + 1
                         } else {
                             self.inside_dielectrics.saturating_sub(1)
                         };
-                        if hit.front_face {
-                            if self.inside_dielectrics == 1 && lights.manifold.is_active() {
-                                self.interface = lights.manifold.interface_at(hit);
-                            }
-                        } else if self.inside_dielectrics == 0
-                            && let Some(t) = through
-                            && t.exit.is_none()
-                            && was_in == Some(t.interface)
-                            && lights.manifold.interfaces[t.interface as usize]
-                                .on_surface(hit.p, hit.err)
+                        if hit.front_face
+                            && self.inside_dielectrics == 1
+                            && lights.manifold.is_active()
                         {
-                            // out of the interface the connection was made through: the emission met
-                            // next is weighed against it
-                            self.through = Some(Through {
-                                exit: Some(hit.p),
-                                ..t
-                            });
+                            self.interface = lights.manifold.interface_at(hit);
                         }
+                        // still on the kind of path a connection made: the emission met once out
+                        // of the interface is weighed against it
+                        self.through = through.and_then(|t| {
+                            t.refracted(&lights.manifold, hit, self.inside_dielectrics)
+                        });
                     }
                     self.throughput *= attenuation;
                     self.previous = None;
@@ -1492,8 +1358,14 @@ impl MisPath {
             self.waiting = Some((self.throughput * attenuation, weight));
             shadow = Some(ray_to_light);
         }
-        // Inside one dielectric sphere the light comes through its surface: the manifold connection,
-        // if its emitter would be within the path's depth (two segments away).
+        // Light that comes through a glass ball: the manifold connections, if their emitter would
+        // be within the path's depth (two segments away from inside, three from outside).
+        let vertex = connection::Vertex {
+            hit,
+            pdf: &pdf,
+            towards_others: towards_others.as_ref(),
+            time: ray.time,
+        };
         let connected = match self.interface {
             Some(k)
                 if !light_strategy
@@ -1503,20 +1375,19 @@ impl MisPath {
                     && lights.manifold.interfaces[k as usize].connects_from(hit.p) =>
             {
                 let u = ctx.sample_2d(Dimension::Light(depth));
-                let c = manifold_connection(
-                    scene,
-                    lights,
-                    hit,
-                    k,
-                    &pdf,
-                    towards_others.as_ref(),
-                    ray.time,
-                    u,
-                    variant,
-                    ctx,
-                );
+                let c = connection::leaving(scene, lights, &vertex, k, u, variant, ctx);
                 self.l += self.throughput * attenuation * c;
-                Some(k)
+                Some((k, connection::Kind::Leaving))
+            }
+            _ if light_strategy
+                && options.manifold
+                && !lights.manifold.crossable.is_empty()
+                && depth + 3 < max_depth =>
+            {
+                connection::crossing(scene, lights, &vertex, variant, ctx).map(|(c, k)| {
+                    self.l += self.throughput * attenuation * c;
+                    (k, connection::Kind::Crossing)
+                })
             }
             _ => None,
         };
@@ -1544,12 +1415,7 @@ impl MisPath {
         self.throughput *= attenuation * s_over_p;
         self.previous = (light_strategy || variant == MisVariant::WrongWeightInsideDielectrics)
             .then_some((hit.p, ms.pdf));
-        self.through = connected.map(|interface| Through {
-            p: hit.p,
-            pdf: ms.pdf,
-            interface,
-            exit: None,
-        });
+        self.through = connected.map(|(k, kind)| Through::new(hit.p, ms.pdf, k, kind));
         let next = hit.spawn(ms.direction, ray.time);
 
         let in_medium = matches!(material, Material::Isotropic { .. });

@@ -34,6 +34,7 @@ pub mod builder;
 pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
+pub mod connection;
 pub mod flatten;
 pub mod glass8;
 pub mod hit;

@@ -374,6 +374,16 @@ fn material_sampling_mixed_with_a_listed_ball_agrees_and_a_wrong_share_is_caught
         !disagreements(&cosine, &wrong).is_empty(),
         "dividing by the even mixture's density went unnoticed"
     );
+    // The caustic the ball focuses on the floor: crossing connections and material sampling
+    // both find it, and weights that do not sum to 1 are caught. (The crossing's geometry term is
+    // checked against finite differences in `manifold::crossing`'s tests: here, where material
+    // sampling takes most of the focus, a wrong one moves the image too little to be caught.)
+    assert!(!lights.manifold.crossable.is_empty());
+    let wrong = batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongManifoldWeight));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the caustic counted twice went unnoticed"
+    );
 }
 
 /// A floor under a small one-sided lamp, and on it a clear glass ball (radius 1) with a white

@@ -1332,7 +1332,7 @@ fn nee_path() -> anyhow::Result<Svg> {
 }
 
 /// Chapter 12: the manifold connection through a glass sphere (index 1.5), in its plane, each path
-/// found by the renderer's own solver ([`rtl_render::manifold::Interface::refractions`]): on the left
+/// found by the renderer's own solver ([`rtl_render::manifold::Interface::leaving`]): on the left
 /// a point deep inside lit through the top by points across a light, on the right a point near the
 /// surface that a point far behind it reaches through three refraction points.
 fn manifold() -> anyhow::Result<Svg> {
@@ -1350,6 +1350,8 @@ fn manifold() -> anyhow::Result<Svg> {
         ior: 1.5,
         material: rtl_render::scene::MaterialId(0),
         filled: 0.0,
+        clear: true,
+        holds: true,
     };
     let scale = 95.0;
     // panel centres, in pixels
@@ -1378,7 +1380,7 @@ fn manifold() -> anyhow::Result<Svg> {
     );
     for i in 0..5 {
         let y = l0 + (l1 - l0) * (0.1 + 0.2 * i as f64);
-        let found = glass.refractions(p, y);
+        let found = glass.leaving(p, y);
         ensure!(
             found.as_slice().len() == 1,
             "expected one refraction point towards the light, found {}",
@@ -1412,7 +1414,7 @@ fn manifold() -> anyhow::Result<Svg> {
     // Right: a point near the surface, and one far behind it seen through the far side.
     let p = DVec3::new(0.97, 0.0, 0.0);
     let y = DVec3::new(-3.2, 0.74, 0.0);
-    let found = glass.refractions(p, y);
+    let found = glass.leaving(p, y);
     ensure!(
         found.as_slice().len() >= 2,
         "expected several refraction points, found {}",

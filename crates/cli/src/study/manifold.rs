@@ -77,8 +77,8 @@ pub fn run(args: ManifoldArgs) -> Result<()> {
     anyhow::ensure!(args.spp >= 1, "--spp 0: at least one sample per pixel");
     let out = super::out_dir(args.out, "manifold")?;
     let builtin = scenes::find("book2-final").map_err(|e| anyhow::anyhow!(e))?;
-    let built = (builtin.build)(&Default::default())
-        .map_err(|e| anyhow::anyhow!("book2-final: {e}"))?;
+    let built =
+        (builtin.build)(&Default::default()).map_err(|e| anyhow::anyhow!("book2-final: {e}"))?;
     let scene = &built.scene;
     let variants = [
         (
@@ -190,6 +190,9 @@ pub fn run(args: ManifoldArgs) -> Result<()> {
         scale,
         3,
     )?;
-    eprintln!("wrote manifold.csv and manifold-noise.png to {}", out.display());
+    eprintln!(
+        "wrote manifold.csv and manifold-noise.png to {}",
+        out.display()
+    );
     Ok(())
 }
