@@ -212,7 +212,8 @@ pub(crate) fn leaving(
 /// uniformly by a number of the sample's generator), towards an emitter: the point `y` (from two
 /// more), then every crossing found, each by `s G (1 - F_in) (1 - F_out) T L_e / p_A` with the power
 /// heuristic's weight. Returns the contribution and the interface, or `None` where no connection
-/// is made from the vertex (outside no crossable interface).
+/// is made from the vertex (no interface and emitter pass [`Manifold::reaches`] from it, and
+/// nothing is drawn; or it lies inside the chosen interface).
 #[inline(never)]
 pub(crate) fn crossing(
     scene: &Scene,
@@ -224,6 +225,9 @@ pub(crate) fn crossing(
     let manifold = &lights.manifold;
     let n = manifold.crossable.len();
     let p = vertex.hit.p;
+    if !manifold.reaches_any(p) {
+        return None;
+    }
     let pick = ctx.uniform() * n as f64;
     let i = (pick as usize).min(n.checked_sub(1)?);
     let k = manifold.crossable[i];

@@ -1359,14 +1359,17 @@ impl MisPath {
             shadow = Some(ray_to_light);
         }
         // Light that comes through a glass ball: the manifold connections, if their emitter would
-        // be within the path's depth (two segments away from inside, three from outside).
+        // be within the path's depth (two segments away from inside, three from outside). From
+        // inside with the light sample's numbers (which no light sample uses there), from outside
+        // after the material sample (the order of the lanes' vertex, [`MisPath::lambertian_from_lanes`]).
+        let vertex_at = vertex;
         let vertex = connection::Vertex {
             hit,
             pdf: &pdf,
             towards_others: towards_others.as_ref(),
             time: ray.time,
         };
-        let connected = match self.interface {
+        let mut connected = match self.interface {
             Some(k)
                 if !light_strategy
                     && options.manifold
@@ -1378,16 +1381,6 @@ impl MisPath {
                 let c = connection::leaving(scene, lights, &vertex, k, u, variant, ctx);
                 self.l += self.throughput * attenuation * c;
                 Some((k, connection::Kind::Leaving))
-            }
-            _ if light_strategy
-                && options.manifold
-                && !lights.manifold.crossable.is_empty()
-                && depth + 3 < max_depth =>
-            {
-                connection::crossing(scene, lights, &vertex, variant, ctx).map(|(c, k)| {
-                    self.l += self.throughput * attenuation * c;
-                    (k, connection::Kind::Crossing)
-                })
             }
             _ => None,
         };
@@ -1406,6 +1399,10 @@ impl MisPath {
             Some(t) => with_others(*t, pdf).sample(u),
             None => pdf.sample(u),
         };
+        if light_strategy {
+            let crossed = self.cross(scene, lights, &vertex, attenuation, &vertex_at, ctx);
+            connected = crossed.map(|k| (k, connection::Kind::Crossing));
+        }
         let Some(ms) = sampled else {
             return end;
         };
@@ -1426,6 +1423,56 @@ impl MisPath {
             shadow,
             next: Some(next),
         }
+    }
+
+    /// The crossing connection ([`connection::crossing`]) of a vertex outside the dielectrics
+    /// (`vertex`, of `attenuation`; `at` says where in the path it is), if one is made there: its
+    /// contribution is added, and the interface it crossed returned.
+    #[inline]
+    fn cross(
+        &mut self,
+        scene: &Scene,
+        lights: &Lights,
+        vertex: &connection::Vertex<'_>,
+        attenuation: Color,
+        at: &MisVertex,
+        ctx: &mut Ctx,
+    ) -> Option<u16> {
+        if !(at.options.manifold
+            && !lights.manifold.crossable.is_empty()
+            && at.depth + 3 < at.max_depth)
+        {
+            return None;
+        }
+        let (c, k) = connection::crossing(scene, lights, vertex, at.variant, ctx)?;
+        self.l += self.throughput * attenuation * c;
+        Some(k)
+    }
+
+    /// The crossing connection of a Lambertian vertex whose light and material samples the lanes
+    /// computed ([`crate::mis_vertex8`]): `hit` its record, `albedo` its attenuation. Called before
+    /// [`MisPath::lambertian_from_lanes`], which takes the interface it returns: the same numbers
+    /// and sums, in the same order, as [`MisPath::vertex`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn crossing_from_lanes(
+        &mut self,
+        scene: &Scene,
+        lights: &Lights,
+        hit: &Hit,
+        albedo: Color,
+        time: f64,
+        at: &MisVertex,
+        ctx: &mut Ctx,
+    ) -> Option<u16> {
+        let pdf = VertexPdf::Material(ScatterPdf::Cosine(rtl_pdf::CosinePdf::new(hit.normal)));
+        let towards_others = HittablePdf::new(hit.p, &lights.others);
+        let vertex = connection::Vertex {
+            hit,
+            pdf: &pdf,
+            towards_others: towards_others.as_ref(),
+            time,
+        };
+        self.cross(scene, lights, &vertex, albedo, at, ctx)
     }
 
     /// Russian roulette after the vertex at `depth` (`in_medium`: it scattered in a medium):
@@ -1464,12 +1511,14 @@ impl MisPath {
     /// computed in the lanes ([`crate::mis_vertex8`]): `waiting`, the light sample's carried
     /// throughput and weight if it made a shadow ray; `bounce`, the throughput after the
     /// material sample, the vertex's point and the density the direction was drawn with, if it
-    /// made one. Whether the path goes on (after Russian roulette).
+    /// made one; `crossed`, the interface its crossing connection crossed
+    /// ([`MisPath::crossing_from_lanes`]). Whether the path goes on (after Russian roulette).
     #[inline(always)]
     pub fn lambertian_from_lanes(
         &mut self,
         waiting: Option<(Color, f64)>,
         bounce: Option<(Color, Point3, f64)>,
+        crossed: Option<u16>,
         depth: u32,
         options: MisOptions,
         ctx: &mut Ctx,
@@ -1477,12 +1526,13 @@ impl MisPath {
         if waiting.is_some() {
             self.waiting = waiting;
         }
+        self.through = None;
         let Some((throughput, p, pdf)) = bounce else {
             return false;
         };
         self.throughput = throughput;
         self.previous = Some((p, pdf));
-        self.through = None;
+        self.through = crossed.map(|k| Through::new(p, pdf, k, connection::Kind::Crossing));
         self.survives_roulette(depth, false, options, MisVariant::Book, ctx)
     }
 

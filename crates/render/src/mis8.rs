@@ -21,12 +21,12 @@
 //! (tested in `crates/render/tests/paths8.rs`).
 
 use crate::integrator::Strategy;
-use crate::lights::Lights;
 use crate::scene::{GroupId, Scene};
 #[cfg(target_arch = "x86_64")]
 use crate::{
     integrator::{MisPath, MisStep, MisVariant, MisVertex},
     lanes::F64x8,
+    material::Material,
     mis_vertex8::{MisIn, MisOut},
     paths8::{LANES, RowSamples},
     ray::{Interval, Ray},
@@ -42,17 +42,11 @@ const PACKETS: usize = 2;
 
 /// Whether a render of `scene` by `strategy` traces `mis` paths side by side in the lanes: for
 /// `mis`, in a scene without media whose rays meet a small group, on a processor with AVX2 or
-/// AVX-512 ([`Scene::hits_eight_at_once`]), unless it makes manifold connections (`lights`: a
-/// dielectric sphere holds something that scatters), which the lanes' vertex does not.
-pub fn applies(scene: &Scene, strategy: Strategy, lights: &Lights) -> bool {
-    match strategy {
-        Strategy::Mis(options) => {
-            scene.features.media == 0
-                && scene.hits_eight_at_once(GroupId(0))
-                && !(options.manifold && lights.manifold.is_active())
-        }
-        _ => false,
-    }
+/// AVX-512 ([`Scene::hits_eight_at_once`]).
+pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
+    matches!(strategy, Strategy::Mis(_))
+        && scene.features.media == 0
+        && scene.hits_eight_at_once(GroupId(0))
 }
 
 /// A batch of up to eight Lambertian vertices gathered from both packets for the lanes: their
@@ -119,6 +113,9 @@ pub(crate) fn render_row(
         .mis_options()
         .expect("mis8 renders only `mis`");
     let max_depth = r.settings.max_depth;
+    // crossing connections through a glass ball at the lanes' vertices (the one-path vertex makes
+    // its own)
+    let crossing = options.manifold && !lights.manifold.crossable.is_empty();
     let mut samples = RowSamples::new(j, k0, k1, sum, count, dropped);
     // Everything per path is indexed `[g][l]`: packet `g`, lane `l`.
     let mut ctxs: [[Ctx; LANES]; PACKETS] =
@@ -306,8 +303,38 @@ pub(crate) fn render_row(
                         let bounce = (out.next & (1 << i) != 0)
                             .then(|| (at(&out.throughput, i), at(&out.p, i), out.pdf.0[i]));
                         let time = rays[l].time;
-                        let goes_on = paths[l]
-                            .lambertian_from_lanes(waiting, bounce, depths[l], options, ctx);
+                        // The crossing connection, where glass can focus light here: one path at a
+                        // time, from the vertex's record.
+                        let crossed = if crossing
+                            && depths[l] + 3 < max_depth
+                            && lights.manifold.reaches_any(at(&out.p, i))
+                        {
+                            found
+                                .record(&closest[g], &per_lane[g], l, &rays[l])
+                                .and_then(|hit| {
+                                    let albedo = match &scene.materials[hit.material.index()] {
+                                        Material::Lambertian { albedo } => {
+                                            albedo.value(&hit, &scene.textures, ctx)
+                                        }
+                                        _ => unreachable!("the lanes' vertices are Lambertian"),
+                                    };
+                                    let at = MisVertex {
+                                        depth: depths[l],
+                                        max_depth,
+                                        samples_lights: true,
+                                        options,
+                                        variant: MisVariant::Book,
+                                    };
+                                    paths[l].crossing_from_lanes(
+                                        scene, lights, &hit, albedo, time, &at, ctx,
+                                    )
+                                })
+                        } else {
+                            None
+                        };
+                        let goes_on = paths[l].lambertian_from_lanes(
+                            waiting, bounce, crossed, depths[l], options, ctx,
+                        );
                         MisStep {
                             shadow: waiting.map(|_| {
                                 Ray::new(

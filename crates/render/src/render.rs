@@ -154,7 +154,7 @@ impl<'a> Renderer<'a> {
         let spherical_rectangles = options.is_some_and(|o| o.spherical_rectangles);
         let lights = Lights::new(scene, spherical_rectangles);
         let paths_in_lanes = crate::paths8::applies(scene, settings.strategy)
-            || crate::mis8::applies(scene, settings.strategy, &lights);
+            || crate::mis8::applies(scene, settings.strategy);
         let mixture8 = (paths_in_lanes && settings.strategy == Strategy::Mixture)
             .then(|| crate::mixture8::Mixture8::new(&lights.all, settings.mixture_weight))
             .flatten();

@@ -260,10 +260,17 @@ impl Plane {
     }
 
     /// The root of `g` for `t` in `[lo, hi]`, where `g` changes sign (positive at `lo` if
-    /// `positive_lo`): Newton's steps in `t`, a bisection wherever a step would leave the bracket.
-    fn refine(&self, mut lo: f64, mut hi: f64, positive_lo: bool) -> (f64, Traced<Dual>) {
+    /// `positive_lo`): Newton's steps in `t` from `start`, a bisection wherever a step would leave
+    /// the bracket.
+    fn refine(
+        &self,
+        mut lo: f64,
+        mut hi: f64,
+        positive_lo: bool,
+        start: f64,
+    ) -> (f64, Traced<Dual>) {
         let rising = !positive_lo;
-        let mut x = 0.5 * (lo + hi);
+        let mut x = start;
         let mut at = self.trace(Dual { v: x, d: 1.0 });
         for _ in 0..MAX_STEPS {
             let g = at.g;
@@ -335,17 +342,24 @@ impl Interface {
         };
         let half = ((p_dist - r) / (p_dist + r)).sqrt();
         let at = |j: usize| half * (2.0 * j as f64 / SCAN as f64 - 1.0);
-        let positive_at = |t: f64| plane.trace(t).g > 0.0;
-        let mut previous = positive_at(at(0));
+        // (every point first, independently of the others, so that their arithmetic overlaps)
+        let g: [f64; SCAN + 1] = std::array::from_fn(|j| plane.trace(at(j)).g);
         for j in 1..=SCAN {
-            let positive = positive_at(at(j));
-            if positive != previous {
-                let (t, traced) = plane.refine(at(j - 1), at(j), previous);
+            let (a, b) = (g[j - 1], g[j]);
+            if (a > 0.0) != (b > 0.0) {
+                let (lo, hi) = (at(j - 1), at(j));
+                // Newton starts where the chord crosses 0
+                let secant = lo + (hi - lo) * a / (a - b);
+                let start = if secant > lo && secant < hi {
+                    secant
+                } else {
+                    0.5 * (lo + hi)
+                };
+                let (t, traced) = plane.refine(lo, hi, a > 0.0, start);
                 if let Some(found) = self.crossing_at(&plane, t, &traced, e1, e2) {
                     out.push(found);
                 }
             }
-            previous = positive;
         }
         out
     }

@@ -204,16 +204,15 @@ impl Interface {
             let (c, s) = plane.point(t);
             plane.h_positive(c, s)
         };
-        let mut previous = positive_at(at(0));
+        // (every point first, independently of the others, so that their arithmetic overlaps)
+        let positive: [bool; SCAN + 1] = std::array::from_fn(|j| positive_at(at(j)));
         for j in 1..=SCAN {
-            let positive = positive_at(at(j));
-            if positive != previous {
-                let (c, s) = plane.refine(at(j - 1), at(j), previous);
+            if positive[j] != positive[j - 1] {
+                let (c, s) = plane.refine(at(j - 1), at(j), positive[j - 1]);
                 if let Some(found) = self.refraction_at(&plane, c, s, e1, e2, y2) {
                     out.push(found);
                 }
             }
-            previous = positive;
         }
         out
     }
