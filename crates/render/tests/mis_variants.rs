@@ -524,7 +524,8 @@ fn mis_with_the_fuzzy_metals_density_agrees_and_a_cosine_lobe_is_caught() {
 }
 
 /// book2-final itself: the estimator against the one before segment sampling and the metal's
-/// density, region by region (32 x 32 pixels, 16 batches of 64 samples). Expensive: run with
+/// density, and against itself without manifold connections, region by region (32 x 32 pixels, 16
+/// batches of 64 samples). Expensive: run with
 /// `cargo test --release -p rtl-render --test mis_variants -- --ignored --nocapture`.
 #[test]
 #[ignore = "expensive: run in release with --ignored"]
@@ -552,4 +553,16 @@ fn book2_final_agrees_with_the_estimator_before() {
     }
     let d = disagreements(&before, &now);
     assert!(d.is_empty(), "{}", d.join("\n"));
+    // and without the manifold connections through the glass balls
+    let without = variant_batches::region_means(width, GRID, batches, 5000, |seed| {
+        let options = MisOptions {
+            manifold: false,
+            ..MisOptions::DEFAULT
+        };
+        let st = variant_batches::settings(width, scene.max_depth, seed, Strategy::Mis(options));
+        let (acc, _) = render(scene, st, spp);
+        acc.image()
+    });
+    let d = disagreements(&without, &now);
+    assert!(d.is_empty(), "without connections:\n{}", d.join("\n"));
 }

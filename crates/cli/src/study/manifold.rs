@@ -185,7 +185,7 @@ pub fn run(args: ManifoldArgs) -> Result<()> {
     let scale = 360usize.div_ceil(args.width).max(1);
     image_grid(
         &out.join("manifold-noise.png"),
-        "light through the blue sphere's glass: each pixel's variance, 1e-6 (dark) to 1e-1 (bright), display values",
+        "book 2's final scene, light through its glass balls: each pixel's variance, 1e-6 (dark) to 1e-1 (bright)",
         &panels,
         scale,
         3,

@@ -107,6 +107,13 @@ fn strategies() -> Vec<(String, Strategy)> {
             },
         ),
         (
+            toggle("manifold", all.manifold),
+            MisOptions {
+                manifold: !all.manifold,
+                ..all
+            },
+        ),
+        (
             "mis-plain".to_string(),
             MisOptions {
                 russian_roulette: false,

@@ -360,7 +360,7 @@ impl Manifold {
         };
         let axis = iface.centre - p;
         let (d2, r) = (axis.length_squared(), iface.radius);
-        if !(d2 > r * r) {
+        if d2.is_nan() || d2 <= r * r {
             return false;
         }
         let tangent = (d2 - r * r).sqrt();
