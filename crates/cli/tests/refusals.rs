@@ -644,3 +644,35 @@ fn no_lanes_changes_nothing_but_the_speed_and_explain_says_how_paths_go() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn explain_says_through_which_glass_the_manifold_connections_go() {
+    let d = dir("manifold-explain");
+    let line = |args: &[&str]| {
+        let out = rtl(&d, args);
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        text.lines()
+            .find(|l| l.trim_start().starts_with("manifold connections"))
+            .unwrap_or_else(|| panic!("no manifold line: {text}"))
+            .to_string()
+    };
+    // The Cornell box's glass ball holds nothing, but a connection can cross it.
+    let cornell = line(&["render", "cornell", "--explain"]);
+    assert!(
+        cornell.contains("used") && cornell.contains("across 1 clear glass sphere,"),
+        "{cornell}"
+    );
+    assert!(!cornell.contains("holding"), "{cornell}");
+    // Book 2's final scene: out of the blue sphere (and of the fogged glass ball), across the ball.
+    let b2 = line(&["render", "book2-final", "--explain"]);
+    assert!(b2.contains("out of 2 glass spheres holding media"), "{b2}");
+    assert!(b2.contains("across 1 clear glass sphere,"), "{b2}");
+    // Off by the flag, and nothing to do without glass or without emitters.
+    let off = line(&["render", "cornell", "--no-manifold", "--explain"]);
+    assert!(off.contains("off (--no-manifold)"), "{off}");
+    assert!(line(&["render", "quads", "--explain"]).contains("skipped"));
+    assert!(line(&["render", "book1-final", "--explain"]).contains("skipped"));
+    let mixture = line(&["render", "cornell", "--strategy", "mixture", "--explain"]);
+    assert!(mixture.contains("not used"), "{mixture}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -315,9 +315,11 @@ impl Manifold {
                 (i.holds || i.crossable()).then_some(i)
             })
             .collect();
+        let most = MAX_CROSSING_PAIRS / emitters.len().max(1);
         let crossable = (interfaces.iter().enumerate())
             .filter(|(_, i)| i.crossable())
             .map(|(k, _)| k as u16)
+            .take(most)
             .collect();
         let reach = interfaces
             .iter()
@@ -431,26 +433,49 @@ impl Manifold {
     pub fn describe(&self) -> String {
         let holding = self.interfaces.iter().filter(|i| i.holds).count();
         let plural = |n: usize| if n == 1 { "" } else { "s" };
-        match (self.interfaces.len(), self.emitters.len()) {
-            (0, _) => "skipped (no glass sphere in world space)".into(),
-            (_, 0) => "skipped (no emitter to connect to)".into(),
-            (_, e) => format!(
-                "used    (out of {holding} dielectric sphere{} holding media or surfaces, across {} \
-                 clear one{}, to {e} emitter{})",
-                plural(holding),
-                self.crossable.len(),
-                plural(self.crossable.len()),
-                plural(e),
-            ),
+        if self.interfaces.is_empty() {
+            return "skipped (no glass sphere in world space that holds something or can be \
+                    crossed)"
+                .into();
         }
+        if self.emitters.is_empty() {
+            return "skipped (no emitter to connect to)".into();
+        }
+        let mut through = Vec::new();
+        if holding > 0 {
+            through.push(format!(
+                "out of {holding} glass sphere{} holding media or surfaces",
+                plural(holding)
+            ));
+        }
+        if !self.crossable.is_empty() {
+            let n = self.crossable.len();
+            through.push(format!("across {n} clear glass sphere{}", plural(n)));
+        }
+        let e = self.emitters.len();
+        format!(
+            "used    ({}, to {e} emitter{})",
+            through.join(" and "),
+            plural(e)
+        )
     }
 }
 
 /// Groups nest at most this deep (as in [`crate::lights`]).
 const MAX_NESTING: u32 = 64;
 
+/// The most glass spheres connections go through: the first ones of the scene (in the order of
+/// its world group). A scene with more leaves the light through the others to material sampling:
+/// each refraction into glass looks its sphere up among them, and each is checked against the
+/// whole scene when it is built.
+pub const MAX_INTERFACES: usize = 32;
+
+/// The most pairs of a crossable interface and an emitter ([`Manifold::reaches`] tries them all
+/// at every vertex): the first crossable interfaces that keep within it, none with more emitters.
+pub const MAX_CROSSING_PAIRS: usize = 32;
+
 /// The static dielectric spheres of radius > 0 placed in world space (the world group and the
-/// groups nested in it without a transform).
+/// groups nested in it without a transform), at most [`MAX_INTERFACES`].
 fn world_dielectric_spheres(scene: &Scene, g: GroupId, depth: u32, out: &mut Vec<Interface>) {
     let Some(group) = scene.groups.get(g.0 as usize) else {
         return;
@@ -459,6 +484,9 @@ fn world_dielectric_spheres(scene: &Scene, g: GroupId, depth: u32, out: &mut Vec
         return;
     }
     for o in &group.objects {
+        if out.len() >= MAX_INTERFACES {
+            return;
+        }
         match o {
             Object::Sphere(s) if !s.is_moving() && s.radius > 0.0 && s.radius.is_finite() => {
                 if let Some(Material::Dielectric { ior }) = scene.materials.get(s.material.index())
@@ -510,7 +538,7 @@ struct Contents {
 /// Adds to `out` what group `g`, placed by `to_world`, has inside the open ball of `iface`: surfaces
 /// that cross it (exactly for spheres and quads, by its box for a moving sphere or an instance's
 /// group), and media whose volume overlaps it (a medium bounded by a sphere fills the ball if that
-/// sphere holds it).
+/// sphere holds it). A surface must reach a relative 1e-9 into the ball to count.
 fn contents(
     scene: &Scene,
     g: GroupId,
@@ -525,13 +553,17 @@ fn contents(
     if depth > MAX_NESTING {
         return;
     }
-    let (c, r) = (iface.centre, iface.radius);
+    // A surface that only touches the ball (a ball resting on a floor) leaves it clear: what
+    // crosses it must come closer to the centre than the radius less a relative 1e-9.
+    let (c, r) = (iface.centre, iface.radius * (1.0 - 1e-9));
     for o in &group.objects {
         let (crosses, material) = match o {
             Object::Sphere(s) => {
                 let centre = to_world.point(s.center);
-                let itself =
-                    !s.is_moving() && centre == c && s.radius == r && s.material == iface.material;
+                let itself = !s.is_moving()
+                    && centre == c
+                    && s.radius == iface.radius
+                    && s.material == iface.material;
                 let crosses = if itself {
                     false
                 } else if s.is_moving() {
