@@ -334,7 +334,9 @@ fn explain(
     if f.flattened_instances > 0 {
         println!(
             "  instances           : {} placed in world space at build time (rigid, of non-emitting \
-             quads: tested in their parent's quad packets, no ray moved into their frame)",
+             quads: tested in their parent's quad packets, no ray moved into their frame; where \
+             eight rays are tested at once, an instance of four quads or more only for the rays \
+             that enter its box)",
             f.flattened_instances
         );
     }

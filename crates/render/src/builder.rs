@@ -4,7 +4,7 @@
 use crate::aabb::Aabb;
 use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
-use crate::flatten::flatten_instances;
+use crate::flatten::flatten_instances_marked;
 use crate::ids::{GroupId, MaterialId, TextureId};
 use crate::material::{Albedo, Material};
 use crate::scene::{
@@ -276,11 +276,12 @@ impl SceneBuilder {
             });
             draws_of[gi] = draws;
             // A small group's rigid instances of quads, flattened into it (see `crate::flatten`).
-            let flattened;
-            let objects = if draws || !self.flatten {
-                &self.groups[gi]
+            let (flattened, from_instance);
+            let (objects, from) = if draws || !self.flatten {
+                (&self.groups[gi], None)
             } else {
-                flattened = flatten_instances(&self.groups[gi], &self.groups, &self.materials);
+                (flattened, from_instance) =
+                    flatten_instances_marked(&self.groups[gi], &self.groups, &self.materials);
                 let instances = |objects: &[Object]| {
                     objects
                         .iter()
@@ -288,7 +289,7 @@ impl SceneBuilder {
                         .count()
                 };
                 flattened_instances += instances(&self.groups[gi]) - instances(&flattened);
-                &flattened
+                (&flattened, Some(&from_instance))
             };
             let mut bounds = Vec::with_capacity(objects.len());
             for o in objects {
@@ -315,8 +316,19 @@ impl SceneBuilder {
             let bounds_in_order: Vec<Aabb> =
                 bvh.order.iter().map(|&i| bounds[i as usize]).collect();
             bounds_of[gi] = Some(bvh.bounds());
+            // each object's flattened instance, if it came from one (`crate::ray8::Cluster`)
+            let instance_in_order: Vec<Option<u32>> = match from {
+                Some(from) => bvh.order.iter().map(|&i| from[i as usize]).collect(),
+                None => vec![None; objects.len()],
+            };
             built[gi] = Some(Group {
-                accel: Accel::new(&objects_in_order, &bounds_in_order, &bvh, draws),
+                accel: Accel::new(
+                    &objects_in_order,
+                    &bounds_in_order,
+                    &instance_in_order,
+                    &bvh,
+                    draws,
+                ),
                 objects: objects_in_order,
             });
         }

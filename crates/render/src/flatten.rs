@@ -57,12 +57,24 @@ pub fn flatten_instances(
     groups: &[Vec<Object>],
     materials: &[Material],
 ) -> Vec<Object> {
-    let unchanged = || objects.to_vec();
+    flatten_instances_marked(objects, groups, materials).0
+}
+
+/// [`flatten_instances`], and beside each object the instance it came from, if flattened (the
+/// flattened instances numbered from 0 in their order in `objects`): the quads that the lanes test
+/// behind their instance's box ([`crate::ray8::Cluster`]).
+pub fn flatten_instances_marked(
+    objects: &[Object],
+    groups: &[Vec<Object>],
+    materials: &[Material],
+) -> (Vec<Object>, Vec<Option<u32>>) {
+    let unchanged = || (objects.to_vec(), vec![None; objects.len()]);
     if objects.iter().any(|o| matches!(o, Object::Medium(_))) {
         return unchanged();
     }
     let mut out = Vec::with_capacity(objects.len());
-    let mut flattened = false;
+    let mut from = Vec::with_capacity(objects.len());
+    let mut flattened = 0;
     for o in objects {
         match o {
             Object::Instance { transform, group } => {
@@ -71,18 +83,25 @@ pub fn flatten_instances(
                     .and_then(|inner| placed_quads(transform, inner, materials))
                 {
                     Some(quads) => {
+                        from.extend(quads.iter().map(|_| Some(flattened)));
                         out.extend(quads.into_iter().map(Object::Quad));
-                        flattened = true;
+                        flattened += 1;
                     }
-                    None => out.push(*o),
+                    None => {
+                        out.push(*o);
+                        from.push(None);
+                    }
                 }
             }
-            _ => out.push(*o),
+            _ => {
+                out.push(*o);
+                from.push(None);
+            }
         }
     }
     let quads = out.iter().filter(|o| matches!(o, Object::Quad(_))).count();
-    if !flattened || quads > SMALL_QUADS || out.len() - quads > SMALL_OTHERS {
+    if flattened == 0 || quads > SMALL_QUADS || out.len() - quads > SMALL_OTHERS {
         return unchanged();
     }
-    out
+    (out, from)
 }

@@ -190,136 +190,373 @@ impl QuadForm {
     }
 }
 
+/// The quads of one rigid instance placed in world space by [`crate::flatten`] (book 3's rotated
+/// box: six of the Cornell room's twelve): which of a small group's quads (bit `k` for quad `k` in
+/// the packets' order) and the box that bounds them. The lanes test them after the group's other
+/// quads, and only where a ray enters the box before its closest hit so far, as the one-ray traversal
+/// would test them behind the instance's box had they not been flattened; on equal `t` the quad that
+/// comes first in the packets' order still wins, so the hits are those of testing every quad in
+/// order, bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cluster {
+    pub quads: u64,
+    pub bounds: Aabb,
+}
+
+impl Cluster {
+    /// Fewest quads worth a box of their own (the box's test costs about what one quad's does).
+    pub const MIN_QUADS: u32 = 4;
+}
+
+/// One quad as eight rays at once test it: its place in the packets' order, its [`QuadForm`], and
+/// its numbers, read out of the packets once per scene (the loop over the quads then has nothing to
+/// decide but the form).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaneQuad {
+    pub index: u32,
+    pub form: QuadForm,
+    pub d: f64,
+    pub q: [f64; 3],
+    pub du: [f64; 3],
+    pub dv: [f64; 3],
+    pub normal: [f64; 3],
+}
+
+/// A small group's quads as eight rays at once test them ([`closest_avx2`], [`closest_avx512`]):
+/// those in no [`Cluster`] in the packets' order, then each cluster's behind its box.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LaneQuads {
+    pub rest: Vec<LaneQuad>,
+    pub clusters: Vec<(Aabb, Vec<LaneQuad>)>,
+}
+
+impl LaneQuads {
+    /// The quads of `packets` (unused lanes left out), the quads of each of `clusters` apart.
+    pub fn new(packets: &[Quad4], clusters: &[Cluster]) -> LaneQuads {
+        let mut all = Vec::new();
+        for (i, p) in packets.iter().enumerate() {
+            for lane in 0..4 {
+                let form = QuadForm::of(p, lane);
+                if form == QuadForm::Unused {
+                    continue;
+                }
+                let get = |v: &[crate::lanes::F64x4; 3]| [v[0].0[lane], v[1].0[lane], v[2].0[lane]];
+                all.push(LaneQuad {
+                    index: (4 * i + lane) as u32,
+                    form,
+                    d: p.d.0[lane],
+                    q: get(&p.q),
+                    du: get(&p.du),
+                    dv: get(&p.dv),
+                    normal: get(&p.normal),
+                });
+            }
+        }
+        let held = |q: &LaneQuad, c: &Cluster| q.index < 64 && (c.quads >> q.index) & 1 != 0;
+        LaneQuads {
+            rest: all
+                .iter()
+                .filter(|q| !clusters.iter().any(|c| held(q, c)))
+                .copied()
+                .collect(),
+            clusters: clusters
+                .iter()
+                .map(|c| {
+                    (
+                        c.bounds,
+                        all.iter().filter(|q| held(q, c)).copied().collect(),
+                    )
+                })
+                .collect(),
+        }
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 pub use wide::{closest_avx2, closest_avx512};
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
-    use super::{Closest8, NO_HIT, QuadForm, Rays8, SPHERE};
+    use super::{Closest8, LaneQuad, LaneQuads, NO_HIT, QuadForm, Rays8, SPHERE};
     use crate::aabb::Aabb;
     use crate::ray::Interval;
-    use crate::shapes::{Quad4, Sphere};
+    use crate::shapes::Sphere;
     use crate::wide8::*;
 
-    /// [`super::closest_portable`] in the lanes, written once for both instruction sets; `forms`
-    /// the quads' [`QuadForm`]s (any quad without one is taken in full).
+    /// Each lane's closest hit so far, in registers: [`Closest8`]'s fields (`which` the hit's number
+    /// as a float, exact below 2^53).
+    #[derive(Clone, Copy)]
+    struct Found<W> {
+        t: W,
+        alpha: W,
+        beta: W,
+        which: W,
+    }
+
+    /// The quads `quads`, one after the other, each lane's closest hit so far in `found`.
+    /// `ANY_ORDER`: `found` may hold a quad that comes later in the packets' order (the rest are
+    /// taken before the clusters), so an equal `t` goes to whichever comes first.
     #[inline(always)]
-    fn closest<W: Wide8>(
-        packets: &[Quad4],
-        forms: &[QuadForm],
+    fn quads<W: Lanes, const ANY_ORDER: bool>(
+        quads: &[LaneQuad],
+        o: V3<W>,
+        dir: V3<W>,
+        range: Interval,
+        found: &mut Found<W>,
+    ) {
+        let (zero, one) = (o[0].zero_like(), o[0].splat_like(1.0));
+        let min = o[0].splat_like(range.min);
+        let no_hit = o[0].splat_like(NO_HIT as f64);
+        // (the axis forms hold for ranges that exclude every zero and negative parameter)
+        let axis_forms = range.min >= 0.0;
+        let neg_dir = [-dir[0], -dir[1], -dir[2]];
+        for quad in quads {
+            let (t, alpha, beta, in_plane) = match quad.form {
+                QuadForm::Unused => continue,
+                QuadForm::Axis { k, neg, plane } if axis_forms => {
+                    // (each axis a constant, so that the rays' coordinates stay in registers)
+                    let d = zero.splat_like(quad.d);
+                    let t = match k {
+                        0 => axis_t::<W, 0>(d, o, dir, neg_dir, neg),
+                        1 => axis_t::<W, 1>(d, o, dir, neg_dir, neg),
+                        _ => axis_t::<W, 2>(d, o, dir, neg_dir, neg),
+                    };
+                    match plane {
+                        Some(ab) => {
+                            let (alpha, beta) = match ab {
+                                (1, 2) => in_plane::<W, 1, 2>(quad, o, dir, t),
+                                (2, 1) => in_plane::<W, 2, 1>(quad, o, dir, t),
+                                (0, 2) => in_plane::<W, 0, 2>(quad, o, dir, t),
+                                (2, 0) => in_plane::<W, 2, 0>(quad, o, dir, t),
+                                (0, 1) => in_plane::<W, 0, 1>(quad, o, dir, t),
+                                _ => in_plane::<W, 1, 0>(quad, o, dir, t),
+                            };
+                            (t, alpha, beta, true)
+                        }
+                        None => {
+                            let (alpha, beta) = coordinates(quad, o, dir, t);
+                            (t, alpha, beta, false)
+                        }
+                    }
+                }
+                _ => {
+                    // As `Quad::hit`: t = (d - n . o) / (n . dir).
+                    let n = splat3_of(zero, quad.normal);
+                    let t = (zero.splat_like(quad.d) - dot(n, o)) / dot(n, dir);
+                    let (alpha, beta) = coordinates(quad, o, dir, t);
+                    (t, alpha, beta, false)
+                }
+            };
+            let number = zero.splat_like(quad.index as f64);
+            // Inside the range, shrunk to each lane's closest hit so far (on a tie, closer to the
+            // front of the packets' order), and the quad.
+            let before = if ANY_ORDER {
+                t.lt(found.t) | (t.eq(found.t) & number.lt(found.which) & found.which.lt(no_hit))
+            } else {
+                t.lt(found.t)
+            };
+            let k =
+                min.lt(t) & before & zero.le(alpha) & alpha.le(one) & zero.le(beta) & beta.le(one);
+            // a hit on an edge line of an axis-plane quad: the zero's sign of the full products
+            let (alpha, beta) = if in_plane && !(k & (alpha.eq(zero) | beta.eq(zero))).is_empty() {
+                coordinates(quad, o, dir, t)
+            } else {
+                (alpha, beta)
+            };
+            found.t = found.t.select(k, t);
+            found.alpha = found.alpha.select(k, alpha);
+            found.beta = found.beta.select(k, beta);
+            found.which = found.which.select(k, number);
+        }
+    }
+
+    /// The width of [`closest`]'s lanes, and how it tests an instance's quads where only some of
+    /// the lanes enter their box.
+    trait Packet: Lanes {
+        /// A cluster's quads `quads` ([`quads`], in any order) for the lanes of `entering`.
+        fn instance(
+            quads: &[LaneQuad],
+            o: V3<Self>,
+            dir: V3<Self>,
+            range: Interval,
+            found: &mut Found<Self>,
+            entering: Self::Mask,
+        );
+    }
+
+    impl Packet for Avx512 {
+        /// All eight lanes at once (the lanes not entering find no closer hit there: the box
+        /// bounds every quad in it).
+        #[inline(always)]
+        fn instance(
+            cluster: &[LaneQuad],
+            o: V3<Self>,
+            dir: V3<Self>,
+            range: Interval,
+            found: &mut Found<Self>,
+            _entering: Bits8,
+        ) {
+            quads::<Self, true>(cluster, o, dir, range, found);
+        }
+    }
+
+    impl Packet for Avx2 {
+        /// Each half of the packet whose four lanes hold one that enters, in one register (a ray
+        /// in the room meets the box's bounds about one time in six or seven, so that most
+        /// packets take one half or none).
+        #[inline(always)]
+        fn instance(
+            cluster: &[LaneQuad],
+            o: V3<Self>,
+            dir: V3<Self>,
+            range: Interval,
+            found: &mut Found<Self>,
+            entering: Lanes4x2,
+        ) {
+            let bits = entering.bits();
+            let (o2, dir2) = (o.map(Avx2::halves), dir.map(Avx2::halves));
+            let (t, alpha) = (found.t.halves(), found.alpha.halves());
+            let (beta, which) = (found.beta.halves(), found.which.halves());
+            let mut out = [t, alpha, beta, which];
+            for h in 0..2 {
+                if (bits >> (4 * h)) & 15 == 0 {
+                    continue;
+                }
+                let o = [o2[0][h], o2[1][h], o2[2][h]];
+                let dir = [dir2[0][h], dir2[1][h], dir2[2][h]];
+                let mut half = Found {
+                    t: t[h],
+                    alpha: alpha[h],
+                    beta: beta[h],
+                    which: which[h],
+                };
+                quads::<Avx2Half, true>(cluster, o, dir, range, &mut half);
+                (out[0][h], out[1][h]) = (half.t, half.alpha);
+                (out[2][h], out[3][h]) = (half.beta, half.which);
+            }
+            *found = Found {
+                t: Avx2::from_halves(out[0]),
+                alpha: Avx2::from_halves(out[1]),
+                beta: Avx2::from_halves(out[2]),
+                which: Avx2::from_halves(out[3]),
+            };
+        }
+    }
+
+    /// [`super::closest_portable`] in the lanes, written once for both instruction sets: the quads
+    /// of `quads` in no cluster, in order; then each cluster's, for the lanes that enter its box
+    /// before their closest hit so far; then the spheres, each for the lanes that enter its box.
+    #[inline(always)]
+    fn closest<W: Packet>(
+        quads: &LaneQuads,
         spheres: &[(Sphere, Aabb)],
         o: V3<W>,
         dir: V3<W>,
         range: Interval,
-        out: &mut Closest8,
-    ) {
-        let (zero, one) = (o[0].zero_like(), o[0].splat_like(1.0));
+    ) -> Found<W> {
+        let zero = o[0].zero_like();
         let min = o[0].splat_like(range.min);
-        let mut closest = o[0].splat_like(range.max);
-        let (mut alpha_best, mut beta_best) = (zero, zero);
-        // which: the quad's place, or SPHERE | the sphere's, as a number (exact below 2^53)
-        let mut which = o[0].splat_like(NO_HIT as f64);
-        // (the axis forms hold for ranges that exclude every zero and negative parameter)
-        let axis_forms = range.min >= 0.0;
-        let neg_dir = [-dir[0], -dir[1], -dir[2]];
-        for (i, p) in packets.iter().enumerate() {
-            for lane in 0..4 {
-                let form = forms
-                    .get(4 * i + lane)
-                    .copied()
-                    .unwrap_or(QuadForm::General);
-                let (t, alpha, beta, in_plane) = match form {
-                    QuadForm::Unused => continue,
-                    QuadForm::Axis { k, neg, plane } if axis_forms => {
-                        let (d, ku) = (zero.splat_like(p.d.0[lane]), k as usize);
-                        let t = if neg {
-                            (d + o[ku]) / neg_dir[ku]
-                        } else {
-                            (d - o[ku]) / dir[ku]
-                        };
-                        match plane {
-                            Some((a, b)) => {
-                                let (au, bu) = (a as usize, b as usize);
-                                let pa = (o[au] + t * dir[au]) - zero.splat_like(p.q[au].0[lane]);
-                                let pb = (o[bu] + t * dir[bu]) - zero.splat_like(p.q[bu].0[lane]);
-                                let alpha = pa * zero.splat_like(p.du[au].0[lane]);
-                                (t, alpha, pb * zero.splat_like(p.dv[bu].0[lane]), true)
-                            }
-                            None => {
-                                let (alpha, beta) = coordinates(p, lane, o, dir, t);
-                                (t, alpha, beta, false)
-                            }
-                        }
-                    }
-                    _ => {
-                        // As `Quad::hit`: t = (d - n . o) / (n . dir).
-                        let n = lane3(zero, &p.normal, lane);
-                        let t = (zero.splat_like(p.d.0[lane]) - dot(n, o)) / dot(n, dir);
-                        let (alpha, beta) = coordinates(p, lane, o, dir, t);
-                        (t, alpha, beta, false)
-                    }
-                };
-                // Inside the range, shrunk to each lane's closest hit so far, and the quad.
-                let k = min.lt(t)
-                    & t.lt(closest)
-                    & zero.le(alpha)
-                    & alpha.le(one)
-                    & zero.le(beta)
-                    & beta.le(one);
-                // a hit on an edge line of an axis-plane quad: the zero's sign of the full products
-                let (alpha, beta) =
-                    if in_plane && !(k & (alpha.eq(zero) | beta.eq(zero))).is_empty() {
-                        coordinates(p, lane, o, dir, t)
-                    } else {
-                        (alpha, beta)
-                    };
-                closest = closest.select(k, t);
-                alpha_best = alpha_best.select(k, alpha);
-                beta_best = beta_best.select(k, beta);
-                which = which.select(k, zero.splat_like((4 * i + lane) as f64));
+        let mut found = Found {
+            t: o[0].splat_like(range.max),
+            alpha: zero,
+            beta: zero,
+            which: o[0].splat_like(NO_HIT as f64),
+        };
+        self::quads::<W, false>(&quads.rest, o, dir, range, &mut found);
+        if quads.clusters.is_empty() && spheres.is_empty() {
+            return found;
+        }
+        // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes.
+        let one = o[0].splat_like(1.0);
+        let inv = [one / dir[0], one / dir[1], one / dir[2]];
+        for (bounds, cluster) in &quads.clusters {
+            let entering = enters(bounds, o, inv, min, found.t);
+            if !entering.is_empty() {
+                W::instance(cluster, o, dir, range, &mut found, entering);
             }
         }
-        if !spheres.is_empty() {
-            // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes.
-            let inv = [one / dir[0], one / dir[1], one / dir[2]];
-            for (i, (s, bounds)) in spheres.iter().enumerate() {
-                let k = enters(bounds, o, inv, min, closest);
-                let (k, t) = sphere_t(s, o, dir, min, closest, k);
-                closest = closest.select(k, t);
-                which = which.select(k, zero.splat_like((SPHERE | i as u32) as f64));
+        for (i, (s, bounds)) in spheres.iter().enumerate() {
+            let k = enters(bounds, o, inv, min, found.t);
+            if k.is_empty() {
+                continue;
             }
+            let (k, t) = sphere_t(s, o, dir, min, found.t, k);
+            found.t = found.t.select(k, t);
+            found.which = found
+                .which
+                .select(k, zero.splat_like((SPHERE | i as u32) as f64));
         }
-        // written where the caller reads them (returned, the 224 bytes were copied by `memcpy`)
-        out.t = closest.store().0;
-        out.alpha = alpha_best.store().0;
-        out.beta = beta_best.store().0;
-        out.hit = which.store().0.map(|w| w as u32);
+        found
     }
 
-    /// As `Quad::hit`: the plane coordinates `(alpha, beta)` of `o + t dir` in lane `lane`'s quad
-    /// of `p` (`planar = o + t dir - q`, then its dot products with the dual basis).
+    /// `found` written where the caller reads it (returned, the 224 bytes were copied by `memcpy`).
     #[inline(always)]
-    fn coordinates<W: Wide8>(p: &Quad4, lane: usize, o: V3<W>, dir: V3<W>, t: W) -> (W, W) {
+    fn store<W: Wide8>(found: Found<W>, out: &mut Closest8) {
+        out.t = found.t.store().0;
+        out.alpha = found.alpha.store().0;
+        out.beta = found.beta.store().0;
+        out.hit = found.which.store().0.map(|w| w as u32);
+    }
+
+    /// The parameter where `o + t dir` meets the plane `s x_K = d` of a quad whose normal is
+    /// `s e_K` (`neg`: `s = -1`), as [`QuadForm`] says `Quad::hit` computes it.
+    #[inline(always)]
+    fn axis_t<W: Lanes, const K: usize>(
+        d: W,
+        o: V3<W>,
+        dir: V3<W>,
+        neg_dir: V3<W>,
+        neg: bool,
+    ) -> W {
+        if neg {
+            (d + o[K]) / neg_dir[K]
+        } else {
+            (d - o[K]) / dir[K]
+        }
+    }
+
+    /// `(alpha, beta)` of `o + t dir` in an axis-plane quad whose `du` has its one non-zero
+    /// coordinate on axis `A` and `dv` on axis `B` ([`QuadForm::Axis`]).
+    #[inline(always)]
+    fn in_plane<W: Lanes, const A: usize, const B: usize>(
+        quad: &LaneQuad,
+        o: V3<W>,
+        dir: V3<W>,
+        t: W,
+    ) -> (W, W) {
+        let like = t;
+        let pa = (o[A] + t * dir[A]) - like.splat_like(quad.q[A]);
+        let pb = (o[B] + t * dir[B]) - like.splat_like(quad.q[B]);
+        (
+            pa * like.splat_like(quad.du[A]),
+            pb * like.splat_like(quad.dv[B]),
+        )
+    }
+
+    /// As `Quad::hit`: the plane coordinates `(alpha, beta)` of `o + t dir` in `quad` (`planar = o +
+    /// t dir - q`, then its dot products with the dual basis).
+    #[inline(always)]
+    fn coordinates<W: Lanes>(quad: &LaneQuad, o: V3<W>, dir: V3<W>, t: W) -> (W, W) {
         let zero = t.zero_like();
-        let planar = sub3(add3(o, scale3(t, dir)), lane3(zero, &p.q, lane));
-        let alpha = dot(planar, lane3(zero, &p.du, lane));
-        (alpha, dot(planar, lane3(zero, &p.dv, lane)))
+        let planar = sub3(add3(o, scale3(t, dir)), splat3_of(zero, quad.q));
+        let alpha = dot(planar, splat3_of(zero, quad.du));
+        (alpha, dot(planar, splat3_of(zero, quad.dv)))
     }
 
-    /// Lane `lane` of a packet's field, in every lane.
+    /// `x` in every lane.
     #[inline(always)]
-    fn lane3<W: Wide8>(like: W, x: &[crate::lanes::F64x4; 3], lane: usize) -> V3<W> {
+    fn splat3_of<W: Lanes>(like: W, x: [f64; 3]) -> V3<W> {
         [
-            like.splat_like(x[0].0[lane]),
-            like.splat_like(x[1].0[lane]),
-            like.splat_like(x[2].0[lane]),
+            like.splat_like(x[0]),
+            like.splat_like(x[1]),
+            like.splat_like(x[2]),
         ]
     }
 
     /// The entry and exit of a slab `[lo, hi]` along one axis: glam's `min` and `max` of
     /// `(lo - o) inv` and `(hi - o) inv`.
     #[inline(always)]
-    fn slab<W: Wide8>(lo: f64, hi: f64, o: W, inv: W) -> (W, W) {
+    fn slab<W: Lanes>(lo: f64, hi: f64, o: W, inv: W) -> (W, W) {
         let t0 = (o.splat_like(lo) - o) * inv;
         let t1 = (o.splat_like(hi) - o) * inv;
         (t0.min(t1), t0.max(t1))
@@ -329,7 +566,7 @@ mod wide {
     /// glam's `min`, `max` and their `_element` forms are the lanes' `min` and `max`; `f64::min`
     /// and `f64::max` against a number that is never NaN likewise, with the number second.
     #[inline(always)]
-    fn enters<W: Wide8>(bounds: &Aabb, o: V3<W>, inv: V3<W>, min: W, closest: W) -> W::Mask {
+    fn enters<W: Lanes>(bounds: &Aabb, o: V3<W>, inv: V3<W>, min: W, closest: W) -> W::Mask {
         let (n0, f0) = slab(bounds.min[0], bounds.max[0], o[0], inv[0]);
         let (n1, f1) = slab(bounds.min[1], bounds.max[1], o[1], inv[1]);
         let (n2, f2) = slab(bounds.min[2], bounds.max[2], o[2], inv[2]);
@@ -342,7 +579,7 @@ mod wide {
     /// and where: [`Sphere::hit_t`] lane by lane. A line that misses (a negative discriminant) gives
     /// NaN roots here, which no range holds, where the scalar test returns early.
     #[inline(always)]
-    fn sphere_t<W: Wide8>(
+    fn sphere_t<W: Lanes>(
         s: &Sphere,
         o: V3<W>,
         dir: V3<W>,
@@ -375,8 +612,7 @@ mod wide {
     /// Only where the processor has AVX-512F.
     #[target_feature(enable = "avx512f")]
     pub unsafe fn closest_avx512(
-        packets: &[Quad4],
-        forms: &[QuadForm],
+        quads: &LaneQuads,
         spheres: &[(Sphere, Aabb)],
         rays: &Rays8,
         range: Interval,
@@ -389,7 +625,7 @@ mod wide {
                 load3::<Avx512>(&rays.direction),
             )
         };
-        closest(packets, forms, spheres, o, dir, range, out)
+        store(closest(quads, spheres, o, dir, range), out)
     }
 
     /// [`super::closest_portable`] in AVX2 instructions (four lanes to a register), into `out`:
@@ -399,8 +635,7 @@ mod wide {
     /// Only where the processor has AVX2.
     #[target_feature(enable = "avx2")]
     pub unsafe fn closest_avx2(
-        packets: &[Quad4],
-        forms: &[QuadForm],
+        quads: &LaneQuads,
         spheres: &[(Sphere, Aabb)],
         rays: &Rays8,
         range: Interval,
@@ -408,6 +643,6 @@ mod wide {
     ) {
         // SAFETY: compiled with AVX2, run where the processor has it.
         let (o, dir) = unsafe { (load3::<Avx2>(&rays.origin), load3::<Avx2>(&rays.direction)) };
-        closest(packets, forms, spheres, o, dir, range, out)
+        store(closest(quads, spheres, o, dir, range), out)
     }
 }

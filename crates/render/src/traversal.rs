@@ -39,9 +39,10 @@ pub struct Accel {
     /// For a small group whose `others` are all static spheres: those spheres with their boxes, in
     /// the order of `others`, so that eight rays test them in the lanes too ([`crate::ray8`]).
     pub spheres: Option<Vec<(Sphere, Aabb)>>,
-    /// For a small group: how eight rays at once intersect each quad of `packets`
-    /// ([`crate::ray8::QuadForm`]), four to a packet.
-    pub forms: Vec<crate::ray8::QuadForm>,
+    /// For a small group: its quads as eight rays at once intersect them
+    /// ([`crate::ray8::LaneQuads`]: each with its [`crate::ray8::QuadForm`], a flattened
+    /// instance's behind its box, [`crate::ray8::Cluster`]).
+    pub lane_quads: crate::ray8::LaneQuads,
 }
 
 /// The smallest uniform number `u` for which a free path `-ln(1 - u) / sigma` is taken to be at least
@@ -260,14 +261,22 @@ impl Accel {
     /// the flat form if the group is small, the 4-wide tree otherwise. `draws` says whether a hit in
     /// the group may draw random numbers (it holds a medium, directly or nested): such a group keeps
     /// the tree, whose order of tests the random stream, and so the image, depends on.
-    pub fn new(objects: &[Object], bounds: &[Aabb], bvh: &Bvh, draws: bool) -> Accel {
+    /// `instance[i]` is the flattened instance `objects[i]` came from, if any
+    /// ([`crate::flatten::flatten_instances_marked`]).
+    pub fn new(
+        objects: &[Object],
+        bounds: &[Aabb],
+        instance: &[Option<u32>],
+        bvh: &Bvh,
+        draws: bool,
+    ) -> Accel {
         assert_eq!(objects.len(), bounds.len());
         let quads = objects
             .iter()
             .filter(|o| matches!(o, Object::Quad(_)))
             .count();
         if !draws && quads <= SMALL_QUADS && objects.len() - quads <= SMALL_OTHERS {
-            Self::small(objects, bounds)
+            Self::small(objects, bounds).with_clusters(objects, bounds, instance)
         } else {
             Self::tree(objects, bvh)
         }
@@ -302,7 +311,7 @@ impl Accel {
             .collect();
         let packets: Vec<Quad4> = quads.chunks(PACKET).map(Quad4::new).collect();
         Accel {
-            forms: crate::ray8::QuadForm::all(&packets),
+            lane_quads: crate::ray8::LaneQuads::new(&packets, &[]),
             packets,
             packets8,
             tail4: held < plain.len(),
@@ -312,6 +321,51 @@ impl Accel {
             flat: true,
             ..Accel::default()
         }
+    }
+
+    /// A small group's [`crate::ray8::Cluster`]s: the quads of each flattened instance (`instance[i]`
+    /// for `objects[i]`) that has at least [`crate::ray8::Cluster::MIN_QUADS`], behind the box of
+    /// their bounds (`bounds[i]`, each a quad's padded box).
+    pub fn with_clusters(
+        mut self,
+        objects: &[Object],
+        bounds: &[Aabb],
+        instance: &[Option<u32>],
+    ) -> Accel {
+        use crate::ray8::Cluster;
+        let mut clusters: Vec<(u32, Cluster)> = Vec::new();
+        // the quads' places in the packets' order: the objects' order, quads alone
+        let quads = objects
+            .iter()
+            .zip(bounds)
+            .zip(instance)
+            .filter(|((o, _), _)| matches!(o, Object::Quad(_)));
+        for (k, ((_, b), from)) in quads.enumerate() {
+            let Some(from) = *from else { continue };
+            if k >= 64 {
+                return self;
+            }
+            match clusters.iter_mut().find(|(f, _)| *f == from) {
+                Some((_, c)) => {
+                    c.quads |= 1 << k;
+                    c.bounds = c.bounds.union(b);
+                }
+                None => clusters.push((
+                    from,
+                    Cluster {
+                        quads: 1 << k,
+                        bounds: *b,
+                    },
+                )),
+            }
+        }
+        let clusters: Vec<Cluster> = clusters
+            .into_iter()
+            .map(|(_, c)| c)
+            .filter(|c| c.quads.count_ones() >= Cluster::MIN_QUADS)
+            .collect();
+        self.lane_quads = crate::ray8::LaneQuads::new(&self.packets, &clusters);
+        self
     }
 
     /// The 4-wide tree form of `objects` (in leaf order of `bvh`).
@@ -683,15 +737,15 @@ impl Scene {
         let accel = &group.accel;
         debug_assert!(accel.flat);
         let spheres = accel.spheres.as_deref();
-        let (packets, spheres8) = (&accel.packets, spheres.unwrap_or(&[]));
-        let forms = &accel.forms;
+        let spheres8 = spheres.unwrap_or(&[]);
+        let lane_quads = &accel.lane_quads;
         // SAFETY: the caller runs this where the processor runs `tier`.
         unsafe {
             match tier {
                 HitTier::Avx512 => {
-                    crate::ray8::closest_avx512(packets, forms, spheres8, lanes, range, found)
+                    crate::ray8::closest_avx512(lane_quads, spheres8, lanes, range, found)
                 }
-                _ => crate::ray8::closest_avx2(packets, forms, spheres8, lanes, range, found),
+                _ => crate::ray8::closest_avx2(lane_quads, spheres8, lanes, range, found),
             }
         };
         let hits = Hits8 {

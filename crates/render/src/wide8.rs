@@ -9,7 +9,7 @@
 //! `vmaxpd` instructions compute, NaN included.
 //!
 //! A value of these types can only be made where the processor has the instructions (by the
-//! `unsafe` constructors [`Wide8::splat`] and [`Wide8::load`]): the operators on values are
+//! `unsafe` constructors [`Lanes::splat`] and [`Wide8::load`]): the operators on values are
 //! therefore safe.
 
 #![cfg(target_arch = "x86_64")]
@@ -30,8 +30,9 @@ pub trait LaneMask:
     }
 }
 
-/// Eight `f64` lanes.
-pub trait Wide8:
+/// A register's worth of `f64` lanes (eight, or four in [`Avx2Half`]): the arithmetic, the
+/// comparisons and the choices lane by lane.
+pub trait Lanes:
     Copy
     + Add<Output = Self>
     + Sub<Output = Self>
@@ -46,24 +47,6 @@ pub trait Wide8:
     /// # Safety
     /// Only where the processor has the type's instructions.
     unsafe fn splat(x: f64) -> Self;
-    /// The lanes of `x`.
-    ///
-    /// # Safety
-    /// As [`Wide8::splat`].
-    unsafe fn load(x: &F64x8) -> Self;
-    /// The lanes of `x`, at any alignment.
-    ///
-    /// # Safety
-    /// As [`Wide8::splat`].
-    unsafe fn load_unaligned(x: &[f64; 8]) -> Self;
-    /// Eight rows of sixteen numbers as sixteen columns: lane `i` of column `j` is `rows[i][j]`
-    /// (the rows transposed in registers, by shuffles, not by stores that a load reads back).
-    ///
-    /// # Safety
-    /// As [`Wide8::splat`].
-    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16];
-    /// The lanes, stored.
-    fn store(self) -> F64x8;
     /// The lanes whose bit is set in `bits`.
     fn mask(self, bits: u8) -> Self::Mask;
 
@@ -129,18 +112,40 @@ pub trait Wide8:
     }
 }
 
+/// Eight `f64` lanes: [`Lanes`] loaded from and stored to eight numbers.
+pub trait Wide8: Lanes {
+    /// The lanes of `x`.
+    ///
+    /// # Safety
+    /// As [`Lanes::splat`].
+    unsafe fn load(x: &F64x8) -> Self;
+    /// The lanes of `x`, at any alignment.
+    ///
+    /// # Safety
+    /// As [`Lanes::splat`].
+    unsafe fn load_unaligned(x: &[f64; 8]) -> Self;
+    /// Eight rows of sixteen numbers as sixteen columns: lane `i` of column `j` is `rows[i][j]`
+    /// (the rows transposed in registers, by shuffles, not by stores that a load reads back).
+    ///
+    /// # Safety
+    /// As [`Lanes::splat`].
+    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16];
+    /// The lanes, stored.
+    fn store(self) -> F64x8;
+}
+
 /// Three coordinates, each eight lanes.
 pub type V3<W> = [W; 3];
 
 /// glam's `dot`: `(a.x b.x + a.y b.y) + a.z b.z`.
 #[inline(always)]
-pub fn dot<W: Wide8>(a: V3<W>, b: V3<W>) -> W {
+pub fn dot<W: Lanes>(a: V3<W>, b: V3<W>) -> W {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// glam's `cross`.
 #[inline(always)]
-pub fn cross<W: Wide8>(a: V3<W>, b: V3<W>) -> V3<W> {
+pub fn cross<W: Lanes>(a: V3<W>, b: V3<W>) -> V3<W> {
     [
         a[1] * b[2] - b[1] * a[2],
         a[2] * b[0] - b[2] * a[0],
@@ -150,37 +155,37 @@ pub fn cross<W: Wide8>(a: V3<W>, b: V3<W>) -> V3<W> {
 
 /// `a + b`, coordinate by coordinate.
 #[inline(always)]
-pub fn add3<W: Wide8>(a: V3<W>, b: V3<W>) -> V3<W> {
+pub fn add3<W: Lanes>(a: V3<W>, b: V3<W>) -> V3<W> {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 /// `a - b`.
 #[inline(always)]
-pub fn sub3<W: Wide8>(a: V3<W>, b: V3<W>) -> V3<W> {
+pub fn sub3<W: Lanes>(a: V3<W>, b: V3<W>) -> V3<W> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// `-a`, coordinate by coordinate (each sign flipped).
 #[inline(always)]
-pub fn neg3<W: Wide8>(a: V3<W>) -> V3<W> {
+pub fn neg3<W: Lanes>(a: V3<W>) -> V3<W> {
     [-a[0], -a[1], -a[2]]
 }
 
 /// `s * a` (glam's `f64 * DVec3`, the scalar first).
 #[inline(always)]
-pub fn scale3<W: Wide8>(s: W, a: V3<W>) -> V3<W> {
+pub fn scale3<W: Lanes>(s: W, a: V3<W>) -> V3<W> {
     [s * a[0], s * a[1], s * a[2]]
 }
 
 /// glam's `max_element`: `max(x, max(y, z))`.
 #[inline(always)]
-pub fn max_element<W: Wide8>(a: V3<W>) -> W {
+pub fn max_element<W: Lanes>(a: V3<W>) -> W {
     a[0].max(a[1].max(a[2]))
 }
 
 /// `b` where `m` is set, `a` elsewhere.
 #[inline(always)]
-pub fn select3<W: Wide8>(a: V3<W>, m: W::Mask, b: V3<W>) -> V3<W> {
+pub fn select3<W: Lanes>(a: V3<W>, m: W::Mask, b: V3<W>) -> V3<W> {
     [
         a[0].select(m, b[0]),
         a[1].select(m, b[1]),
@@ -191,16 +196,16 @@ pub fn select3<W: Wide8>(a: V3<W>, m: W::Mask, b: V3<W>) -> V3<W> {
 /// A vector in every lane.
 ///
 /// # Safety
-/// As [`Wide8::splat`].
+/// As [`Lanes::splat`].
 #[inline(always)]
-pub unsafe fn splat3<W: Wide8>(v: glam::DVec3) -> V3<W> {
+pub unsafe fn splat3<W: Lanes>(v: glam::DVec3) -> V3<W> {
     // SAFETY: as this function's.
     unsafe { [W::splat(v.x), W::splat(v.y), W::splat(v.z)] }
 }
 
 /// A vector in every lane (made from a value, which proves the instructions are there).
 #[inline(always)]
-pub fn splat3_like<W: Wide8>(like: W, v: glam::DVec3) -> V3<W> {
+pub fn splat3_like<W: Lanes>(like: W, v: glam::DVec3) -> V3<W> {
     [
         like.splat_like(v.x),
         like.splat_like(v.y),
@@ -217,7 +222,7 @@ pub fn store3<W: Wide8>(v: V3<W>) -> [F64x8; 3] {
 /// Three coordinates of eight lanes each, loaded.
 ///
 /// # Safety
-/// As [`Wide8::splat`].
+/// As [`Lanes::splat`].
 #[inline(always)]
 pub unsafe fn load3<W: Wide8>(v: &[F64x8; 3]) -> V3<W> {
     // SAFETY: as this function's.
@@ -355,45 +360,12 @@ impl Neg for Avx512 {
     }
 }
 
-impl Wide8 for Avx512 {
+impl Lanes for Avx512 {
     type Mask = Bits8;
 
     #[inline(always)]
     unsafe fn splat(x: f64) -> Self {
         avx512!(Avx512(_mm512_set1_pd(x)))
-    }
-    #[inline(always)]
-    unsafe fn load(x: &F64x8) -> Self {
-        // `F64x8` is eight f64 aligned to 64 bytes, as the aligned load requires.
-        avx512!(Avx512(_mm512_load_pd(x.0.as_ptr())))
-    }
-    #[inline(always)]
-    unsafe fn load_unaligned(x: &[f64; 8]) -> Self {
-        avx512!(Avx512(_mm512_loadu_pd(x.as_ptr())))
-    }
-    #[inline(always)]
-    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
-        let mut out = [avx512!(Avx512(_mm512_setzero_pd())); 16];
-        for block in 0..4 {
-            // (AVX-512F implies the AVX that `columns4` takes)
-            let (lo, hi) = avx512!((
-                columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
-                columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),
-            ));
-            for j in 0..4 {
-                out[4 * block + j] = avx512!(Avx512(_mm512_insertf64x4::<1>(
-                    _mm512_castpd256_pd512(lo[j]),
-                    hi[j]
-                )));
-            }
-        }
-        out
-    }
-    #[inline(always)]
-    fn store(self) -> F64x8 {
-        let mut out = F64x8::ZERO;
-        avx512!(_mm512_store_pd(out.0.as_mut_ptr(), self.0));
-        out
     }
     #[inline(always)]
     fn mask(self, bits: u8) -> Bits8 {
@@ -463,6 +435,42 @@ impl Wide8 for Avx512 {
     #[inline(always)]
     fn zero_unless(self, m: Bits8) -> Self {
         avx512!(Avx512(_mm512_maskz_mov_pd(m.0, self.0)))
+    }
+}
+
+impl Wide8 for Avx512 {
+    #[inline(always)]
+    unsafe fn load(x: &F64x8) -> Self {
+        // `F64x8` is eight f64 aligned to 64 bytes, as the aligned load requires.
+        avx512!(Avx512(_mm512_load_pd(x.0.as_ptr())))
+    }
+    #[inline(always)]
+    unsafe fn load_unaligned(x: &[f64; 8]) -> Self {
+        avx512!(Avx512(_mm512_loadu_pd(x.as_ptr())))
+    }
+    #[inline(always)]
+    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
+        let mut out = [avx512!(Avx512(_mm512_setzero_pd())); 16];
+        for block in 0..4 {
+            // (AVX-512F implies the AVX that `columns4` takes)
+            let (lo, hi) = avx512!((
+                columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
+                columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),
+            ));
+            for j in 0..4 {
+                out[4 * block + j] = avx512!(Avx512(_mm512_insertf64x4::<1>(
+                    _mm512_castpd256_pd512(lo[j]),
+                    hi[j]
+                )));
+            }
+        }
+        out
+    }
+    #[inline(always)]
+    fn store(self) -> F64x8 {
+        let mut out = F64x8::ZERO;
+        avx512!(_mm512_store_pd(out.0.as_mut_ptr(), self.0));
+        out
     }
 }
 
@@ -580,6 +588,18 @@ impl Neg for Avx2 {
 }
 
 impl Avx2 {
+    /// Lanes 0-3 and 4-7, each in a register of its own.
+    #[inline(always)]
+    pub fn halves(self) -> [Avx2Half; 2] {
+        [Avx2Half(self.0[0]), Avx2Half(self.0[1])]
+    }
+
+    /// Lanes 0-3 from `halves[0]` and 4-7 from `halves[1]`.
+    #[inline(always)]
+    pub fn from_halves(halves: [Avx2Half; 2]) -> Avx2 {
+        Avx2([halves[0].0, halves[1].0])
+    }
+
     /// A comparison of both halves.
     #[inline(always)]
     fn cmp<const P: i32>(self, b: Avx2) -> Lanes4x2 {
@@ -590,50 +610,12 @@ impl Avx2 {
     }
 }
 
-impl Wide8 for Avx2 {
+impl Lanes for Avx2 {
     type Mask = Lanes4x2;
 
     #[inline(always)]
     unsafe fn splat(x: f64) -> Self {
         avx2!(Avx2([_mm256_set1_pd(x), _mm256_set1_pd(x)]))
-    }
-    #[inline(always)]
-    unsafe fn load(x: &F64x8) -> Self {
-        // `F64x8` is aligned to 64 bytes, so each half to 32, as the aligned loads require.
-        avx2!(Avx2([
-            _mm256_load_pd(x.0.as_ptr()),
-            _mm256_load_pd(x.0.as_ptr().add(4))
-        ]))
-    }
-    #[inline(always)]
-    unsafe fn load_unaligned(x: &[f64; 8]) -> Self {
-        avx2!(Avx2([
-            _mm256_loadu_pd(x.as_ptr()),
-            _mm256_loadu_pd(x.as_ptr().add(4))
-        ]))
-    }
-    #[inline(always)]
-    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
-        let mut out = [avx2!(Avx2([_mm256_setzero_pd(); 2])); 16];
-        for block in 0..4 {
-            let (lo, hi) = avx2!((
-                columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
-                columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),
-            ));
-            for j in 0..4 {
-                out[4 * block + j] = Avx2([lo[j], hi[j]]);
-            }
-        }
-        out
-    }
-    #[inline(always)]
-    fn store(self) -> F64x8 {
-        let mut out = F64x8::ZERO;
-        avx2!({
-            _mm256_store_pd(out.0.as_mut_ptr(), self.0[0]);
-            _mm256_store_pd(out.0.as_mut_ptr().add(4), self.0[1]);
-        });
-        out
     }
     #[inline(always)]
     fn mask(self, bits: u8) -> Lanes4x2 {
@@ -722,5 +704,234 @@ impl Wide8 for Avx2 {
             _mm256_and_pd(self.0[0], m.0[0]),
             _mm256_and_pd(self.0[1], m.0[1]),
         ]))
+    }
+}
+
+impl Wide8 for Avx2 {
+    #[inline(always)]
+    unsafe fn load(x: &F64x8) -> Self {
+        // `F64x8` is aligned to 64 bytes, so each half to 32, as the aligned loads require.
+        avx2!(Avx2([
+            _mm256_load_pd(x.0.as_ptr()),
+            _mm256_load_pd(x.0.as_ptr().add(4))
+        ]))
+    }
+    #[inline(always)]
+    unsafe fn load_unaligned(x: &[f64; 8]) -> Self {
+        avx2!(Avx2([
+            _mm256_loadu_pd(x.as_ptr()),
+            _mm256_loadu_pd(x.as_ptr().add(4))
+        ]))
+    }
+    #[inline(always)]
+    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
+        let mut out = [avx2!(Avx2([_mm256_setzero_pd(); 2])); 16];
+        for block in 0..4 {
+            let (lo, hi) = avx2!((
+                columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
+                columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),
+            ));
+            for j in 0..4 {
+                out[4 * block + j] = Avx2([lo[j], hi[j]]);
+            }
+        }
+        out
+    }
+    #[inline(always)]
+    fn store(self) -> F64x8 {
+        let mut out = F64x8::ZERO;
+        avx2!({
+            _mm256_store_pd(out.0.as_mut_ptr(), self.0[0]);
+            _mm256_store_pd(out.0.as_mut_ptr().add(4), self.0[1]);
+        });
+        out
+    }
+}
+
+/// Half of the AVX2 form: four lanes in one 256-bit register ([`Avx2::halves`]), for work that only
+/// some of the eight lanes need (the quads of an instance, behind its box, in [`crate::ray8`]).
+#[derive(Clone, Copy)]
+pub struct Avx2Half(__m256d);
+
+/// [`Avx2Half`]'s mask: all ones in a set lane.
+#[derive(Clone, Copy)]
+pub struct Lanes4(__m256d);
+
+/// The intrinsic `$f` on one register.
+macro_rules! half {
+    ($t:ident, $a:expr, $b:expr, $f:ident) => {
+        avx2!($t($f($a.0, $b.0)))
+    };
+}
+
+impl LaneMask for Lanes4 {
+    #[inline(always)]
+    fn bits(self) -> u8 {
+        avx2!(_mm256_movemask_pd(self.0) as u8)
+    }
+}
+
+impl BitAnd for Lanes4 {
+    type Output = Lanes4;
+    #[inline(always)]
+    fn bitand(self, b: Lanes4) -> Lanes4 {
+        half!(Lanes4, self, b, _mm256_and_pd)
+    }
+}
+
+impl BitOr for Lanes4 {
+    type Output = Lanes4;
+    #[inline(always)]
+    fn bitor(self, b: Lanes4) -> Lanes4 {
+        half!(Lanes4, self, b, _mm256_or_pd)
+    }
+}
+
+impl BitXor for Lanes4 {
+    type Output = Lanes4;
+    #[inline(always)]
+    fn bitxor(self, b: Lanes4) -> Lanes4 {
+        half!(Lanes4, self, b, _mm256_xor_pd)
+    }
+}
+
+impl Not for Lanes4 {
+    type Output = Lanes4;
+    #[inline(always)]
+    fn not(self) -> Lanes4 {
+        avx2!(Lanes4(_mm256_xor_pd(
+            self.0,
+            _mm256_castsi256_pd(_mm256_set1_epi64x(-1))
+        )))
+    }
+}
+
+impl Add for Avx2Half {
+    type Output = Avx2Half;
+    #[inline(always)]
+    fn add(self, b: Avx2Half) -> Avx2Half {
+        half!(Avx2Half, self, b, _mm256_add_pd)
+    }
+}
+
+impl Sub for Avx2Half {
+    type Output = Avx2Half;
+    #[inline(always)]
+    fn sub(self, b: Avx2Half) -> Avx2Half {
+        half!(Avx2Half, self, b, _mm256_sub_pd)
+    }
+}
+
+impl Mul for Avx2Half {
+    type Output = Avx2Half;
+    #[inline(always)]
+    fn mul(self, b: Avx2Half) -> Avx2Half {
+        half!(Avx2Half, self, b, _mm256_mul_pd)
+    }
+}
+
+impl Div for Avx2Half {
+    type Output = Avx2Half;
+    #[inline(always)]
+    fn div(self, b: Avx2Half) -> Avx2Half {
+        half!(Avx2Half, self, b, _mm256_div_pd)
+    }
+}
+
+impl Neg for Avx2Half {
+    type Output = Avx2Half;
+    /// The sign bit flipped.
+    #[inline(always)]
+    fn neg(self) -> Avx2Half {
+        let sign = self.splat_like(-0.0);
+        half!(Avx2Half, self, sign, _mm256_xor_pd)
+    }
+}
+
+impl Avx2Half {
+    /// A comparison.
+    #[inline(always)]
+    fn cmp<const P: i32>(self, b: Avx2Half) -> Lanes4 {
+        avx2!(Lanes4(_mm256_cmp_pd::<P>(self.0, b.0)))
+    }
+}
+
+impl Lanes for Avx2Half {
+    type Mask = Lanes4;
+
+    #[inline(always)]
+    unsafe fn splat(x: f64) -> Self {
+        avx2!(Avx2Half(_mm256_set1_pd(x)))
+    }
+    #[inline(always)]
+    fn mask(self, bits: u8) -> Lanes4 {
+        avx2!({
+            let pick = _mm256_set_epi64x(8, 4, 2, 1);
+            let set = _mm256_and_si256(_mm256_set1_epi64x((bits & 15) as i64), pick);
+            Lanes4(_mm256_castsi256_pd(_mm256_cmpeq_epi64(set, pick)))
+        })
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        avx2!(Avx2Half(_mm256_sqrt_pd(self.0)))
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        let magnitude = avx2!(Avx2Half(_mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX))));
+        half!(Avx2Half, self, magnitude, _mm256_and_pd)
+    }
+    #[inline(always)]
+    fn copysign(self, sign: Self) -> Self {
+        let s = self.splat_like(-0.0);
+        avx2!(Avx2Half(_mm256_or_pd(
+            _mm256_andnot_pd(s.0, self.0),
+            _mm256_and_pd(s.0, sign.0)
+        )))
+    }
+    #[inline(always)]
+    fn min(self, b: Self) -> Self {
+        half!(Avx2Half, self, b, _mm256_min_pd)
+    }
+    #[inline(always)]
+    fn max(self, b: Self) -> Self {
+        half!(Avx2Half, self, b, _mm256_max_pd)
+    }
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        avx2!(Avx2Half(_mm256_round_pd::<
+            { _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC },
+        >(self.0)))
+    }
+    #[inline(always)]
+    fn lt(self, b: Self) -> Lanes4 {
+        self.cmp::<_CMP_LT_OQ>(b)
+    }
+    #[inline(always)]
+    fn le(self, b: Self) -> Lanes4 {
+        self.cmp::<_CMP_LE_OQ>(b)
+    }
+    #[inline(always)]
+    fn gt(self, b: Self) -> Lanes4 {
+        self.cmp::<_CMP_GT_OQ>(b)
+    }
+    #[inline(always)]
+    fn ge(self, b: Self) -> Lanes4 {
+        self.cmp::<_CMP_GE_OQ>(b)
+    }
+    #[inline(always)]
+    fn eq(self, b: Self) -> Lanes4 {
+        self.cmp::<_CMP_EQ_OQ>(b)
+    }
+    #[inline(always)]
+    fn is_nan(self) -> Lanes4 {
+        self.cmp::<_CMP_UNORD_Q>(self)
+    }
+    #[inline(always)]
+    fn select(self, m: Lanes4, b: Self) -> Self {
+        avx2!(Avx2Half(_mm256_blendv_pd(self.0, b.0, m.0)))
+    }
+    #[inline(always)]
+    fn zero_unless(self, m: Lanes4) -> Self {
+        avx2!(Avx2Half(_mm256_and_pd(self.0, m.0)))
     }
 }

@@ -18,7 +18,9 @@ use rtl_render::lights::{LightTarget, Lights};
 use rtl_render::material::{Albedo, Material, ScatterPdf};
 use rtl_render::mixture8::Mixture8;
 use rtl_render::ray::{Interval, Ray};
-use rtl_render::ray8::{Closest8, Rays8, closest_avx2, closest_avx512, closest_portable};
+use rtl_render::ray8::{
+    Closest8, Cluster, LaneQuads, Rays8, closest_avx2, closest_avx512, closest_portable,
+};
 use rtl_render::render::{Accumulator, RenderSettings, Renderer};
 use rtl_render::sampler::Ctx;
 use rtl_render::scene::{Background, GroupId, ImportanceTarget, Scene, SceneBuilder, Transform};
@@ -586,7 +588,8 @@ fn small_group<R: Rng>(rng: &mut R) -> (Scene, Vec<Point3>) {
                 .unwrap();
         }
     }
-    b.flatten = false;
+    // (an instance flattened or not: tested behind its box in the lanes, or as another object)
+    b.flatten = rng.random();
     (b.build().unwrap(), corners)
 }
 
@@ -656,16 +659,178 @@ fn closest_in(
     spheres: &[(Sphere, rtl_render::aabb::Aabb)],
     lanes: &Rays8,
 ) -> Closest8 {
+    closest_with(tier, &accel.lane_quads, spheres, lanes)
+}
+
+/// [`closest_avx512`] or [`closest_avx2`] (`tier`) of the quads `quads` and the spheres `spheres`,
+/// for the rays `lanes`, over [`Interval::FORWARD`].
+fn closest_with(
+    tier: HitTier,
+    quads: &LaneQuads,
+    spheres: &[(Sphere, rtl_render::aabb::Aabb)],
+    lanes: &Rays8,
+) -> Closest8 {
     let mut got = Closest8::default();
-    let (packets, forms, range) = (&accel.packets, &accel.forms, Interval::FORWARD);
+    let range = Interval::FORWARD;
     // SAFETY: the tests pass only tiers this processor runs (see `tiers`).
     unsafe {
         match tier {
-            HitTier::Avx512 => closest_avx512(packets, forms, spheres, lanes, range, &mut got),
-            _ => closest_avx2(packets, forms, spheres, lanes, range, &mut got),
+            HitTier::Avx512 => closest_avx512(quads, spheres, lanes, range, &mut got),
+            _ => closest_avx2(quads, spheres, lanes, range, &mut got),
         }
     }
     got
+}
+
+/// The box of quad `k` of a small group's packets (`accel`, of the group `objects`).
+fn quad_bounds(
+    accel: &rtl_render::traversal::Accel,
+    objects: &[rtl_render::scene::Object],
+    k: usize,
+) -> rtl_render::aabb::Aabb {
+    let object = accel.packets[k / 4].index[k % 4] as usize;
+    match &objects[object] {
+        rtl_render::scene::Object::Quad(q) => q.bounds(),
+        _ => unreachable!("a packet's lane holds a quad"),
+    }
+}
+
+/// Up to two disjoint random sets of a small group's quads, each behind the union of its quads'
+/// boxes; `shrink`: each box only its first quad's (too small for the rest: a wrong cluster).
+fn random_clusters<R: Rng>(
+    rng: &mut R,
+    accel: &rtl_render::traversal::Accel,
+    objects: &[rtl_render::scene::Object],
+    shrink: bool,
+) -> Vec<Cluster> {
+    let n = accel
+        .packets
+        .iter()
+        .map(|p| p.index.iter().filter(|&&i| i != u32::MAX).count())
+        .sum::<usize>();
+    let mut clusters: Vec<Cluster> = Vec::new();
+    let mut taken = 0u64;
+    for _ in 0..rng.random_range(1..=2) {
+        let mut quads = 0u64;
+        for k in 0..n {
+            if taken & (1 << k) == 0 && rng.random_range(0..3) == 0 {
+                quads |= 1 << k;
+            }
+        }
+        if quads == 0 {
+            continue;
+        }
+        taken |= quads;
+        let first = quads.trailing_zeros() as usize;
+        let mut bounds = quad_bounds(accel, objects, first);
+        if !shrink {
+            for k in (0..n).filter(|k| quads & (1 << k) != 0) {
+                bounds = bounds.union(&quad_bounds(accel, objects, k));
+            }
+        }
+        clusters.push(Cluster { quads, bounds });
+    }
+    clusters
+}
+
+/// How many lanes differ from [`closest_portable`] (bit for bit: the hit, `t`, `alpha`, `beta`)
+/// with random clusters of the quads ([`random_clusters`]), and how many lanes' closest hit is a
+/// cluster's quad, over random small groups and rays.
+fn cluster_mismatches(seed: u64, tier: HitTier, shrink: bool) -> (usize, usize) {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let (mut wrong, mut in_clusters) = (0, 0);
+    for _ in 0..150 {
+        let (scene, corners) = small_group(&mut rng);
+        let group = &scene.groups[0];
+        let accel = &group.accel;
+        if !accel.flat {
+            continue;
+        }
+        let spheres = accel.spheres.as_deref().unwrap_or(&[]);
+        let clusters = random_clusters(&mut rng, accel, &group.objects, shrink);
+        let quads = LaneQuads::new(&accel.packets, &clusters);
+        let clustered = clusters.iter().fold(0, |all, c| all | c.quads);
+        for _ in 0..40 {
+            let mut rays = Rays8::default();
+            for (l, r) in rays8(&mut rng, &corners).iter().enumerate() {
+                rays.set(l, r);
+            }
+            let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
+            let got = closest_with(tier, &quads, spheres, &rays);
+            for l in 0..8 {
+                let bits =
+                    |c: &Closest8| (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits));
+                wrong += (bits(&got) != bits(&want)) as usize;
+                let h = want.hit[l];
+                in_clusters += (h < 64 && clustered & (1 << h) != 0) as usize;
+            }
+        }
+    }
+    (wrong, in_clusters)
+}
+
+#[test]
+fn quads_behind_their_box_are_found_as_in_order_bit_for_bit() {
+    for tier in tiers() {
+        let (wrong, in_clusters) = cluster_mismatches(31, tier, false);
+        assert_eq!(wrong, 0, "{tier:?}");
+        assert!(in_clusters > 2_000, "{tier:?}: {in_clusters}");
+    }
+}
+
+#[test]
+fn the_cluster_check_catches_a_box_too_small_for_its_quads() {
+    for tier in tiers() {
+        let (wrong, _) = cluster_mismatches(31, tier, true);
+        assert!(wrong > 100, "{tier:?}: {wrong}");
+    }
+}
+
+#[test]
+fn on_equal_distances_a_cluster_yields_to_an_earlier_quad_and_wins_over_a_later_one() {
+    // Two copies of one floor (quads 0 and 1) and three more quads: every ray down meets both copies
+    // at the same `t`, and the first copy must win whichever of them is behind a box.
+    let mut b = SceneBuilder::new();
+    let m = b.material(Material::lambertian(Color::splat(0.5)));
+    let w = b.world();
+    let floor = (
+        Point3::new(-2.0, 0.0, -2.0),
+        Vec3::new(4.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 4.0),
+    );
+    b.quad(w, floor.0, floor.1, floor.2, m).unwrap();
+    b.quad(w, floor.0, floor.1, floor.2, m).unwrap();
+    for x in [3.0, 4.0, 5.0] {
+        b.quad(w, Point3::new(x, 0.0, 0.0), Vec3::Y, Vec3::Z, m)
+            .unwrap();
+    }
+    b.flatten = false;
+    let scene = b.build().unwrap();
+    let group = &scene.groups[0];
+    let accel = &group.accel;
+    let copies: Vec<usize> = (0..5)
+        .filter(|&k| quad_bounds(accel, &group.objects, k).max.y < 1e-3)
+        .collect();
+    assert_eq!(copies.len(), 2, "both copies of the floor in the packets");
+    let mut rays = Rays8::default();
+    for l in 0..8 {
+        let o = Point3::new(-1.5 + 0.4 * l as f64, 1.0, 0.3);
+        rays.set(l, &Ray::new(o, Vec3::new(0.01, -1.0, 0.02), 0.0));
+    }
+    for tier in tiers() {
+        for behind in [copies[0], copies[1]] {
+            let bounds = quad_bounds(accel, &group.objects, behind);
+            let clusters = [Cluster {
+                quads: 1 << behind,
+                bounds,
+            }];
+            let got = closest_with(tier, &LaneQuads::new(&accel.packets, &clusters), &[], &rays);
+            assert_eq!(
+                got.hit, [copies[0] as u32; 8],
+                "{tier:?}, quad {behind} behind a box"
+            );
+        }
+    }
 }
 
 /// How many lanes of [`closest_avx512`] or [`closest_avx2`] (`tier`) differ from
