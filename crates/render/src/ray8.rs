@@ -180,14 +180,6 @@ impl QuadForm {
             _ => QuadForm::General,
         }
     }
-
-    /// The forms of the quads of `packets`, four to a packet.
-    pub fn all(packets: &[Quad4]) -> Vec<QuadForm> {
-        packets
-            .iter()
-            .flat_map(|p| (0..4).map(move |lane| QuadForm::of(p, lane)))
-            .collect()
-    }
 }
 
 /// The quads of one rigid instance placed in world space by [`crate::flatten`] (book 3's rotated
