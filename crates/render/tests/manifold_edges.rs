@@ -23,6 +23,11 @@ const MAX_DEPTH: u32 = 50;
 /// A floor under a one-sided lamp, a glass ball of index `ior` and radius 1 on it with a white ball
 /// of radius `inner` inside (none if 0), seen from the front.
 fn glass_on_a_floor(ior: f64, inner: f64, scale: f64) -> Scene {
+    glass_on_a_floor_builder(ior, inner, scale).build().unwrap()
+}
+
+/// [`glass_on_a_floor`], not yet built.
+fn glass_on_a_floor_builder(ior: f64, inner: f64, scale: f64) -> SceneBuilder {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let white = b.material(Material::lambertian(Color::splat(0.7)));
@@ -62,7 +67,7 @@ fn glass_on_a_floor(ior: f64, inner: f64, scale: f64) -> Scene {
     };
     b.background = Background::Solid(Color::ZERO);
     b.max_depth = MAX_DEPTH;
-    b.build().unwrap()
+    b
 }
 
 fn means(image: impl Fn(u64) -> Vec<Color>) -> Vec<Vec<f64>> {
@@ -88,6 +93,48 @@ fn glass_of_index_below_one_and_far_above_agrees_with_cosine() {
         assert!(
             d.is_empty(),
             "index {ior}: mis vs cosine:\n{}",
+            d.join("\n")
+        );
+    }
+}
+
+#[test]
+fn a_second_lamp_seen_from_behind_through_the_glass_agrees_with_cosine() {
+    // A second one-sided lamp beside the first, facing up: the floor and the ball see only its
+    // back, which gives no light. The connections draw points on it too (out of the ball that
+    // holds a white ball, and across the clear one); they must find it dark, as `cosine` does.
+    for inner in [0.45, 0.0] {
+        let mut b = glass_on_a_floor_builder(1.5, inner, 1.0);
+        let w = b.world();
+        let lamp = b.material(Material::DiffuseLight {
+            emit: Albedo::Constant(Color::splat(10.0)),
+            two_sided: false,
+        });
+        // (`u x v` up: the lamp faces away from everything below it)
+        b.quad(
+            w,
+            Point3::new(-2.6, 2.4, -1.4),
+            Vec3::new(0.0, 0.0, 1.4),
+            Vec3::new(1.4, 0.0, 0.0),
+            lamp,
+        )
+        .unwrap();
+        let scene = b.build().unwrap();
+        let lights = Lights::new(&scene, false);
+        assert!(lights.manifold.is_active());
+        assert_eq!(lights.manifold.emitters.len(), 2);
+        assert_eq!(lights.manifold.crossable.is_empty(), inner > 0.0);
+        let cosine = means(|seed| {
+            let st = variant_batches::settings(WIDTH, MAX_DEPTH, seed, Strategy::Cosine);
+            render(&scene, st, 16).0.image()
+        });
+        let mis = means(|seed| {
+            variant_batches::render_variant(&scene, WIDTH, MAX_DEPTH, 16, seed, MisVariant::Book)
+        });
+        let d = variant_batches::disagreements(&cosine, &mis, GRID);
+        assert!(
+            d.is_empty(),
+            "inner {inner}: mis vs cosine:\n{}",
             d.join("\n")
         );
     }

@@ -259,7 +259,7 @@ impl Interface {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::manifold::testing::{ball, configuration, snell, unit};
+    use crate::manifold::testing::{ball, configuration, snell, swept_per_area, unit};
     use rand::SeedableRng;
     use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -346,25 +346,14 @@ mod tests {
             let found = b.leaving(p, y);
             let [r] = found.as_slice() else { continue };
             let n_y = unit(&mut rng);
-            let t1 = n_y.any_orthonormal_vector();
-            let t2 = n_y.cross(t1);
-            let e = 1e-6 * b.radius;
             let omega = |q: Point3| {
                 let f = b.leaving(p, q);
                 let [r] = f.as_slice() else { return None };
                 Some(r.dir_in)
             };
-            let (Some(a1), Some(b1), Some(a2), Some(b2)) = (
-                omega(y + e * t1),
-                omega(y - e * t1),
-                omega(y + e * t2),
-                omega(y - e * t2),
-            ) else {
+            let Some(swept) = swept_per_area(omega, y, n_y, 1e-6 * b.radius) else {
                 continue;
             };
-            let swept = ((a1 - b1) / (2.0 * e))
-                .cross((a2 - b2) / (2.0 * e))
-                .length();
             let g = r.geometry * n_y.dot(r.dir_out).abs();
             assert!(
                 ((g - swept) / swept).abs() < 1e-4,

@@ -713,18 +713,26 @@ pub(crate) mod testing {
         }
     }
 
-    pub fn unit<R: Rng>(rng: &mut R) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            );
-            let l = v.length_squared();
-            if l > 1e-4 && l <= 1.0 {
-                return v / l.sqrt();
-            }
-        }
+    pub use crate::shapes::quad_cases::unit;
+
+    /// The solid angle that the unit directions `omega(q)` sweep as `q` crosses a small square at
+    /// `y` facing `n_y` (side `2 e`, central differences), over the square's area: what a
+    /// connection's `G |cos theta_y|` must equal. `None` where `omega` is not defined around `y`.
+    pub fn swept_per_area(
+        omega: impl Fn(Point3) -> Option<Vec3>,
+        y: Point3,
+        n_y: Vec3,
+        e: f64,
+    ) -> Option<f64> {
+        let t1 = n_y.any_orthonormal_vector();
+        let t2 = n_y.cross(t1);
+        let (a1, b1) = (omega(y + e * t1)?, omega(y - e * t1)?);
+        let (a2, b2) = (omega(y + e * t2)?, omega(y - e * t2)?);
+        Some(
+            ((a1 - b1) / (2.0 * e))
+                .cross((a2 - b2) / (2.0 * e))
+                .length(),
+        )
     }
 
     /// A random vertex inside and point outside the ball.
