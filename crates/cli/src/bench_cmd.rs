@@ -5,6 +5,7 @@
 
 mod book_cpp;
 pub(crate) mod noise;
+mod targets;
 
 use anyhow::{Context, Result, bail};
 use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
@@ -28,6 +29,9 @@ enum BenchCommand {
     /// The per-pixel noise between two renders of one scene with different seeds, as `compare`
     /// measures it: e.g. the book's program at a target's samples, or `rtl render --time`.
     Noise(NoiseArgs),
+    /// Issue 16's three speed targets on this machine: each measured by `compare` with the settings
+    /// render-speed.md quotes, then a verdict for each target and tier.
+    Targets(Box<targets::TargetsArgs>),
 }
 
 #[derive(Args)]
@@ -160,6 +164,7 @@ fn measured_far_below(measured: u64, needed: f64) -> bool {
 pub fn run(args: BenchArgs) -> Result<()> {
     match args.command {
         BenchCommand::Compare(a) => compare(*a),
+        BenchCommand::Targets(a) => targets::run(*a),
         BenchCommand::Noise(a) => {
             println!("{}", noise_of(&a)?);
             Ok(())
@@ -307,7 +312,21 @@ fn program(scene: CompareScene) -> BookProgram {
 }
 
 fn compare(mut a: CompareArgs) -> Result<()> {
-    validate(&a)?;
+    measure(&mut a).map(drop)
+}
+
+/// What a comparison measured: each round's rows (the book's first when it ran, then Mitsuba's,
+/// then rtl's strategies, each in its tiers), the per-pixel RMSE the times are projected to, and
+/// the pixels they are for.
+struct Comparison {
+    rounds: Vec<Vec<Measured>>,
+    target: f64,
+    pixels: usize,
+}
+
+/// Runs the comparison `a` and prints its tables (`a.scratch` made absolute).
+fn measure(a: &mut CompareArgs) -> Result<Comparison> {
+    validate(a)?;
     if let Some(py) = &a.mitsuba {
         check_mitsuba(py, &a.mitsuba_variant)?;
     }
@@ -339,7 +358,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         if a.rounds > 1 {
             eprintln!("round {} of {}", r + 1, a.rounds);
         }
-        rounds.push(measure_round(&a, depth, r)?);
+        rounds.push(measure_round(a, depth, r)?);
     }
     let book_c = a.book.as_ref().map(|_| rounds[0][0].c);
     let target = match (a.book_noise.or(a.target_rmse), book_c) {
@@ -354,7 +373,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
         if a.rounds > 1 {
             println!("round {} of {}", r + 1, a.rounds);
         }
-        print_table(&a, rows, target, pixels, side);
+        print_table(a, rows, target, pixels, side);
     }
     if a.rounds > 1 && a.book.is_some() {
         println!();
@@ -375,7 +394,7 @@ fn compare(mut a: CompareArgs) -> Result<()> {
             let rate = Spread::of(rounds.iter().map(|rows| rows[i].per_core));
             let by_rate = rate_ratio(&rounds, i);
             let by_time = Spread::of(rounds.iter().map(|rows| {
-                book_seconds(&a, &rows[0], target, pixels)
+                book_seconds(a, &rows[0], target, pixels)
                     / seconds_to(rows[i].c, target, pixels, rows[i].per_core, a.cores)
             }));
             println!(
@@ -396,7 +415,11 @@ fn compare(mut a: CompareArgs) -> Result<()> {
          (sqrt, clamp, 8 bits) before c is measured. The book's main.cc was patched in a copy under {}.",
         a.scratch.display()
     );
-    Ok(())
+    Ok(Comparison {
+        rounds,
+        target,
+        pixels,
+    })
 }
 
 /// What a round runs: one renderer's pair of renders.
