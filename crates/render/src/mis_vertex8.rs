@@ -84,7 +84,6 @@ pub struct MisOut {
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
-    use super::MAX_OTHERS;
     use super::{MisLanes, MisOut};
     use crate::lanes::F64x8;
     use crate::mixture8::wide::View8;
@@ -197,9 +196,20 @@ mod wide {
             };
             let (p, normal, albedo) = (at.p, at.normal, at.albedo);
             let zero = p[0].zero_like();
-            let mut views = [View8::NONE; MAX_OTHERS];
-            let views = &mut views[..self.others.targets()];
-            self.others.see_from(p, views);
+            // (each target's view built in its place: an array of them cleared first cost a
+            // memset of a few hundred bytes a batch)
+            let (one, two);
+            let views: &[View8<W>] = match self.others.target_list() {
+                [a] => {
+                    one = [a.view(p)];
+                    &one
+                }
+                [a, b] => {
+                    two = [a.view(p), b.view(p)];
+                    &two
+                }
+                _ => unreachable!("one or two targets besides the emitter ([`MAX_OTHERS`])"),
+            };
             let (wa, rest) = (
                 zero.splat_like(self.share),
                 zero.splat_like(1.0 - self.share),

@@ -51,6 +51,11 @@ impl Mixture8 {
         self.targets.len()
     }
 
+    /// The targets, in the lanes' form.
+    pub(crate) fn target_list(&self) -> &[Target8] {
+        &self.targets
+    }
+
     /// The mixture of the targets `lights` (the book's list) with share `weight` in `(0, 1)`; `None`
     /// if there are no targets (the strategy then samples the material alone) or a quad samples by
     /// spherical rectangles, which the lanes do not.
@@ -102,12 +107,13 @@ impl Target8 {
 pub const MAX_TARGETS: usize = 8;
 
 /// The targets of the book's scenes (the Cornell box's light and glass ball): up to this many,
-/// their views are kept in an array of this size.
+/// the lanes build each target's view in its place on the stack, rather than in an array of
+/// [`MAX_TARGETS`] cleared first.
 pub const FEW_TARGETS: usize = 2;
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod wide {
-    use super::{FEW_TARGETS, MAX_TARGETS, Mixture8, Target8};
+    use super::{MAX_TARGETS, Mixture8, Target8};
     use crate::lanes::F64x8;
     use crate::warp8::*;
     use crate::wide8::*;
@@ -369,17 +375,16 @@ pub(crate) mod wide {
             u: [W; 2],
             lanes: u8,
         ) -> (V3<W>, W, W::Mask) {
-            // (the views on the stack, a few hundred bytes each: as many as the book's scenes
-            // have where that is enough, since the whole array is cleared)
-            let (d, r, _, ok) = if self.targets.len() <= FEW_TARGETS {
-                let mut views = [View8::NONE; FEW_TARGETS];
-                let views = &mut views[..self.targets.len()];
-                self.see_from(p, views);
-                self.sample_seen(views, p, normal, u, lanes)
-            } else {
-                let mut views = [View8::NONE; MAX_TARGETS];
-                self.see_from(p, &mut views);
-                self.sample_seen(&views, p, normal, u, lanes)
+            // (the views on the stack, a few hundred bytes each: for the book's scenes' one or
+            // two targets each built in its place, for more an array cleared first)
+            let (d, r, _, ok) = match self.targets.as_slice() {
+                [a] => self.sample_seen(&[a.view(p)], p, normal, u, lanes),
+                [a, b] => self.sample_seen(&[a.view(p), b.view(p)], p, normal, u, lanes),
+                _ => {
+                    let mut views = [View8::NONE; MAX_TARGETS];
+                    self.see_from(p, &mut views);
+                    self.sample_seen(&views, p, normal, u, lanes)
+                }
             };
             (d, r, ok)
         }

@@ -366,7 +366,10 @@ impl Manifold {
             return false;
         }
         let tangent = (d2 - r * r).sqrt();
-        axis.dot(onward) >= cos_b * tangent - r * sin_b || cos_b * d2.sqrt() <= -tangent
+        // (`tangent > 0` here, so the second test can hold only where `cos(beta) < 0`: its square
+        // root is taken only there)
+        axis.dot(onward) >= cos_b * tangent - r * sin_b
+            || (cos_b < 0.0 && cos_b * d2.sqrt() <= -tangent)
     }
 
     /// Whether some crossable interface and some emitter pass [`Manifold::reaches`] from `p`: where
