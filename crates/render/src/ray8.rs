@@ -347,8 +347,10 @@ mod wide {
             } else {
                 t.lt(found.t)
             };
-            let k =
-                min.lt(t) & before & zero.le(alpha) & alpha.le(one) & zero.le(beta) & beta.le(one);
+            // `0 <= alpha, beta <= 1` in two comparisons: where its own comparison fails, `min`
+            // gives `beta` and `max` gives `alpha`, so that a NaN in either fails one of them
+            let inside = zero.le(alpha.min(beta)) & beta.max(alpha).le(one);
+            let k = min.lt(t) & before & inside;
             // a hit on an edge line of an axis-plane quad: the zero's sign of the full products
             let (alpha, beta) = if in_plane && !(k & (alpha.eq(zero) | beta.eq(zero))).is_empty() {
                 coordinates(quad, o, dir, t)

@@ -904,6 +904,44 @@ fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
 }
 
 #[test]
+fn a_ray_with_a_nan_coordinate_meets_in_the_lanes_what_it_meets_alone() {
+    // A NaN in a coordinate of the origin that an axis-plane quad's `t` does not read makes its
+    // `alpha` or `beta` NaN while `t` is a fine number: the lanes' `0 <= alpha, beta <= 1` (a
+    // `min` and a `max`, `ray8`) must refuse it as the portable form does, whichever it is in.
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(12);
+    for tier in tiers() {
+        let mut nan_lanes = 0;
+        for _ in 0..150 {
+            let (scene, corners) = small_group(&mut rng);
+            let accel = &scene.groups[0].accel;
+            let spheres = accel.spheres.as_deref().unwrap_or(&[]);
+            for _ in 0..20 {
+                let mut lanes = rays8(&mut rng, &corners);
+                for (l, ray) in lanes.iter_mut().enumerate().filter(|(l, _)| l % 4 != 3) {
+                    let mut o = ray.origin;
+                    o[l % 3] = f64::NAN;
+                    *ray = Ray::new(o, ray.direction, 0.0);
+                    nan_lanes += 1;
+                }
+                let mut rays = Rays8::default();
+                for (l, r) in lanes.iter().enumerate() {
+                    rays.set(l, r);
+                }
+                let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
+                let got = closest_in(tier, accel, spheres, &rays);
+                for l in 0..8 {
+                    let bits = |c: &Closest8| {
+                        (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
+                    };
+                    assert_eq!(bits(&got), bits(&want), "{tier:?} lane {l}");
+                }
+            }
+        }
+        assert!(nan_lanes > 10_000, "{nan_lanes}");
+    }
+}
+
+#[test]
 fn the_intersection_check_catches_a_sphere_one_ulp_too_large() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
     for tier in tiers() {
