@@ -349,10 +349,11 @@ mod wide {
             };
             // `0 <= alpha, beta <= 1` in two comparisons: where its own comparison fails, `min`
             // gives `beta` and `max` gives `alpha`, so that a NaN in either fails one of them
-            let inside = zero.le(alpha.min(beta)) & beta.max(alpha).le(one);
-            let k = min.lt(t) & before & inside;
-            // a hit on an edge line of an axis-plane quad: the zero's sign of the full products
-            let (alpha, beta) = if in_plane && !(k & (alpha.eq(zero) | beta.eq(zero))).is_empty() {
+            let lowest = alpha.min(beta);
+            let k = min.lt(t) & before & zero.le(lowest) & beta.max(alpha).le(one);
+            // a hit on an edge line of an axis-plane quad (`alpha` or `beta` zero, so the lower
+            // of the two, both in [0, 1] where a lane hits): the zero's sign of the full products
+            let (alpha, beta) = if in_plane && !(k & lowest.eq(zero)).is_empty() {
                 coordinates(quad, o, dir, t)
             } else {
                 (alpha, beta)

@@ -293,14 +293,14 @@ fn summary(cpu: &str, outcomes: &[Outcome]) -> Vec<String> {
         Goal::AtMost(g) => format!("<= {}", t.show(g)),
     };
     lines.push(format!(
-        "{:<64} {:<40} {:<28} {:<10} verdict",
+        "{:<64} {:<40} {:<28} {:<11} verdict",
         "target", "rtl", "median (lowest-highest)", "goal"
     ));
     for o in outcomes {
         let t = o.target;
         let s = &o.spread;
         lines.push(format!(
-            "{:<64} {:<40} {:<28} {:<10} {}",
+            "{:<64} {:<40} {:<28} {:<11} {}",
             t.what(),
             o.renderer,
             format!(
