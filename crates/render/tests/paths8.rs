@@ -862,6 +862,27 @@ fn closest_mismatches(
     wrong
 }
 
+/// [`closest_in`] for the rays `lanes` (in `tier`) against [`closest_portable`], bit for bit lane by
+/// lane (the hit, `t`, `alpha`, `beta`); the portable form's answer.
+fn assert_lanes_agree(
+    tier: HitTier,
+    accel: &rtl_render::traversal::Accel,
+    spheres: &[(Sphere, rtl_render::aabb::Aabb)],
+    lanes: &[Ray; 8],
+) -> Closest8 {
+    let mut rays = Rays8::default();
+    for (l, r) in lanes.iter().enumerate() {
+        rays.set(l, r);
+    }
+    let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
+    let got = closest_in(tier, accel, spheres, &rays);
+    for l in 0..8 {
+        let bits = |c: &Closest8| (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits));
+        assert_eq!(bits(&got), bits(&want), "{tier:?} lane {l}");
+    }
+    want
+}
+
 #[test]
 fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
     // Rays in axis planes through the quads' corners hit edge lines, where `alpha` or `beta` is a
@@ -874,18 +895,8 @@ fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
             let accel = &scene.groups[0].accel;
             let spheres = accel.spheres.as_deref().unwrap_or(&[]);
             for _ in 0..40 {
-                let lanes = rays8(&mut rng, &corners);
-                let mut rays = Rays8::default();
-                for (l, r) in lanes.iter().enumerate() {
-                    rays.set(l, r);
-                }
-                let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
-                let got = closest_in(tier, accel, spheres, &rays);
+                let want = assert_lanes_agree(tier, accel, spheres, &rays8(&mut rng, &corners));
                 for l in 0..8 {
-                    let bits = |c: &Closest8| {
-                        (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
-                    };
-                    assert_eq!(bits(&got), bits(&want), "{tier:?} lane {l}");
                     if want.hit[l] < rtl_render::ray8::SPHERE {
                         for x in [want.alpha[l], want.beta[l]] {
                             if x == 0.0 {
@@ -923,18 +934,7 @@ fn a_ray_with_a_nan_coordinate_meets_in_the_lanes_what_it_meets_alone() {
                     *ray = Ray::new(o, ray.direction, 0.0);
                     nan_lanes += 1;
                 }
-                let mut rays = Rays8::default();
-                for (l, r) in lanes.iter().enumerate() {
-                    rays.set(l, r);
-                }
-                let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
-                let got = closest_in(tier, accel, spheres, &rays);
-                for l in 0..8 {
-                    let bits = |c: &Closest8| {
-                        (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
-                    };
-                    assert_eq!(bits(&got), bits(&want), "{tier:?} lane {l}");
-                }
+                assert_lanes_agree(tier, accel, spheres, &lanes);
             }
         }
         assert!(nan_lanes > 10_000, "{nan_lanes}");
