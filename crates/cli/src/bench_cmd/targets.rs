@@ -244,7 +244,14 @@ fn plan(a: &TargetsArgs, detected: HitTier) -> Result<Vec<Planned>> {
         let args = Cli::try_parse_from(&all)
             .map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?
             .compare;
-        validate(&args).with_context(|| format!("the {:?} target's comparison", target))?;
+        validate(&args).with_context(|| {
+            let name = target.to_possible_value().expect("no skipped target");
+            format!(
+                "the {} target (`--only {}`)",
+                target.what(),
+                name.get_name()
+            )
+        })?;
         planned.push(Planned { target, args, line });
     }
     Ok(planned)
@@ -500,6 +507,7 @@ mod tests {
         let a = targets_args(&["--book", empty.to_str().unwrap()]).unwrap();
         let err = format!("{:#}", plan(&a, HitTier::Avx2).err().expect("refused"));
         assert!(err.contains("--book") && err.contains("main.cc"), "{err}");
+        assert!(err.contains("`--only mixture`"), "{err}");
         // a bad tier or round count, named
         let book = scratch("refused", true);
         let path = book.to_str().unwrap();
