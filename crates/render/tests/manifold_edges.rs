@@ -74,6 +74,20 @@ fn means(image: impl Fn(u64) -> Vec<Color>) -> Vec<Vec<f64>> {
     variant_batches::region_means(WIDTH, GRID, 32, 7000, image)
 }
 
+/// `mis` (the book's form, with its connections through glass) against `cosine` on `scene`, region
+/// by region ([`variant_batches::disagreements`]); `what` names the case in a failure.
+fn assert_mis_agrees_with_cosine(scene: &Scene, what: &str) {
+    let cosine = means(|seed| {
+        let st = variant_batches::settings(WIDTH, MAX_DEPTH, seed, Strategy::Cosine);
+        render(scene, st, 16).0.image()
+    });
+    let mis = means(|seed| {
+        variant_batches::render_variant(scene, WIDTH, MAX_DEPTH, 16, seed, MisVariant::Book)
+    });
+    let d = variant_batches::disagreements(&cosine, &mis, GRID);
+    assert!(d.is_empty(), "{what}: mis vs cosine:\n{}", d.join("\n"));
+}
+
 #[test]
 fn glass_of_index_below_one_and_far_above_agrees_with_cosine() {
     for ior in [0.7, 2.4] {
@@ -82,19 +96,7 @@ fn glass_of_index_below_one_and_far_above_agrees_with_cosine() {
         assert!(lights.manifold.is_active());
         // (a ball that holds a surface is not crossed: a leg inside could meet it)
         assert!(lights.manifold.crossable.is_empty());
-        let cosine = means(|seed| {
-            let st = variant_batches::settings(WIDTH, MAX_DEPTH, seed, Strategy::Cosine);
-            render(&scene, st, 16).0.image()
-        });
-        let mis = means(|seed| {
-            variant_batches::render_variant(&scene, WIDTH, MAX_DEPTH, 16, seed, MisVariant::Book)
-        });
-        let d = variant_batches::disagreements(&cosine, &mis, GRID);
-        assert!(
-            d.is_empty(),
-            "index {ior}: mis vs cosine:\n{}",
-            d.join("\n")
-        );
+        assert_mis_agrees_with_cosine(&scene, &format!("index {ior}"));
     }
 }
 
@@ -124,19 +126,7 @@ fn a_second_lamp_seen_from_behind_through_the_glass_agrees_with_cosine() {
         assert!(lights.manifold.is_active());
         assert_eq!(lights.manifold.emitters.len(), 2);
         assert_eq!(lights.manifold.crossable.is_empty(), inner > 0.0);
-        let cosine = means(|seed| {
-            let st = variant_batches::settings(WIDTH, MAX_DEPTH, seed, Strategy::Cosine);
-            render(&scene, st, 16).0.image()
-        });
-        let mis = means(|seed| {
-            variant_batches::render_variant(&scene, WIDTH, MAX_DEPTH, 16, seed, MisVariant::Book)
-        });
-        let d = variant_batches::disagreements(&cosine, &mis, GRID);
-        assert!(
-            d.is_empty(),
-            "inner {inner}: mis vs cosine:\n{}",
-            d.join("\n")
-        );
+        assert_mis_agrees_with_cosine(&scene, &format!("inner {inner}"));
     }
 }
 

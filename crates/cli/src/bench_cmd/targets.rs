@@ -183,6 +183,14 @@ impl Target {
         }
     }
 
+    /// The goal as the summary prints it: `>= 4.00x`, `<= 50.0 s`.
+    fn goal_text(self) -> String {
+        match self.goal() {
+            Goal::AtLeast(g) => format!(">= {}", self.show(g)),
+            Goal::AtMost(g) => format!("<= {}", self.show(g)),
+        }
+    }
+
     /// The unit a figure is printed in.
     fn show(self, x: f64) -> String {
         match self {
@@ -295,10 +303,6 @@ fn outcomes(target: Target, c: &Comparison, cores: usize) -> Vec<Outcome> {
 /// The summary's lines.
 fn summary(cpu: &str, outcomes: &[Outcome]) -> Vec<String> {
     let mut lines = vec![format!("issue 16's targets on this machine: {cpu}")];
-    let goal = |t: Target| match t.goal() {
-        Goal::AtLeast(g) => format!(">= {}", t.show(g)),
-        Goal::AtMost(g) => format!("<= {}", t.show(g)),
-    };
     lines.push(format!(
         "{:<64} {:<40} {:<28} {:<11} verdict",
         "target", "rtl", "median (lowest-highest)", "goal"
@@ -316,7 +320,7 @@ fn summary(cpu: &str, outcomes: &[Outcome]) -> Vec<String> {
                 t.show(s.lowest),
                 t.show(s.highest)
             ),
-            goal(t),
+            t.goal_text(),
             o.verdict.words()
         ));
     }
@@ -333,7 +337,7 @@ pub(super) fn run(a: TargetsArgs) -> Result<()> {
         line,
     } in planned
     {
-        println!("== {} ({})", target.what(), target_goal_words(target));
+        println!("== {} (goal: {})", target.what(), target.goal_text());
         println!("   {line}");
         let cores = args.cores;
         let measured = measure(&mut args)?;
@@ -344,13 +348,6 @@ pub(super) fn run(a: TargetsArgs) -> Result<()> {
         println!("{line}");
     }
     Ok(())
-}
-
-fn target_goal_words(t: Target) -> String {
-    match t.goal() {
-        Goal::AtLeast(g) => format!("goal: at least {}", t.show(g)),
-        Goal::AtMost(g) => format!("goal: at most {}", t.show(g)),
-    }
 }
 
 #[cfg(test)]
