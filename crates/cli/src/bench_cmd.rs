@@ -233,8 +233,16 @@ fn cpu_of(cpuinfo: &str) -> Option<String> {
 }
 
 fn validate(a: &CompareArgs) -> Result<()> {
-    if a.width == 0 || a.spp == 0 || a.threads == 0 || a.cores == 0 || a.rounds == 0 {
-        bail!("--width, --spp, --threads, --cores and --rounds must be positive");
+    for (flag, n) in [
+        ("--width", a.width),
+        ("--spp", a.spp as usize),
+        ("--threads", a.threads),
+        ("--cores", a.cores),
+        ("--rounds", a.rounds),
+    ] {
+        if n == 0 {
+            bail!("{flag} must be positive, got 0");
+        }
     }
     if let Some(w) = a.project_width
         && (w == 0 || w > rtl_render::limits::MAX_SIDE)
@@ -270,7 +278,8 @@ fn validate(a: &CompareArgs) -> Result<()> {
         let main = book.join(program.dir()).join("main.cc");
         if !main.is_file() {
             bail!(
-                "--book {}: no {} (expected a checkout of RayTracing/raytracing.github.io)",
+                "--book {}: no {} (expected a checkout of RayTracing/raytracing.github.io: \
+                 git clone --depth 1 https://github.com/RayTracing/raytracing.github.io)",
                 book.display(),
                 main.display()
             );
@@ -1205,8 +1214,11 @@ mod tests {
                 (run, v) => panic!("{t:?} (runs here: {run}): {v:?}"),
             }
         }
-        assert!(err(&["--target-rmse", "0.01", "--spp", "0"]).contains("positive"));
-        assert!(err(&["--target-rmse", "0.01", "--rounds", "0"]).contains("--rounds"));
+        // each zero named alone, as the flag the user gave
+        for flag in ["--width", "--spp", "--threads", "--cores", "--rounds"] {
+            let e = err(&["--target-rmse", "0.01", flag, "0"]);
+            assert_eq!(e, format!("{flag} must be positive, got 0"));
+        }
         let e = err(&["--book-noise", "0.01"]);
         assert!(e.contains("--book-noise") && e.contains("no --book"), "{e}");
         assert!(
@@ -1224,6 +1236,7 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let e = err(&["--book", dir.to_str().unwrap()]);
         assert!(e.contains("src/TheRestOfYourLife/main.cc"), "{e}");
+        assert!(e.contains("git clone"), "how to get the book's code: {e}");
         // A checkout that looks like the book's, with a spp the book cannot stratify.
         let main = dir.join("src/TheRestOfYourLife");
         std::fs::create_dir_all(&main).unwrap();
