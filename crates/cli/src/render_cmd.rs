@@ -10,6 +10,7 @@ use rtl_render::integrator::Strategy;
 use rtl_render::limits::{self, MAX_SIDE, MAX_THREADS};
 use rtl_render::output::{OutputFile, OutputKind, check_outputs};
 use rtl_render::output::{Transfer, write_linear, write_png};
+use rtl_render::paths8::{LANES, PACKETS};
 use rtl_render::render::{
     Accumulator, BOOK_MIXTURE_WEIGHT, RenderSettings, Renderer, check_mixture_weight,
 };
@@ -108,7 +109,7 @@ pub struct RenderArgs {
     /// timing the tiers side by side, or the one a processor without AVX-512 runs.
     #[arg(long, value_name = "TIER", value_parser = parse_hit_tier)]
     pub hit_tier: Option<TierChoice>,
-    /// Trace one path at a time, where sixteen would be traced side by side in the vector lanes (in a
+    /// Trace one path at a time, where 32 would be traced side by side in the vector lanes (in a
     /// scene of one small group, on a processor with AVX2: the book's one-sample strategies, and
     /// `mis` where the scene has no media). The
     /// image is the same bit for bit: this is for timing what the lanes buy.
@@ -285,9 +286,12 @@ fn explain(
             "one at a time (--no-lanes)".to_string()
         } else if lanes.paths_in_lanes() {
             format!(
-                "sixteen side by side in the vector lanes ({}), in two packets of eight whose rays \
-                 are intersected together{}",
+                "{} side by side in the vector lanes ({}), in {} packets of {} whose rays are \
+                 intersected together{}",
+                PACKETS * LANES,
                 tier_keys,
+                PACKETS,
+                LANES,
                 match (
                     settings.strategy.mis_options().is_some(),
                     lanes.lambertian_vertex_in_lanes().is_some(),

@@ -631,11 +631,11 @@ fn no_lanes_changes_nothing_but_the_speed_and_explain_says_how_paths_go() {
     };
     let avx = rtl_render::traversal::HitTier::current() != rtl_render::traversal::HitTier::Portable;
     let line = paths(&mixture(&["--explain"]));
-    assert_eq!(line.contains("sixteen side by side"), avx, "{line}");
+    assert_eq!(line.contains("32 side by side"), avx, "{line}");
     assert!(paths(&mixture(&["--explain", "--no-lanes"])).contains("--no-lanes"));
     // mis takes the lanes too (the same image: crates/render/tests/paths8.rs), but not through media
     let line = paths(&render(&["--explain"]));
-    assert_eq!(line.contains("sixteen side by side"), avx, "{line}");
+    assert_eq!(line.contains("32 side by side"), avx, "{line}");
     assert!(line.contains("shadow ray"), "{line}");
     let smoke = paths(&["render", "cornell-smoke", "--explain"]);
     assert!(

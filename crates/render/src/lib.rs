@@ -6,7 +6,7 @@
 //! world space ([`flatten`]); hit records and robust ray offsets ([`hit`]); shapes ([`shapes`]);
 //! textures ([`texture`], [`perlin`]); materials ([`material`]); the camera ([`camera`]); scenes,
 //! instances and media ([`scene`]); the built-in scenes ([`scenes`]); importance targets ([`lights`]);
-//! the integrator and its sampling strategies ([`integrator`]); sixteen paths traced side by side in
+//! the integrator and its sampling strategies ([`integrator`]); 32 paths traced side by side in
 //! the vector lanes ([`paths8`]: their rays intersected eight at a time by [`ray8`], their vertices
 //! on Lambertian quads and glass spheres computed in the lanes by [`vertex8`] and [`glass8`], the
 //! mixture's directions drawn together by [`mixture8`] and [`warp8`], all written once over

@@ -1,6 +1,7 @@
-//! Sixteen `mis` paths side by side, in two packets of eight: next-event estimation with multiple
-//! importance sampling (the integrator's `MisPath`: `radiance_mis`'s loop a vertex at a time)
-//! traced for sixteen samples at once, each packet's rays intersected together in the lanes of
+//! Thirty-two `mis` paths side by side, in four packets of eight (as [`crate::paths8`]'s, for the
+//! same reason): next-event estimation with multiple importance sampling (the integrator's
+//! `MisPath`: `radiance_mis`'s loop a vertex at a time) traced for 32 samples at once, each
+//! packet's rays intersected together in the lanes of
 //! vector registers ([`crate::ray8`]), as [`crate::paths8`] does for the book's one-sample
 //! strategies.
 //!
@@ -9,7 +10,7 @@
 //! comes back, then the next ray in the following round (so every packet's lanes hold one kind of
 //! ray or the other, mixed as the paths happen to be). A vertex on a Lambertian quad of constant
 //! albedo (where the scene has one emitter and other targets: the Cornell box) is computed in the
-//! lanes, such vertices of both packets gathered eight at a time ([`crate::mis_vertex8`]): its
+//! lanes, such vertices of all the packets gathered eight at a time ([`crate::mis_vertex8`]): its
 //! light sample, its material sample, their weights and the numbers they draw; a shadow ray that
 //! meets a light of constant radiance, a Lambertian quad or nothing is read without building its
 //! hit's record. Every other vertex is computed on its own, as one path at a time computes it,
@@ -37,8 +38,7 @@ use crate::{
     vec::{Color, Point3, Vec3},
 };
 
-/// Packets of paths in flight per thread (as [`crate::paths8`]'s).
-const PACKETS: usize = 2;
+use crate::paths8::PACKETS;
 
 /// Whether a render of `scene` by `strategy` traces `mis` paths side by side in the lanes: for
 /// `mis`, in a scene without media whose rays meet a small group, on a processor with AVX2 or
@@ -49,7 +49,7 @@ pub fn applies(scene: &Scene, strategy: Strategy) -> bool {
         && scene.hits_eight_at_once(GroupId(0))
 }
 
-/// A batch of up to eight Lambertian vertices gathered from both packets for the lanes: their
+/// A batch of up to eight Lambertian vertices gathered from the packets for the lanes: their
 /// quads' hits, their rays, their throughputs, their numbers, and the lanes that take a light
 /// sample.
 #[cfg(target_arch = "x86_64")]
@@ -92,7 +92,7 @@ impl MisBatch {
 }
 
 /// [`Renderer::render_pass_until`]'s work on row `j` for `mis`: samples `k0..k1` of each of its
-/// pixels, sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample)
+/// pixels, [`PACKETS`] times eight paths at a time; `None` if `stop()` (asked before each pixel's first sample)
 /// said to stop. Called only where [`applies`] said so (an AVX tier runs).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
@@ -135,7 +135,7 @@ pub(crate) fn render_row(
     let mut closest = [crate::ray8::Closest8::default(); PACKETS];
     let mut active = [0u8; PACKETS];
     // The Lambertian vertex in the lanes ([`crate::mis_vertex8`]), in batches of eight gathered
-    // from both packets: the batches' hits, rays, throughputs and numbers, their answers, each
+    // from all the packets: the batches' hits, rays, throughputs and numbers, their answers, each
     // path's place in them (`slot[g][l] = n`: lane `n % 8` of batch `n / 8`) and which paths of
     // each packet are in one.
     let in_lanes = r.mis_vertex_in_lanes();
@@ -166,8 +166,8 @@ pub(crate) fn render_row(
         if active == [0; PACKETS] {
             break;
         }
-        // Both packets' rays intersected.
-        let mut found = [None, None];
+        // Every packet's rays intersected.
+        let mut found: [Option<_>; PACKETS] = std::array::from_fn(|_| None);
         for g in 0..PACKETS {
             if active[g] == 0 {
                 continue;

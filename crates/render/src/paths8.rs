@@ -1,9 +1,9 @@
-//! Sixteen paths side by side, in two packets of eight: the book's one-sample estimator
-//! ([`OneSamplePath`]) traced for sixteen samples at once, each packet's rays intersected together
+//! Thirty-two paths side by side, in four packets of eight ([`PACKETS`]): the book's one-sample
+//! estimator ([`OneSamplePath`]) traced for 32 samples at once, each packet's rays intersected together
 //! in the lanes of vector registers ([`crate::ray8`]: one AVX-512 register, or two AVX2 ones). For
 //! `mixture`, a vertex on a Lambertian quad of constant albedo is then computed whole in the lanes
 //! too ([`crate::vertex8`]: the point, the mixture's direction and weight, the throughput, the next
-//! ray), in batches of eight gathered from both packets (about half a packet's rays meet such a
+//! ray), in batches of eight gathered from all the packets (about half a packet's rays meet such a
 //! quad, so with one packet the batch ran half empty), and so is a vertex on a glass sphere
 //! ([`crate::glass8`]: the record, the dielectric, the next ray); a path that meets a light of
 //! constant radiance gathers it without building the hit's record; any other vertex (the sky, a
@@ -34,10 +34,13 @@ use crate::vec::{Color, Point3, Vec3};
 /// Lanes of a packet: rays intersected at once.
 pub const LANES: usize = 8;
 
-/// Packets of paths in flight per thread: with sixteen paths, the Lambertian vertices of both
-/// packets fill the eight lanes of [`crate::vertex8`] about as fully as their rays fill
-/// [`crate::ray8`]'s.
-const PACKETS: usize = 2;
+/// Packets of paths in flight per thread: thirty-two paths. Each round of the loop runs its phases
+/// (the packets' intersections, the glass batches, the Lambertian batches) one after the other, so
+/// that each phase's code, once fetched, serves four packets: the loop's code is larger than a
+/// 32 KB instruction cache (about 35 KB of it runs every round with AVX2), and with two packets it
+/// was fetched again in every phase. Four packets took 0.96-0.97 times the time of two; six and
+/// eight cost more in the data they keep (`render-speed.md`, "Issue 16, twenty-second round").
+pub const PACKETS: usize = 4;
 
 /// The fewest waiting Lambertian vertices worth a second batch in one round: fewer wait for the
 /// next, each leaving its lane of a packet's intersection idle for a round. A batch of the
@@ -227,7 +230,8 @@ impl<'a> RowSamples<'a> {
 }
 
 /// [`Renderer::render_pass_until`]'s work on row `j`: samples `k0..k1` of each of its pixels,
-/// sixteen paths at a time; `None` if `stop()` (asked before each pixel's first sample) said to stop.
+/// [`PACKETS`] times eight paths at a time; `None` if `stop()` (asked before each pixel's first
+/// sample) said to stop.
 /// Called only where [`applies`] said so (an AVX tier runs).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
@@ -273,7 +277,7 @@ pub(crate) fn render_row(
     let mut met = [crate::ray8::Closest8::default(); PACKETS];
     let mut batch = Batch::default();
     // The glass vertex in the lanes ([`crate::glass8`]): the paths whose ray met a glass sphere,
-    // gathered from both packets (`glass_from[i]` is batch lane `i % 8` of `glass_batch[i / 8]`).
+    // gathered from all the packets (`glass_from[i]` is batch lane `i % 8` of `glass_batch[i / 8]`).
     let glass = r.glass_vertex_in_lanes();
     let mut glass_batch = [crate::glass8::Glass8::default(); PACKETS];
     let mut glass_from = [(0usize, 0usize); PACKETS * LANES];

@@ -270,7 +270,7 @@ impl<'a> Renderer<'a> {
         self
     }
 
-    /// Trace one path at a time even where [`Renderer::paths_in_lanes`] would trace sixteen: the same
+    /// Trace one path at a time even where [`Renderer::paths_in_lanes`] would trace 32: the same
     /// image (for tests and for measuring what the lanes buy).
     pub fn one_path_at_a_time(mut self) -> Self {
         self.paths_in_lanes = false;

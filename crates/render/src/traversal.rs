@@ -112,7 +112,7 @@ impl HitTier {
     /// `mixture` 1.08x and `mis` 1.03x *slower* (render-speed.md, "Issue 16, seventh round"); on
     /// Intel's cores a 512-bit instruction takes the vector units of two ports, so eight lanes a
     /// time buy no throughput over two four-lane instructions. (That was measured before paths were
-    /// traced sixteen at a time in the lanes, `crate::paths8`; the Intel choice is not measured
+    /// traced side by side in the lanes, `crate::paths8`; the Intel choice is not measured
     /// since.) AMD keeps them: on a Zen 5 they were 1.04-1.11x faster, and with the paths in the
     /// lanes on a Zen 4 `mixture` 1.12-1.24x and `mis` 1.06-1.24x (README, "Speed"). So on Intel
     /// `rtl render` times both on its first passes ([`crate::tier_race`]) and keeps the faster;
