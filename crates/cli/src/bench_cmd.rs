@@ -233,14 +233,14 @@ fn cpu_of(cpuinfo: &str) -> Option<String> {
 }
 
 fn validate(a: &CompareArgs) -> Result<()> {
-    for (flag, n) in [
-        ("--width", a.width),
-        ("--spp", a.spp as usize),
-        ("--threads", a.threads),
-        ("--cores", a.cores),
-        ("--rounds", a.rounds),
+    for (flag, zero) in [
+        ("--width", a.width == 0),
+        ("--spp", a.spp == 0),
+        ("--threads", a.threads == 0),
+        ("--cores", a.cores == 0),
+        ("--rounds", a.rounds == 0),
     ] {
-        if n == 0 {
+        if zero {
             bail!("{flag} must be positive, got 0");
         }
     }

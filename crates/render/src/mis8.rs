@@ -92,8 +92,8 @@ impl MisBatch {
 }
 
 /// [`Renderer::render_pass_until`]'s work on row `j` for `mis`: samples `k0..k1` of each of its
-/// pixels, [`PACKETS`] times eight paths at a time; `None` if `stop()` (asked before each pixel's first sample)
-/// said to stop. Called only where [`applies`] said so (an AVX tier runs).
+/// pixels, [`PACKETS`] times eight paths at a time; `None` if `stop()` (asked before each pixel's
+/// first sample) said to stop. Called only where [`applies`] said so (an AVX tier runs).
 #[cfg(target_arch = "x86_64")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_row(

@@ -37,7 +37,7 @@ pub const LANES: usize = 8;
 /// Packets of paths in flight per thread: thirty-two paths. Each round of the loop runs its phases
 /// (the packets' intersections, the glass batches, the Lambertian batches) one after the other, so
 /// that each phase's code, once fetched, serves four packets: the loop's code is larger than a
-/// 32 KB instruction cache (about 35 KB of it runs every round with AVX2), and with two packets it
+/// 32 KB instruction cache (about 32-35 KB of it runs every round with AVX2, cachegrind), and with two packets it
 /// was fetched again in every phase. Four packets took 0.96-0.97 times the time of two; six and
 /// eight cost more in the data they keep (`render-speed.md`, "Issue 16, twenty-second round").
 pub const PACKETS: usize = 4;

@@ -833,6 +833,29 @@ fn on_equal_distances_a_cluster_yields_to_an_earlier_quad_and_wins_over_a_later_
     }
 }
 
+/// The closest hits of the eight rays `rays`: [`closest_portable`]'s against the spheres `spheres`,
+/// then [`closest_in`]'s in `tier` against `spheres_for_lanes` (the same, unless a test gives the
+/// lanes a wrong sphere).
+fn portable_and_lanes(
+    tier: HitTier,
+    accel: &rtl_render::traversal::Accel,
+    spheres: &[(Sphere, rtl_render::aabb::Aabb)],
+    spheres_for_lanes: &[(Sphere, rtl_render::aabb::Aabb)],
+    rays: &[Ray; 8],
+) -> (Closest8, Closest8) {
+    let mut lanes = Rays8::default();
+    for (l, r) in rays.iter().enumerate() {
+        lanes.set(l, r);
+    }
+    let want = closest_portable(&accel.packets, spheres, &lanes, Interval::FORWARD);
+    (want, closest_in(tier, accel, spheres_for_lanes, &lanes))
+}
+
+/// Lane `l` of `c` bit for bit: the hit, `t`, `alpha`, `beta`.
+fn lane_bits(c: &Closest8, l: usize) -> (u32, [u64; 3]) {
+    (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
+}
+
 /// How many lanes of [`closest_avx512`] or [`closest_avx2`] (`tier`) differ from
 /// [`closest_portable`], over random rays.
 fn closest_mismatches(
@@ -846,39 +869,25 @@ fn closest_mismatches(
     let mut wrong = 0;
     for _ in 0..60 {
         let rays = rays8(rng, &[]);
-        let mut lanes = Rays8::default();
-        for (l, r) in rays.iter().enumerate() {
-            lanes.set(l, r);
-        }
-        let want = closest_portable(&accel.packets, spheres, &lanes, Interval::FORWARD);
-        let got = closest_in(tier, accel, spheres_for_lanes, &lanes);
-        for l in 0..8 {
-            wrong += (got.hit[l] != want.hit[l]
-                || got.t[l].to_bits() != want.t[l].to_bits()
-                || got.alpha[l].to_bits() != want.alpha[l].to_bits()
-                || got.beta[l].to_bits() != want.beta[l].to_bits()) as usize;
-        }
+        let (want, got) = portable_and_lanes(tier, accel, spheres, spheres_for_lanes, &rays);
+        wrong += (0..8)
+            .filter(|&l| lane_bits(&got, l) != lane_bits(&want, l))
+            .count();
     }
     wrong
 }
 
 /// [`closest_in`] for the rays `lanes` (in `tier`) against [`closest_portable`], bit for bit lane by
-/// lane (the hit, `t`, `alpha`, `beta`); the portable form's answer.
+/// lane; the portable form's answer.
 fn assert_lanes_agree(
     tier: HitTier,
     accel: &rtl_render::traversal::Accel,
     spheres: &[(Sphere, rtl_render::aabb::Aabb)],
     lanes: &[Ray; 8],
 ) -> Closest8 {
-    let mut rays = Rays8::default();
-    for (l, r) in lanes.iter().enumerate() {
-        rays.set(l, r);
-    }
-    let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
-    let got = closest_in(tier, accel, spheres, &rays);
+    let (want, got) = portable_and_lanes(tier, accel, spheres, spheres, lanes);
     for l in 0..8 {
-        let bits = |c: &Closest8| (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits));
-        assert_eq!(bits(&got), bits(&want), "{tier:?} lane {l}");
+        assert_eq!(lane_bits(&got, l), lane_bits(&want, l), "{tier:?} lane {l}");
     }
     want
 }
