@@ -51,13 +51,17 @@ fail() {
 }
 quiet() { grep -v "^qemu-x86_64: warning:" || true; }
 
-# this machine's render of each case with a forced tier, once per tier
+# this machine's render of each case with a forced tier, made once per tier: prints its file, or
+# fails with rtl's last words
 native() { # case-name args tier
   local out=$work/native-$1-$3.pfm
   if [ ! -f "$out" ]; then
     # shellcheck disable=SC2086
-    "$rtl" render $2 --threads 1 --hit-tier "$3" -o "$work/n.png" --linear "$out" >/dev/null 2>&1 ||
-      fail "$1: the native render with --hit-tier $3 failed"
+    if ! "$rtl" render $2 --threads 1 --hit-tier "$3" -o "$work/n.png" --linear "$out" \
+      >"$work/native.log" 2>&1; then
+      echo "the native render of $1 with --hit-tier $3 failed: $(tail -2 "$work/native.log")" >&2
+      return 1
+    fi
   fi
   echo "$out"
 }
@@ -65,7 +69,10 @@ native() { # case-name args tier
 for cpu in "${cpus[@]}"; do
   IFS='|' read -r model what tier <<<"$cpu"
   echo "== $model: $what, expects the $tier tier"
-  explain=$(qemu-x86_64 -cpu "$model" "$rtl" render cornell --width 8 --spp 1 --explain 2>&1 | quiet)
+  if ! explain=$(qemu-x86_64 -cpu "$model" "$rtl" render cornell --width 8 --spp 1 --explain 2>&1); then
+    fail "$model: rtl render --explain failed: $(quiet <<<"$explain" | tail -2)"
+    continue
+  fi
   line=$(grep "^  intersection" <<<"$explain" || true)
   paths=$(grep "^  paths" <<<"$explain" || true)
   case $tier in
@@ -91,7 +98,10 @@ for cpu in "${cpus[@]}"; do
   fi
   for c in "${cases[@]}"; do
     IFS='|' read -r name args <<<"$c"
-    ref=$(native "$name" "$args" "$tier")
+    ref=$(native "$name" "$args" "$tier") || {
+      fail "$model $name: no render of this machine's to compare with"
+      continue
+    }
     out=$work/$model-$name.pfm
     start=$EPOCHREALTIME
     # shellcheck disable=SC2086
@@ -112,7 +122,8 @@ done
 # the negative control: a render of another seed must not pass the comparison
 "$rtl" render cornell --strategy mixture --width 64 --spp 8 --threads 1 --seed 2 \
   -o "$work/n.png" --linear "$work/seed2.pfm" >/dev/null 2>&1
-if cmp -s "$(native cornell-mixture "cornell --strategy mixture --width 64 --spp 8" avx2)" "$work/seed2.pfm"; then
+seed1=$(native cornell-mixture "cornell --strategy mixture --width 64 --spp 8" avx2)
+if cmp -s "$seed1" "$work/seed2.pfm"; then
   fail "the comparison does not tell seed 1's image from seed 2's"
 else
   echo "negative control: seed 2's image differs from seed 1's, as the comparison must see"
