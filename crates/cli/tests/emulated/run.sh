@@ -20,6 +20,13 @@ if ! command -v qemu-x86_64 >/dev/null; then
   echo "installing qemu-user (apt)"
   apt-get update -qq && apt-get install -y -qq qemu-user >/dev/null
 fi
+# AVX2 in QEMU's TCG came with 7.2: an older emulator would stop the AVX2 processors' renders
+version=$(qemu-x86_64 --version | sed -n 's/.*version \([0-9]*\)\.\([0-9]*\).*/\1 \2/p' | head -1)
+read -r major minor <<<"$version"
+if [ -z "$major" ] || [ "$major" -lt 7 ] || { [ "$major" = 7 ] && [ "$minor" -lt 2 ]; }; then
+  echo "FAIL: qemu-x86_64 is older than 7.2 ('$(qemu-x86_64 --version | head -1)'): its TCG has no AVX2"
+  exit 1
+fi
 cargo build --release -q -p rtl
 rtl=$root/target/release/rtl
 work=$(mktemp -d)
