@@ -103,7 +103,8 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0, value_name = "K")]
     pub sample_offset: u64,
     /// The intersection code to run: portable, avx2, avx512, or auto (time avx2 and avx512 on the
-    /// render's first passes and keep the faster). Default: the best this processor runs, but auto
+    /// render's first passes and keep the faster; where the processor does not run both, the best
+    /// it runs, said in a note). Default: the best this processor runs, but auto
     /// on an Intel processor with AVX-512, where which is faster depends on the model; `--explain`
     /// names it. Every tier finds the same hits, so the image is the same bit for bit: this is for
     /// timing the tiers side by side, or the one a processor without AVX-512 runs.
@@ -699,7 +700,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
             tier.select().context("--hit-tier")?;
             None
         }
-        Some(TierChoice::Race) => TierRace::on_this_processor(true),
+        Some(TierChoice::Race) => {
+            let race = TierRace::on_this_processor(true);
+            if race.is_none() {
+                eprintln!("note: {}", nothing_to_race(HitTier::current()));
+            }
+            race
+        }
         None => TierRace::on_this_processor(false),
     };
     let job = settings(&args, scene_arg)?;
@@ -764,6 +771,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         ending,
         secs,
         pool.current_num_threads(),
+    )
+}
+
+/// What `--hit-tier auto` does on a processor that does not run both AVX2 and AVX-512: it runs
+/// `tier`, the best this processor runs, with no race.
+fn nothing_to_race(tier: HitTier) -> String {
+    format!(
+        "--hit-tier auto: this processor does not run both avx2 and avx512, so there is no race \
+         to time; {} runs (the best it runs)",
+        tier.key()
     )
 }
 
@@ -909,6 +926,14 @@ mod tests {
     struct Cli {
         #[command(flatten)]
         args: RenderArgs,
+    }
+
+    #[test]
+    fn auto_with_nothing_to_race_names_the_tier_that_runs() {
+        let avx2 = nothing_to_race(HitTier::Avx2);
+        assert!(avx2.contains("no race") && avx2.ends_with("avx2 runs (the best it runs)"));
+        let portable = nothing_to_race(HitTier::Portable);
+        assert!(portable.ends_with("portable runs (the best it runs)"));
     }
 
     /// Flag values from every class: zero, one, ordinary, the limits and one past them, the type's

@@ -103,6 +103,10 @@ for cpu in "${cpus[@]}"; do
   if [ "$rc" != 2 ] || ! grep -q "does not run the $above tier" <<<"$msg"; then
     fail "$model: --hit-tier $above gave exit $rc: $msg"
   fi
+  # `--hit-tier auto` with no AVX-512 has nothing to race, and says which tier runs instead
+  msg=$(qemu-x86_64 -cpu "$model" "$rtl" render cornell --width 8 --spp 1 --hit-tier auto -o "$work/x.png" 2>&1 | quiet)
+  grep -q "note: --hit-tier auto: .* no race to time; $tier runs" <<<"$msg" ||
+    fail "$model: --hit-tier auto did not say that $tier runs without a race: $msg"
   for c in "${cases[@]}"; do
     IFS='|' read -r name args <<<"$c"
     ref=$(native "$name" "$args" "$tier") || {
