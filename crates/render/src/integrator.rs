@@ -495,7 +495,6 @@ fn light_sample(
     Some((hit.spawn(ls.direction, time), w * s_over_p))
 }
 
-// ANCHOR: segment_sampling
 /// How often a path segment through media takes its light sample: with probability
 /// `min(1, SEGMENT_SAMPLE_RATE tau)` for a segment of optical depth `tau` (the survivors reweighted by
 /// the inverse), about as often as the path scatters there (`1 - exp(-tau) ~ tau`). On book2-final
@@ -519,6 +518,7 @@ pub const SEGMENT_MAX_OPTICAL_DEPTH: f64 = 8.0;
 /// of the scene; any density that covers the segment is unbiased, these make it a good one).
 const EQUIANGULAR_CENTRES: usize = 4;
 
+// ANCHOR: equiangular
 /// The equiangular density about a point (Kulla and Fajardo 2012) along a ray: with `delta` the ray
 /// parameter of the point's foot on the line and `h > 0` its distance from the line (in units of the
 /// ray parameter), `t = delta + h tan(theta)` with `theta` uniform, i.e. `q(t) = h / ((t - delta)^2 + h^2)`
@@ -589,6 +589,7 @@ impl Equiangular {
         self.h / (x * x + self.h * self.h) / self.mass
     }
 }
+// ANCHOR_END: equiangular
 
 /// Camera rays (bounce 0; bounces `0..FORCED_SCATTER_BOUNCES`) that would otherwise leave the scene
 /// through a medium scatter in it on every path (the forced scattering of `trace_through_media`). On
@@ -742,6 +743,7 @@ fn medium_point(ray: &Ray, t: f64, material: u32) -> Hit {
     }
 }
 
+// ANCHOR: forced_scatter
 /// Forced scattering on a ray that leaves the scene through one medium's stretch `t0..t1` (density
 /// `sigma`, optical depth `tau`): what reaches the ray's origin is
 /// `int_t0^t1 sigma T(t) L_s(t) dt + T(t1) L_background`. Distance sampling estimates the integral by
@@ -823,6 +825,7 @@ fn forced_scatter(
         forced: Some((weight, through)),
     })
 }
+// ANCHOR_END: forced_scatter
 
 /// The point an emitter's equiangular density is centred on.
 #[inline]
@@ -946,7 +949,6 @@ fn segment_light(
     }
     attenuation * emitted * (weight * f)
 }
-// ANCHOR_END: segment_sampling
 
 /// Variants of [`radiance_mis`] for the unbiasedness tests: the estimator itself, and deliberately
 /// wrong ones that a test must catch.
@@ -1037,7 +1039,7 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
     }
 }
 
-// ANCHOR: radiance_mis
+// ANCHOR: mis_loop
 /// Next-event estimation with multiple importance sampling (Veach 1997, ch. 9; pbrt-v4's path
 /// integrator). At every diffuse vertex two directions are drawn:
 /// - towards the emitters (`p_l`), every emitter of the scene, listed or not, each chosen with a
@@ -1151,6 +1153,7 @@ pub fn radiance_mis_variant(
     }
     path.l
 }
+// ANCHOR_END: mis_loop
 
 /// Where a [`MisPath`] is: the bounce of its vertex, the path's depth limit, whether the vertex may
 /// take a light sample (a medium's point takes it on its segment instead, unless the segment could
@@ -1225,6 +1228,7 @@ impl MisPath {
         self.inside_dielectrics == 0
     }
 
+    // ANCHOR: mis_vertex
     /// The path's vertex where `ray` met `found` (`None`: it left the scene): emission met there,
     /// weighted against the light strategy of the vertex before; then the light sample's shadow
     /// ray and the next ray, from the vertex's material (mixed with the non-emitting targets).
@@ -1424,6 +1428,7 @@ impl MisPath {
             next: Some(next),
         }
     }
+    // ANCHOR_END: mis_vertex
 
     /// The crossing connection ([`connection::crossing`]) of a vertex outside the dielectrics
     /// (`vertex`, of `attenuation`; `at` says where in the path it is), if one is made there: its
@@ -1578,7 +1583,6 @@ fn emitter_seen(
     }
     Some((m.emitted(lh, &scene.textures, ctx), weight * transmittance))
 }
-// ANCHOR_END: radiance_mis
 
 #[cfg(test)]
 mod tests {

@@ -643,7 +643,7 @@ fn quad_solid_angle() -> anyhow::Result<Svg> {
     title(
         &mut s,
         w,
-        "From area to solid angle: p(ω) = p(A) r² / |cos θ′|",
+        "From area to solid angle: p(ω) = p(A) d² / |cos θₗ|",
     );
     // cross-section: the ceiling light from x = 330..560 at y = 90, the point p on the floor
     let (lx0, lx1, ly): (f64, f64, f64) = (330.0, 560.0, 90.0);
@@ -678,7 +678,7 @@ fn quad_solid_angle() -> anyhow::Result<Svg> {
     italic(
         &mut s,
         ((p.0 + q.0) / 2.0 - 12.0, (p.1 + q.1) / 2.0 - 6.0),
-        "r",
+        "d",
         16.0,
         Anchor::End,
         c::BLUE,
@@ -697,7 +697,7 @@ fn quad_solid_angle() -> anyhow::Result<Svg> {
     italic(
         &mut s,
         (q.0 + 72.0 * mid.cos(), q.1 + 72.0 * mid.sin() + 5.0),
-        "θ′",
+        "θₗ",
         15.0,
         Anchor::Middle,
         c::RED,
@@ -734,7 +734,7 @@ fn quad_solid_angle() -> anyhow::Result<Svg> {
     s.text(
         (w / 2.0, h - 60.0),
         &format!(
-            "dω = dA |cos θ′| / r²: a point uniform on the quad has p(ω) = r² / (A |cos θ′|) (here cos θ′ = {cos_t:.2})"
+            "dω = dA |cos θₗ| / d²: a point uniform on the quad has p(ω) = d² / (A |cos θₗ|) (here cos θₗ = {cos_t:.2})"
         ),
         13.0,
         Anchor::Middle,

@@ -129,7 +129,7 @@ pub fn run(args: SamplesArgs) -> anyhow::Result<()> {
     for (name, t, sph) in [
         (
             "samples-ch09-quad-area",
-            "HittablePdf towards a quad: uniform in area, r² / (A |cos θ′|)",
+            "HittablePdf towards a quad: uniform in area, d² / (A |cos θₗ|)",
             false,
         ),
         (
