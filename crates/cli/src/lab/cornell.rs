@@ -86,6 +86,16 @@ pub struct Bench {
 /// `last_seen_ms` before the first request.
 const NEVER: u64 = u64::MAX;
 
+/// A number for a label: the shortest decimal that reads back as `x` (`0.2`, `0.0001`), or in
+/// scientific notation when that decimal would be long (`1e-320` rather than 0.000...0001).
+fn readable(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// A label of the settings, for a curve's legend.
 pub fn label(s: &Settings) -> String {
     use rtl_render::integrator::Strategy;
@@ -106,7 +116,7 @@ pub fn label(s: &Settings) -> String {
         }
         // The weight only where it is not the book's 50/50.
         Strategy::Mixture if s.mixture_weight != rtl_render::render::BOOK_MIXTURE_WEIGHT => {
-            format!("mixture w={}", s.mixture_weight)
+            format!("mixture w={}", readable(s.mixture_weight))
         }
         other => other.name().to_string(),
     };
@@ -428,6 +438,21 @@ mod tests {
         labels.push(label(&s));
         assert_eq!(label(&others[6]), "mixture seed 1 16px");
         assert_eq!(label(&others[7]), "mixture w=0.2 seed 1 16px");
+        let tiny = Settings {
+            mixture_weight: 1e-320,
+            ..others[7]
+        };
+        assert_eq!(label(&tiny), "mixture w=1e-320 seed 1 16px");
+        for (x, text) in [
+            (0.999, "0.999"),
+            (0.0001, "0.0001"),
+            (0.00005, "5e-5"),
+            (1.5e-7, "1.5e-7"),
+            (f64::MIN_POSITIVE, "2.2250738585072014e-308"),
+            (5e-324, "5e-324"),
+        ] {
+            assert_eq!(readable(x), text);
+        }
         let n = labels.len();
         labels.sort();
         labels.dedup();

@@ -13,13 +13,16 @@
 //! the page (HTML, CSS and JavaScript of our own, plots drawn as SVG by its script) is embedded in the
 //! binary and loads nothing from anywhere else.
 //!
-//! **Why tiny_http.** The lab serves one reader on one machine: a handful of small requests a second.
-//! tiny_http is a small synchronous server (a few small dependencies, seconds to compile), whose
-//! requests we hand to plain threads; axum would bring tokio and hyper, minutes of compiling on a
-//! two-core machine for concurrency the lab does not need. The render runs on rayon's pool either way.
+//! **Why no HTTP crate.** The lab serves one reader on one machine: a handful of small requests a
+//! second, each with no body. Its server ([`http`]) is a few hundred lines on `std::net`, one thread
+//! per connection and `Connection: close`, with every read bounded in size and time; tiny_http, which
+//! it used at first, buffered what a client declared and could be made to abort or to stop listening,
+//! and axum would bring tokio and hyper (minutes of compiling on a two-core machine) for concurrency
+//! the lab does not need. The render runs on rayon's pool either way.
 
 mod cornell;
 mod glue;
+mod http;
 mod mc;
 mod params;
 mod sampling;
@@ -98,8 +101,6 @@ pub fn run(args: LabArgs) -> Result<()> {
         }
     })?;
     let port = listener.local_addr()?.port();
-    let server = tiny_http::Server::from_listener(listener, None)
-        .map_err(|e| anyhow::anyhow!("cannot start the server: {e}"))?;
     let hosts = if args.bind.is_loopback() {
         ["127.0.0.1", "localhost", "[::1]"]
             .iter()
@@ -135,7 +136,7 @@ pub fn run(args: LabArgs) -> Result<()> {
     };
     println!("rtl lab: open {url} (Ctrl-C to stop)");
     server::serve(
-        server,
+        listener,
         Arc::new(server::App::new(bench, hosts, args.book_dir)),
     );
     Ok(())

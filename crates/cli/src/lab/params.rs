@@ -32,8 +32,10 @@ fn decode(s: &str) -> Result<String, BadRequest> {
         match b[i] {
             b'+' => out.push(b' '),
             b'%' => {
+                // Two hex digits: `u8::from_str_radix` alone would take `+5` (a sign) as 5.
                 let hex = b
                     .get(i + 1..i + 3)
+                    .filter(|h| h.iter().all(u8::is_ascii_hexdigit))
                     .and_then(|h| std::str::from_utf8(h).ok())
                     .and_then(|h| u8::from_str_radix(h, 16).ok())
                     .ok_or_else(|| bad(format!("malformed %-escape in `{s}`")))?;
@@ -151,6 +153,14 @@ mod tests {
         assert!(Query::parse("x=1", &["n"]).is_err());
         assert!(Query::parse("n=1&n=2", &["n"]).is_err());
         assert!(Query::parse("n=%zz", &["n"]).is_err());
+        for escape in ["%+5", "%-5", "%5", "%", "%5g", "% 5"] {
+            assert!(
+                Query::parse(&format!("n={escape}"), &["n"]).is_err(),
+                "{escape}"
+            );
+        }
+        let q = Query::parse("n=%41%2b%2F", &["n"]).unwrap();
+        assert_eq!(q.required("n").unwrap(), "A+/");
         let q = Query::parse("t=NaN", &["t"]).unwrap();
         assert!(q.number("t", 1.0f64, 0.0, 2.0).is_err());
         let q = Query::parse("s=mis", &["s"]).unwrap();

@@ -6,7 +6,8 @@
 //! searched by binary search, a guide table, an alias table, or numerical inversion at a tolerance.
 //! The answer holds the histogram of the samples beside the expected counts (from the exact CDF), the
 //! chi-square p-value of the histogram (`rtl_sampling::chi_square`: cells expecting fewer than 5
-//! pooled), and the study's numbers: the maximum u-error `|F(x̂) - u|` over its 4096 stratified `u`
+//! pooled), and the study's numbers: the maximum u-error `|F(x̂) - u|` over 4096 stratified `u`
+//! (the study's numerical inversion's set; its figure takes tables at points in every bin instead)
 //! and ns per sample (`Reference` and `time_per_sample` of `rtl study sampling`).
 //!
 //! **On the sphere**: a density of `rtl-pdf` (uniform sphere, uniform hemisphere, cosine, the book's
@@ -205,7 +206,8 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
     let build_ms = t.elapsed().as_secs_f64() * 1e3;
     let ns_per_sample = time_per_sample(&us, &sampler);
 
-    // The error of the method's inverse, as the study measures it (the alias table is not an
+    // The error of the method's inverse over 4096 stratified `u`, as the study measures numerical
+    // inversion's (a request's answer must be quick; the alias table is not an
     // inversion: its u-error is that of the table whose distribution it samples).
     let (u_error, x_error) = match &table {
         Some(t) => {

@@ -1,20 +1,23 @@
-//! The HTTP side: routes, the page's embedded assets, and the answers (JSON, PNG, or a 400 with a
-//! message). Each request is served on a thread of its own, so a long Monte Carlo run never holds up
-//! the render's frames; at most [`MAX_IN_FLIGHT`] at once, and one computation of the Monte Carlo and
-//! sampling benches at a time (the others wait their turn).
+//! The lab's side of HTTP: routes, the page's embedded assets, and the answers (JSON, PNG, or an
+//! error with a JSON message). Each connection is served on a thread of its own ([`super::http`]
+//! reads it, within limits), so a long Monte Carlo run never holds up the render's frames; at most
+//! [`MAX_IN_FLIGHT`] at once, and one computation of the Monte Carlo and sampling benches at a time
+//! (the others wait their turn).
 
 use super::cornell::{self, Bench};
 use super::glue::{self, Settings};
+use super::http::{self, Refusal, Request, Response};
 use super::params::{BadRequest, Query, bad};
 use super::{mc, sampling};
 use rtl_render::render::check_mixture_weight;
 use serde_json::{Value, json};
+use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
-use tiny_http::{Header, Method, Request, Response, Server};
+use std::time::{Duration, Instant};
 
-/// Requests served at once; more are answered 503.
+/// Connections served at once (each a request: reading it, answering it); more are answered 503.
 pub const MAX_IN_FLIGHT: usize = 32;
 
 /// The page and its assets, in the binary.
@@ -74,27 +77,38 @@ impl App {
     }
 }
 
-/// Serve forever, one thread per request.
-pub fn serve(server: Server, app: Arc<App>) {
-    for request in server.incoming_requests() {
+/// Serve forever, one thread per connection. A failed `accept` (say, out of file descriptors) is
+/// waited out, never the end of the server.
+pub fn serve(listener: TcpListener, app: Arc<App>) {
+    let mut warned: Option<Instant> = None;
+    for stream in listener.incoming() {
+        let stream = match stream {
+            Ok(s) => s,
+            Err(e) => {
+                if warned.is_none_or(|t| t.elapsed() > Duration::from_secs(10)) {
+                    eprintln!("rtl lab: cannot accept a connection ({e}); going on");
+                    warned = Some(Instant::now());
+                }
+                std::thread::sleep(Duration::from_millis(50));
+                continue;
+            }
+        };
         if app.in_flight.fetch_add(1, Ordering::SeqCst) >= MAX_IN_FLIGHT {
             app.in_flight.fetch_sub(1, Ordering::SeqCst);
             // JSON like every other refusal: the page reads its `error`.
-            let _ = request.respond(json_response(
-                503,
-                &json!({ "error": "too many requests at once" }),
-            ));
+            http::answer_now(stream, &error(503, "too many requests at once"));
             continue;
         }
         let slot = InFlight(Arc::clone(&app));
-        // No thread to be had (the request, dropped, closes its connection): the server goes on.
-        if let Err(e) = std::thread::Builder::new().spawn(move || handle(&slot.0, request)) {
+        // No thread to be had (the connection, dropped, is closed): the server goes on.
+        if let Err(e) = std::thread::Builder::new().spawn(move || connection(&slot.0, stream)) {
             eprintln!("rtl lab: cannot start a thread for a request: {e}");
         }
     }
 }
 
-/// A request's place among the [`MAX_IN_FLIGHT`], given back when its thread ends, even by a panic.
+/// A connection's place among the [`MAX_IN_FLIGHT`], given back when its thread ends, even by a
+/// panic.
 struct InFlight(Arc<App>);
 
 impl Drop for InFlight {
@@ -103,30 +117,57 @@ impl Drop for InFlight {
     }
 }
 
-fn header(name: &str, value: &str) -> Header {
-    Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("ASCII header")
+/// One request: read (bounded), answered, closed.
+fn connection(app: &App, stream: TcpStream) {
+    let deadline = Instant::now() + http::READ_TIMEOUT;
+    let mut reader = http::Timed {
+        stream: &stream,
+        deadline,
+    };
+    let mut interim = http::Timed {
+        stream: &stream,
+        deadline,
+    };
+    let (response, head_only) = match http::read_request(&mut reader, &mut interim, http::MAX_BODY)
+    {
+        Ok(request) => {
+            // A panic of a handler is a 500, not a connection closed without a word.
+            let answer =
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| handle(app, &request)));
+            (
+                answer.unwrap_or_else(|_| error(500, "internal error (the lab goes on)")),
+                request.method == "HEAD",
+            )
+        }
+        Err(Refusal::Answer(status, message)) => (error(status, &message), false),
+        Err(Refusal::Gone) => return,
+    };
+    http::answer(stream, &response, head_only);
 }
 
-/// Headers of every answer: nothing cached, nothing loaded from anywhere but this server.
-fn with_common<R: std::io::Read>(r: Response<R>) -> Response<R> {
-    r.with_header(header("Cache-Control", "no-store"))
-        .with_header(header("X-Content-Type-Options", "nosniff"))
-        .with_header(header(
+/// Headers of every answer of ours: nothing cached, nothing loaded from anywhere but this server.
+fn common(content_type: &str) -> Vec<(&'static str, String)> {
+    vec![
+        ("Content-Type", content_type.into()),
+        ("Cache-Control", "no-store".into()),
+        ("X-Content-Type-Options", "nosniff".into()),
+        (
             "Content-Security-Policy",
-            "default-src 'self'; img-src 'self' blob: data:; style-src 'self'; script-src 'self'; connect-src 'self'",
-        ))
+            "default-src 'self'; img-src 'self' blob: data:; style-src 'self'; script-src 'self'; connect-src 'self'".into(),
+        ),
+    ]
 }
 
-fn json_response(status: u16, v: &Value) -> Response<std::io::Cursor<Vec<u8>>> {
-    with_common(
-        Response::from_string(v.to_string())
-            .with_status_code(status)
-            .with_header(header("Content-Type", "application/json")),
-    )
+fn json_response(status: u16, v: &Value) -> Response {
+    Response {
+        status,
+        headers: common("application/json"),
+        body: v.to_string().into_bytes(),
+    }
 }
 
-fn bytes(content_type: &str, body: Vec<u8>) -> Response<std::io::Cursor<Vec<u8>>> {
-    with_common(Response::from_data(body).with_header(header("Content-Type", content_type)))
+fn error(status: u16, message: &str) -> Response {
+    json_response(status, &json!({ "error": message }))
 }
 
 /// An answer before it is sent.
@@ -136,6 +177,11 @@ enum Answer {
     /// A page of the built book: its own scripts and styles, so no Content-Security-Policy of ours.
     Book(&'static str, Vec<u8>),
     Error(u16, String),
+    /// 405: the path is there for the methods in `allow` (the `Allow` header).
+    WrongMethod {
+        allow: &'static str,
+        message: String,
+    },
 }
 
 impl From<BadRequest> for Answer {
@@ -144,56 +190,75 @@ impl From<BadRequest> for Answer {
     }
 }
 
-fn handle(app: &App, request: Request) {
-    let url = request.url().to_string();
-    let (path, query) = url.split_once('?').unwrap_or((&url, ""));
-    let answer = if !host_allowed(app, &request) {
+fn handle(app: &App, request: &Request) -> Response {
+    let (path, query) = request
+        .target
+        .split_once('?')
+        .unwrap_or((&request.target, ""));
+    let answer = if !host_allowed(app, request.host.as_deref()) {
         Answer::Error(
             403,
             "the Host header names another site: the lab answers only to its own address".into(),
         )
     } else {
-        route(app, request.method(), path, query)
+        route(app, &request.method, path, query)
     };
-    let response = match answer {
+    match answer {
         Answer::Json(v) => json_response(200, &v),
-        Answer::Bytes(t, b) => bytes(t, b),
-        Answer::Book(t, b) => Response::from_data(b)
-            .with_header(header("Content-Type", t))
-            .with_header(header("Cache-Control", "no-store")),
-        Answer::Error(status, msg) => json_response(status, &json!({ "error": msg })),
-    };
-    // A page that went away before its answer is not an error of ours.
-    let _ = request.respond(response);
+        Answer::Bytes(t, body) => Response {
+            status: 200,
+            headers: common(t),
+            body,
+        },
+        Answer::Book(t, body) => Response {
+            status: 200,
+            headers: vec![
+                ("Content-Type", t.into()),
+                ("Cache-Control", "no-store".into()),
+            ],
+            body,
+        },
+        Answer::Error(status, msg) => error(status, &msg),
+        Answer::WrongMethod { allow, message } => {
+            let mut r = error(405, &message);
+            r.headers.push(("Allow", allow.into()));
+            r
+        }
+    }
 }
 
 /// Refuse requests whose `Host` is not the lab's own (a page elsewhere that resolves its name to
 /// 127.0.0.1, "DNS rebinding", cannot drive the lab).
-fn host_allowed(app: &App, request: &Request) -> bool {
+fn host_allowed(app: &App, host: Option<&str>) -> bool {
     if app.hosts.is_empty() {
         return true;
     }
-    let host = request
-        .headers()
-        .iter()
-        .find(|h| h.field.equiv("Host"))
-        .map(|h| h.value.as_str().to_ascii_lowercase());
     match host {
         None => true,
-        Some(h) => app.hosts.contains(&h),
+        Some(h) => app.hosts.contains(&h.to_ascii_lowercase()),
     }
 }
 
-fn route(app: &App, method: &Method, path: &str, query: &str) -> Answer {
-    let get = *method == Method::Get || *method == Method::Head;
-    let post = *method == Method::Post;
-    if get && let Some((_, t, body)) = ASSETS.iter().find(|a| a.0 == path) {
+fn route(app: &App, method: &str, path: &str, query: &str) -> Answer {
+    let get = method == "GET" || method == "HEAD";
+    let post = method == "POST";
+    let wrong = |allow: &'static str| Answer::WrongMethod {
+        allow,
+        message: format!("{path}: wrong method {method}; it takes {allow}"),
+    };
+    if let Some((_, t, body)) = ASSETS.iter().find(|a| a.0 == path) {
+        if !get {
+            return wrong("GET, HEAD");
+        }
         if !query.is_empty() {
             return Answer::Error(400, format!("{path} takes no parameters"));
         }
         return Answer::Bytes(t, body.to_vec());
     }
-    if get && let Some(rest) = path.strip_prefix("/book/") {
+    if let Some(rest) = path.strip_prefix("/book/") {
+        if !get {
+            return wrong("GET, HEAD");
+        }
         return book_page(&app.book_dir, rest);
     }
     let handler: fn(&App, &str) -> Result<Answer, BadRequest> = match path {
@@ -216,8 +281,11 @@ fn route(app: &App, method: &Method, path: &str, query: &str) -> Answer {
     };
     // What changes the render is a POST; everything else a GET (or HEAD).
     let wants_post = matches!(path, "/api/render/settings" | "/api/render/clear");
-    if !(if wants_post { post } else { get }) {
-        return Answer::Error(405, format!("{path}: wrong method {method}"));
+    if wants_post && !post {
+        return wrong("POST");
+    }
+    if !wants_post && !get {
+        return wrong("GET, HEAD");
     }
     handler(app, query).unwrap_or_else(Answer::from)
 }
