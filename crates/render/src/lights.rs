@@ -17,12 +17,14 @@
 //! angle it subtends ([`EmitterWeight::at`]; pbrt-v4's light samplers, Conty Estevez and Kulla 2018),
 //! mixed with a uniform share so that no emitter that can contribute is left out.
 
+use crate::limits::{MAX_NESTING, WalkBudget};
 use crate::manifold::{FoundShape, Manifold};
 use crate::material::{Albedo, Material};
 use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, Scene, Transform};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
 use rtl_pdf::{DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeSampler, SphereTarget};
+use std::collections::HashSet;
 use std::f64::consts::TAU;
 
 // ANCHOR: light_target
@@ -253,12 +255,22 @@ impl Lights {
                 lights.others.push(book);
             }
         }
-        // Every emitter placed in the scene, in world space.
+        // Every emitter placed in the scene, in world space (a scene that expands to more objects
+        // than a scene file may hold keeps those found within the budget).
         let mut found = Vec::new();
-        collect_emitters(scene, GroupId(0), Transform::IDENTITY, 0, &mut found);
+        let mut budget = WalkBudget::new();
+        collect_emitters(
+            scene,
+            GroupId(0),
+            Transform::IDENTITY,
+            0,
+            &mut budget,
+            &mut found,
+        );
         let placed: Vec<(FoundShape, MaterialId)> =
             found.iter().map(|f| (f.placed, f.material)).collect();
         lights.manifold = Manifold::new(scene, &placed);
+        let listed: HashSet<ShapeKey> = scene.targets.iter().map(target_key).collect();
         for Found {
             target: shape,
             two_sided,
@@ -273,8 +285,7 @@ impl Lights {
                 },
                 sphere => sphere,
             };
-            let listed = scene.targets.iter().any(|t| same_shape(t, &shape));
-            lights.listed_emitters += listed as usize;
+            lights.listed_emitters += listed.contains(&emitter_key(&shape)) as usize;
             lights.emitters.push(target);
             lights
                 .emitter_weights
@@ -412,21 +423,38 @@ impl Lights {
     }
 }
 
-/// Whether a listed target is the emitter `shape` (same geometry).
-fn same_shape(t: &SceneShape, shape: &LightTarget) -> bool {
-    match (t, shape) {
-        (SceneShape::Quad(q), LightTarget::Quad { quad, .. }) => {
-            q.q == quad.q() && q.u == quad.u() && q.v == quad.v()
+/// A shape's geometry as a key: a listed target is the emitter of the same key (a quad's `q`, `u`
+/// and `v`, a sphere's centre and radius, equal as numbers: -0 is 0). Looked up in a set, not
+/// compared with every listed target (100,000 listed emitters were 5 * 10^9 comparisons).
+type ShapeKey = (bool, [u64; 9]);
+
+fn shape_key(sphere: bool, parts: [Vec3; 3]) -> ShapeKey {
+    let mut key = [0u64; 9];
+    for (k, x) in key.iter_mut().zip(parts.iter().flat_map(|v| v.to_array())) {
+        *k = (x + 0.0).to_bits();
+    }
+    (sphere, key)
+}
+
+/// The key of a listed target.
+fn target_key(t: &SceneShape) -> ShapeKey {
+    match t {
+        SceneShape::Quad(q) => shape_key(false, [q.q, q.u, q.v]),
+        SceneShape::Sphere(s) => {
+            shape_key(true, [s.center, Vec3::splat(s.radius.abs()), Vec3::ZERO])
         }
-        (SceneShape::Sphere(s), LightTarget::Sphere(sp)) => {
-            s.center == sp.center() && s.radius.abs() == sp.radius()
-        }
-        _ => false,
     }
 }
 
-/// Groups nest at most this deep (a guard against a cycle, which the scene builder refuses anyway).
-const MAX_NESTING: u32 = 64;
+/// The key of an emitter.
+fn emitter_key(shape: &LightTarget) -> ShapeKey {
+    match shape {
+        LightTarget::Quad { quad, .. } => shape_key(false, [quad.q(), quad.u(), quad.v()]),
+        LightTarget::Sphere(sp) => {
+            shape_key(true, [sp.center(), Vec3::splat(sp.radius()), Vec3::ZERO])
+        }
+    }
+}
 
 /// An emitter placed in the scene: its target, two-sidedness and radiance (see [`EmitterWeight`]),
 /// and its shape in world space with its material.
@@ -439,12 +467,17 @@ struct Found {
 }
 
 /// The emitting spheres and quads of group `g` placed by `to_world`; media boundaries are shapes of
-/// no material and are skipped.
+/// no material and are skipped. Groups nested deeper than [`MAX_NESTING`] (the most a scene file may
+/// nest them, and a guard against a cycle, which the scene builder refuses anyway) are not entered,
+/// and the walk stops once it has visited as many objects as `budget` allows (instances are walked
+/// once for every place they end up in, which a small scene of instances of instances could make
+/// 2^40 places; a scene file holds at most the budget).
 fn collect_emitters(
     scene: &Scene,
     g: GroupId,
     to_world: Transform,
     depth: u32,
+    budget: &mut WalkBudget,
     out: &mut Vec<Found>,
 ) {
     let Some(group) = scene.groups.get(g.0 as usize) else {
@@ -469,6 +502,9 @@ fn collect_emitters(
         _ => None,
     };
     for o in &group.objects {
+        if !budget.visit() {
+            return;
+        }
         match o {
             Object::Sphere(s) => {
                 if let Some((ts, radiance)) = two_sided(s.material) {
@@ -505,10 +541,17 @@ fn collect_emitters(
                     });
                 }
             }
-            Object::Instance { transform, group } => {
-                collect_emitters(scene, *group, transform.then(to_world), depth + 1, out)
+            Object::Instance { transform, group } => collect_emitters(
+                scene,
+                *group,
+                transform.then(to_world),
+                depth + 1,
+                budget,
+                out,
+            ),
+            Object::Group(inner) => {
+                collect_emitters(scene, *inner, to_world, depth + 1, budget, out)
             }
-            Object::Group(inner) => collect_emitters(scene, *inner, to_world, depth + 1, out),
             Object::Medium(_) => {}
         }
     }

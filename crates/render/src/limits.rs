@@ -9,6 +9,13 @@
 //! - **Images** are at most [`MAX_SIDE`] pixels on a side, and the buffers a render needs
 //!   ([`BYTES_PER_PIXEL`] per pixel) must fit in the memory the machine has available.
 //! - **Threads** number at most [`MAX_THREADS`].
+//! - **Scenes** hold at most [`MAX_EXPANDED_OBJECTS`] objects once their instances are expanded, and
+//!   nest groups at most [`MAX_NESTING`] deep: a few kilobytes of instances of instances would
+//!   otherwise stand for 2^40 shapes, which the walks over the scene (the emitters, the glass spheres)
+//!   and every ray would visit one by one.
+//! - **Files**: a scene file is a regular file of at most [`MAX_SCENE_FILE_BYTES`], a texture file one
+//!   of at most [`MAX_TEXTURE_FILE_BYTES`] that decodes to at most [`MAX_TEXTURE_PIXELS`] pixels, read
+//!   from its header before anything is decoded, within the memory available.
 
 use std::fmt;
 
@@ -24,6 +31,131 @@ pub const MAX_SIDE: usize = 1 << 16;
 pub const MAX_THREADS: usize = 1024;
 /// The aspect ratios (width over height) a scene may ask for: one pixel by [`MAX_SIDE`] either way.
 pub const ASPECT_RANGE: (f64, f64) = (1.0 / MAX_SIDE as f64, MAX_SIDE as f64);
+
+/// The most objects a scene may hold once its instances are expanded: every sphere, quad and medium,
+/// and every group or instance that places a group, counted once for each place it ends up in (an
+/// instance counts itself and, again, every object of the group it places). 2^20: ten times the
+/// 200,000 spheres of a 20 MB scene file, and enough for every built-in scene and shipped scene file
+/// (book 2's final scene, the largest, holds about 3,500); at the limit the walks over the scene take
+/// milliseconds, and a scene whose every object emits keeps its list of emitters (about 1 kB an
+/// emitter) near 1 GB.
+pub const MAX_EXPANDED_OBJECTS: u64 = 1 << 20;
+/// The deepest groups may nest (a group or an instance inside a group, or a medium's boundary, counted
+/// from the scene's top level): the walks over the scene stop there.
+pub const MAX_NESTING: u32 = 64;
+/// The largest scene file, in bytes: 32 MiB, 1.6 times the 20 MB of 200,000 spheres. The TOML
+/// reader's memory peaks at about 40 times the file's size (650 MB for those spheres), so 1.3 GB at
+/// the limit.
+pub const MAX_SCENE_FILE_BYTES: u64 = 32 << 20;
+/// The largest texture file, in bytes.
+pub const MAX_TEXTURE_FILE_BYTES: u64 = 256 << 20;
+/// The most pixels an image texture may have: 2^25, an 8192 x 4096 longitude-latitude map (the book's
+/// `earthmap.jpg` is 1024 x 512). Decoded to linear `f32` RGB it takes 12 bytes a pixel: 384 MiB.
+pub const MAX_TEXTURE_PIXELS: u64 = 1 << 25;
+
+/// What a walk over a scene's groups may still visit ([`MAX_EXPANDED_OBJECTS`] objects, the most a
+/// scene file may hold once expanded): built scenes that were not read from a file (and could expand
+/// to more) cannot make a walk run away.
+#[derive(Debug)]
+pub(crate) struct WalkBudget(u64);
+
+impl WalkBudget {
+    pub(crate) fn new() -> Self {
+        WalkBudget(MAX_EXPANDED_OBJECTS)
+    }
+
+    /// Count one object visited: `false` once the budget is spent.
+    #[inline]
+    pub(crate) fn visit(&mut self) -> bool {
+        match self.0.checked_sub(1) {
+            Some(left) => {
+                self.0 = left;
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+/// How many objects `scene` holds once its instances are expanded (as [`MAX_EXPANDED_OBJECTS`] counts
+/// them, saturating at `u64::MAX`), computed once per group: what a walk over the whole scene visits.
+/// Groups nested deeper than [`MAX_NESTING`] (or in a cycle, which the scene builder refuses) count
+/// as `u64::MAX`.
+pub fn expanded_objects(scene: &crate::scene::Scene) -> u64 {
+    fn count(scene: &crate::scene::Scene, g: usize, depth: u32, memo: &mut [Option<u64>]) -> u64 {
+        use crate::scene::Object;
+        if depth > MAX_NESTING {
+            return u64::MAX;
+        }
+        if let Some(n) = memo.get(g).copied().flatten() {
+            return n;
+        }
+        let Some(group) = scene.groups.get(g) else {
+            return 0;
+        };
+        let mut n = 0u64;
+        for o in &group.objects {
+            let inner = match o {
+                Object::Instance { group, .. } | Object::Group(group) => {
+                    count(scene, group.0 as usize, depth + 1, memo)
+                }
+                Object::Medium(m) => count(scene, m.boundary.0 as usize, depth + 1, memo),
+                Object::Sphere(_) | Object::Quad(_) => 0,
+            };
+            n = n.saturating_add(1).saturating_add(inner);
+            if n == u64::MAX {
+                // (not kept: found too deep here, it may not be from higher up; stopping at once
+                // keeps the walk linear)
+                return n;
+            }
+        }
+        memo[g] = Some(n);
+        n
+    }
+    let mut memo = vec![None; scene.groups.len()];
+    count(scene, 0, 0, &mut memo)
+}
+
+/// A file that may be read whole: a regular file (not a directory, a device such as `/dev/zero`, or
+/// a pipe, which could give bytes without end) of at most `max` bytes, read at most to `max`. `what`
+/// names it in errors ("scene file", "texture file"). The error is the whole message, naming the path.
+pub fn read_regular_file(path: &std::path::Path, what: &str, max: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let name = path.display();
+    let io = |e: std::io::Error| format!("{name}: cannot read {what}: {e}");
+    // Looked at before it is opened: opening a pipe would wait for a writer.
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if !meta.is_file() {
+        return Err(format!(
+            "{name}: cannot read {what}: it is not a regular file (a directory, a device or a pipe)"
+        ));
+    }
+    let too_large = |len: u64| {
+        format!(
+            "{name}: cannot read {what}: it is {} ({len} bytes), more than the {} ({max} bytes) a \
+             {what} may be",
+            Bytes(len),
+            Bytes(max)
+        )
+    };
+    if meta.len() > max {
+        return Err(too_large(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    bytes.try_reserve_exact(meta.len() as usize).map_err(|_| {
+        format!(
+            "{name}: cannot read {what}: no memory for its {}",
+            Bytes(meta.len())
+        )
+    })?;
+    // (a file that grows while it is read stops at one byte past the limit)
+    file.take(max + 1).read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > max {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
 
 /// What is wrong with a maximum path depth of `d` (`None` if nothing): "must be at least 1" or "must be
 /// at most 10000, got 20000". The command line and scene files both ask this.

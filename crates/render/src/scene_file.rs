@@ -60,8 +60,14 @@
 //!
 //! Values obey the rules of [`crate::limits`], the same as the command line's: finite numbers of
 //! magnitude at most 1e30, positive quantities at least 1e-30, albedos in [0, 1], `max_depth` 1 to
-//! 10 000, aspect ratios within [1/65536, 65536]. [`load_str`] is the entry point without the file
-//! system (the fuzz target's); [`load_file`] reads a file. The parts: `doc.rs` (the document's serde
+//! 10 000, aspect ratios within [1/65536, 65536]. A scene holds at most
+//! [`MAX_EXPANDED_OBJECTS`](crate::limits::MAX_EXPANDED_OBJECTS) objects once its instances are
+//! expanded and nests groups at most [`MAX_NESTING`](crate::limits::MAX_NESTING) deep, counted as each
+//! object is read (an instance counts again every object of the group it places), so that a few
+//! kilobytes of instances of instances are refused at the object that crosses the limit, before
+//! anything is expanded; scene and texture files are regular files of bounded size, and an image
+//! texture's size is read from its header before it is decoded. [`load_str`] is the entry point
+//! without the file system (the fuzz target's); [`load_file`] reads a file. The parts: `doc.rs` (the document's serde
 //! types), `span.rs` (places and the typed [`SceneFileError`]), `values.rs` (numbers, vectors,
 //! colours), `loader.rs` (the top-level tables) and `objects.rs` (one function per object kind).
 
@@ -91,10 +97,23 @@ pub struct SceneFile {
 
 /// Load the scene in the file at `path`, with its render defaults; image textures are found relative to
 /// the file's directory.
+///
+/// The file must be a regular file (not a directory, a device such as `/dev/zero` or a pipe) of at
+/// most [`MAX_SCENE_FILE_BYTES`](crate::limits::MAX_SCENE_FILE_BYTES), in UTF-8.
 pub fn load_file(path: &Path) -> Result<SceneFile, SceneFileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneFileError::Read {
+    let read_error = |message: String| SceneFileError::Read {
         path: path.to_path_buf(),
-        source,
+        message,
+    };
+    let bytes =
+        crate::limits::read_regular_file(path, "scene file", crate::limits::MAX_SCENE_FILE_BYTES)
+            .map_err(read_error)?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        read_error(format!(
+            "{}: cannot read scene file: it is not UTF-8 text (byte {} is not)",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        ))
     })?;
     let dir = path.parent().unwrap_or(Path::new(""));
     load_str(&text, &path.display().to_string(), dir)
@@ -106,10 +125,16 @@ pub fn load_file(path: &Path) -> Result<SceneFile, SceneFileError> {
 pub fn load_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneFile, SceneFileError> {
     let file = Path::new(name);
     let root = DeTable::parse(text).map_err(|e| SceneFileError::syntax(file, text, &e))?;
-    let tree = root.get_ref().clone();
-    Loader::new(base_dir.to_path_buf())
+    Loader::new(base_dir.to_path_buf(), text)
         .load(root)
-        .map_err(|f| f.locate(file, text, &tree))
+        .map_err(|f| {
+            // The document again, to name the field (it parsed once, so it parses again), rather
+            // than a copy of it kept through the whole load for errors alone
+            let tree = DeTable::parse(text)
+                .map(|t| t.into_inner())
+                .unwrap_or_default();
+            f.locate(file, text, &tree)
+        })
 }
 
 #[cfg(test)]

@@ -46,6 +46,7 @@ pub use leaving::{Refraction, Refractions};
 use crate::aabb::Aabb;
 use crate::hit::Hit;
 use crate::ids::MaterialId;
+use crate::limits::{MAX_NESTING, WalkBudget};
 use crate::material::{Material, schlick};
 use crate::scene::{GroupId, Object, Scene, Transform};
 use crate::vec::{Point3, Vec3};
@@ -298,14 +299,31 @@ impl Manifold {
             })
             .collect();
         let mut candidates = Vec::new();
-        world_dielectric_spheres(scene, GroupId(0), 0, &mut candidates);
+        world_dielectric_spheres(
+            scene,
+            GroupId(0),
+            0,
+            &mut WalkBudget::new(),
+            &mut candidates,
+        );
+        let mut bounds = GroupBounds::new(scene);
         // Every world dielectric sphere that holds something a path scatters at (a connection
-        // leaves it from there), or that a connection can cross.
+        // leaves it from there), or that a connection can cross; not one whose contents were not
+        // all seen (past a walk's budget or nesting), which could be taken for clear.
         let interfaces: Vec<Interface> = candidates
             .into_iter()
             .filter_map(|i| {
                 let mut inside = Contents::default();
-                contents(scene, GroupId(0), Transform::IDENTITY, &i, 0, &mut inside);
+                Walk {
+                    scene,
+                    iface: &i,
+                    budget: WalkBudget::new(),
+                    bounds: &mut bounds,
+                }
+                .contents(GroupId(0), Transform::IDENTITY, 0, &mut inside);
+                if inside.unseen {
+                    return None;
+                }
                 let i = Interface {
                     filled: inside.filled,
                     clear: !inside.blocks,
@@ -464,9 +482,6 @@ impl Manifold {
     }
 }
 
-/// Groups nest at most this deep (as in [`crate::lights`]).
-const MAX_NESTING: u32 = 64;
-
 /// The most glass spheres connections go through: the first ones of the scene (in the order of
 /// its world group). A scene with more leaves the light through the others to material sampling:
 /// each refraction into glass looks its sphere up among them, and each is checked against the
@@ -478,8 +493,15 @@ pub const MAX_INTERFACES: usize = 32;
 pub const MAX_CROSSING_PAIRS: usize = 32;
 
 /// The static dielectric spheres of radius > 0 placed in world space (the world group and the
-/// groups nested in it without a transform), at most [`MAX_INTERFACES`].
-fn world_dielectric_spheres(scene: &Scene, g: GroupId, depth: u32, out: &mut Vec<Interface>) {
+/// groups nested in it without a transform), at most [`MAX_INTERFACES`], found within `budget` (a
+/// group nested twice in each of 40 others is in 2^40 places) and [`MAX_NESTING`].
+fn world_dielectric_spheres(
+    scene: &Scene,
+    g: GroupId,
+    depth: u32,
+    budget: &mut WalkBudget,
+    out: &mut Vec<Interface>,
+) {
     let Some(group) = scene.groups.get(g.0 as usize) else {
         return;
     };
@@ -487,7 +509,7 @@ fn world_dielectric_spheres(scene: &Scene, g: GroupId, depth: u32, out: &mut Vec
         return;
     }
     for o in &group.objects {
-        if out.len() >= MAX_INTERFACES {
+        if out.len() >= MAX_INTERFACES || !budget.visit() {
             return;
         }
         match o {
@@ -510,7 +532,7 @@ fn world_dielectric_spheres(scene: &Scene, g: GroupId, depth: u32, out: &mut Vec
                     }
                 }
             }
-            Object::Group(inner) => world_dielectric_spheres(scene, *inner, depth + 1, out),
+            Object::Group(inner) => world_dielectric_spheres(scene, *inner, depth + 1, budget, out),
             _ => {}
         }
     }
@@ -536,130 +558,182 @@ struct Contents {
     blocks: bool,
     /// The summed density of the constant media that fill the whole ball.
     filled: f64,
+    /// Whether part of the scene was not looked at (groups nested deeper than [`MAX_NESTING`], or
+    /// objects past the walk's budget): then what the ball holds is not known.
+    unseen: bool,
 }
 
-/// Adds to `out` what group `g`, placed by `to_world`, has inside the open ball of `iface`: surfaces
-/// that cross it (exactly for spheres and quads, by its box for a moving sphere or an instance's
-/// group), and media whose volume overlaps it (a medium bounded by a sphere fills the ball if that
-/// sphere holds it). A surface must reach a relative 1e-9 into the ball to count.
-fn contents(
-    scene: &Scene,
-    g: GroupId,
-    to_world: Transform,
-    iface: &Interface,
-    depth: u32,
-    out: &mut Contents,
-) {
-    let Some(group) = scene.groups.get(g.0 as usize) else {
-        return;
-    };
-    if depth > MAX_NESTING {
-        return;
+/// The walk over the scene that finds what lies inside one interface's ball.
+struct Walk<'w, 's> {
+    scene: &'s Scene,
+    iface: &'w Interface,
+    /// The objects the walk may still visit (an instance once for every place it ends up in).
+    budget: WalkBudget,
+    bounds: &'w mut GroupBounds,
+}
+
+impl Walk<'_, '_> {
+    /// The bounding box of group `g` in its own frame, reached at `depth`; empty, and the walk marked
+    /// as not seeing all, if it nests deeper than [`MAX_NESTING`] allows there.
+    fn bounds(&mut self, g: GroupId, depth: u32, out: &mut Contents) -> Aabb {
+        self.bounds.get(self.scene, g, depth).unwrap_or_else(|| {
+            out.unseen = true;
+            Aabb::EMPTY
+        })
     }
-    // A surface that only touches the ball (a ball resting on a floor) leaves it clear: what
-    // crosses it must come closer to the centre than the radius less a relative 1e-9.
-    let (c, r) = (iface.centre, iface.radius * (1.0 - 1e-9));
-    for o in &group.objects {
-        let (crosses, material) = match o {
-            Object::Sphere(s) => {
-                let centre = to_world.point(s.center);
-                let itself = !s.is_moving()
-                    && centre == c
-                    && s.radius == iface.radius
-                    && s.material == iface.material;
-                let crosses = if itself {
-                    false
-                } else if s.is_moving() {
-                    box_meets_ball(&to_world.bounds(&s.bounds()), c, r)
-                } else {
-                    // the surface crosses the open ball: not wholly outside it, not wholly around it
-                    let (d, rs) = ((centre - c).length(), s.radius.abs());
-                    d < r + rs && d + r > rs
-                };
-                (crosses, s.material)
-            }
-            Object::Quad(q) => (
-                parallelogram_distance2(
-                    c,
-                    to_world.point(q.q),
-                    to_world.vector(q.u),
-                    to_world.vector(q.v),
-                ) < r * r,
-                q.material,
-            ),
-            Object::Instance { transform, group } => {
-                let placed = transform.then(to_world);
-                if box_meets_ball(
-                    &placed.bounds(&group_bounds(scene, *group, depth + 1)),
-                    c,
-                    r,
-                ) {
-                    contents(scene, *group, placed, iface, depth + 1, out);
-                }
-                continue;
-            }
-            Object::Group(inner) => {
-                contents(scene, *inner, to_world, iface, depth + 1, out);
-                continue;
-            }
-            Object::Medium(m) => {
-                let boundary = scene
-                    .groups
-                    .get(m.boundary.0 as usize)
-                    .map(|b| &b.objects[..]);
-                let (overlaps, fills) = match boundary {
-                    Some([Object::Sphere(s)]) if !s.is_moving() => {
-                        let d = (to_world.point(s.center) - c).length();
-                        let rs = s.radius.abs();
-                        (d < r + rs, d + r <= rs * (1.0 + 1e-12))
-                    }
-                    _ => (
-                        box_meets_ball(
-                            &to_world.bounds(&group_bounds(scene, m.boundary, depth + 1)),
-                            c,
-                            r,
-                        ),
-                        false,
-                    ),
-                };
-                let density = -1.0 / m.neg_inv_density;
-                if fills && density.is_finite() && density > 0.0 {
-                    out.filled += density;
-                    out.scatters = true;
-                } else if overlaps {
-                    out.scatters = true;
-                    out.blocks = true;
-                }
-                continue;
-            }
+
+    /// Adds to `out` what group `g`, placed by `to_world`, has inside the open ball of the interface:
+    /// surfaces that cross it (exactly for spheres and quads, by its box for a moving sphere or an
+    /// instance's group), and media whose volume overlaps it (a medium bounded by a sphere fills the
+    /// ball if that sphere holds it). A surface must reach a relative 1e-9 into the ball to count.
+    fn contents(&mut self, g: GroupId, to_world: Transform, depth: u32, out: &mut Contents) {
+        let scene = self.scene;
+        let Some(group) = scene.groups.get(g.0 as usize) else {
+            return;
         };
-        if crosses {
-            out.blocks = true;
-            out.scatters |= scatters(scene, material);
+        if depth > MAX_NESTING {
+            out.unseen = true;
+            return;
+        }
+        // A surface that only touches the ball (a ball resting on a floor) leaves it clear: what
+        // crosses it must come closer to the centre than the radius less a relative 1e-9.
+        let iface = self.iface;
+        let (c, r) = (iface.centre, iface.radius * (1.0 - 1e-9));
+        for o in &group.objects {
+            if !self.budget.visit() {
+                out.unseen = true;
+                return;
+            }
+            let (crosses, material) = match o {
+                Object::Sphere(s) => {
+                    let centre = to_world.point(s.center);
+                    let itself = !s.is_moving()
+                        && centre == c
+                        && s.radius == iface.radius
+                        && s.material == iface.material;
+                    let crosses = if itself {
+                        false
+                    } else if s.is_moving() {
+                        box_meets_ball(&to_world.bounds(&s.bounds()), c, r)
+                    } else {
+                        // the surface crosses the open ball: not wholly outside it, not wholly
+                        // around it
+                        let (d, rs) = ((centre - c).length(), s.radius.abs());
+                        d < r + rs && d + r > rs
+                    };
+                    (crosses, s.material)
+                }
+                Object::Quad(q) => (
+                    parallelogram_distance2(
+                        c,
+                        to_world.point(q.q),
+                        to_world.vector(q.u),
+                        to_world.vector(q.v),
+                    ) < r * r,
+                    q.material,
+                ),
+                Object::Instance { transform, group } => {
+                    let placed = transform.then(to_world);
+                    let inner = self.bounds(*group, depth + 1, out);
+                    if box_meets_ball(&placed.bounds(&inner), c, r) {
+                        self.contents(*group, placed, depth + 1, out);
+                    }
+                    continue;
+                }
+                Object::Group(inner) => {
+                    self.contents(*inner, to_world, depth + 1, out);
+                    continue;
+                }
+                Object::Medium(m) => {
+                    let boundary = scene
+                        .groups
+                        .get(m.boundary.0 as usize)
+                        .map(|b| &b.objects[..]);
+                    let (overlaps, fills) = match boundary {
+                        Some([Object::Sphere(s)]) if !s.is_moving() => {
+                            let d = (to_world.point(s.center) - c).length();
+                            let rs = s.radius.abs();
+                            (d < r + rs, d + r <= rs * (1.0 + 1e-12))
+                        }
+                        _ => {
+                            let inner = self.bounds(m.boundary, depth + 1, out);
+                            (box_meets_ball(&to_world.bounds(&inner), c, r), false)
+                        }
+                    };
+                    let density = -1.0 / m.neg_inv_density;
+                    if fills && density.is_finite() && density > 0.0 {
+                        out.filled += density;
+                        out.scatters = true;
+                    } else if overlaps {
+                        out.scatters = true;
+                        out.blocks = true;
+                    }
+                    continue;
+                }
+            };
+            if crosses {
+                out.blocks = true;
+                out.scatters |= scatters(scene, material);
+            }
         }
     }
 }
 
-/// The bounding box of group `g`'s objects in its own frame.
-fn group_bounds(scene: &Scene, g: GroupId, depth: u32) -> Aabb {
-    let Some(group) = scene.groups.get(g.0 as usize) else {
-        return Aabb::EMPTY;
-    };
-    if depth > MAX_NESTING {
-        return Aabb::EMPTY;
+/// The bounding boxes of a scene's groups in their own frames, each found once (by instance after
+/// instance, a group placed in 2^40 places would be bounded 2^40 times).
+struct GroupBounds {
+    /// Per group, once found: its box, and how deep groups nest inside it.
+    found: Vec<Option<(Aabb, u32)>>,
+}
+
+impl GroupBounds {
+    fn new(scene: &Scene) -> Self {
+        GroupBounds {
+            found: vec![None; scene.groups.len()],
+        }
     }
-    group.objects.iter().fold(Aabb::EMPTY, |acc, o| {
-        let b = match o {
-            Object::Sphere(s) => s.bounds(),
-            Object::Quad(q) => q.bounds(),
-            Object::Instance { transform, group } => {
-                transform.bounds(&group_bounds(scene, *group, depth + 1))
-            }
-            Object::Group(inner) => group_bounds(scene, *inner, depth + 1),
-            Object::Medium(m) => group_bounds(scene, m.boundary, depth + 1),
-        };
-        acc.union(&b)
-    })
+
+    /// The bounding box of group `g`'s objects in its own frame, reached at `depth`: `None` if groups
+    /// nest inside it deeper than [`MAX_NESTING`] allows there.
+    fn get(&mut self, scene: &Scene, g: GroupId, depth: u32) -> Option<Aabb> {
+        let (b, nesting) = self.find(scene, g, 0)?;
+        (depth.saturating_add(nesting) <= MAX_NESTING).then_some(b)
+    }
+
+    /// Group `g`'s box and the depth of groups inside it, found `depth` deep from where the search
+    /// began (`None` past [`MAX_NESTING`]: a cycle, which the scene builder refuses, or too deep).
+    fn find(&mut self, scene: &Scene, g: GroupId, depth: u32) -> Option<(Aabb, u32)> {
+        if let Some(found) = self.found.get(g.0 as usize).copied().flatten() {
+            return Some(found);
+        }
+        if depth > MAX_NESTING {
+            return None;
+        }
+        let group = scene.groups.get(g.0 as usize)?;
+        let (mut b, mut nesting) = (Aabb::EMPTY, 0);
+        for o in &group.objects {
+            let (ob, n) = match o {
+                Object::Sphere(s) => (s.bounds(), 0),
+                Object::Quad(q) => (q.bounds(), 0),
+                Object::Instance { transform, group } => {
+                    let (inner, n) = self.find(scene, *group, depth + 1)?;
+                    (transform.bounds(&inner), n + 1)
+                }
+                Object::Group(inner) => {
+                    let (inner, n) = self.find(scene, *inner, depth + 1)?;
+                    (inner, n + 1)
+                }
+                Object::Medium(m) => {
+                    let (inner, n) = self.find(scene, m.boundary, depth + 1)?;
+                    (inner, n + 1)
+                }
+            };
+            b = b.union(&ob);
+            nesting = nesting.max(n);
+        }
+        self.found[g.0 as usize] = Some((b, nesting));
+        Some((b, nesting))
+    }
 }
 
 /// Whether the box comes closer than `r` to `c`.

@@ -8,10 +8,10 @@ use super::doc::{
     MetalDoc, RenderDoc, SolidDoc, TEXTURE_TYPES, TOP_KEYS, Typed, de, de_table, in_file_order,
     take, typed,
 };
-use super::span::{Fail, Span, Val, fail};
-use super::values::{Aspect, BackgroundSpec, ColorSpec, Real, Step, V3, compose};
+use super::span::{Fail, Span, Val, fail, line_col};
+use super::values::{Aspect, BackgroundSpec, ColorSpec, Num, Real, Step, V3, compose};
 use crate::camera::CameraSettings;
-use crate::limits::{self, MAX_SIDE, MIN_POSITIVE};
+use crate::limits::{self, MAX_EXPANDED_OBJECTS, MAX_NESTING, MAX_SIDE, MIN_POSITIVE};
 use crate::material::{Albedo, Material};
 use crate::scene::{Background, GroupId, MaterialId, SceneBuilder, TextureId, Transform};
 use crate::scenes::Built;
@@ -44,25 +44,133 @@ pub(super) struct Placement {
     pub(super) to_world: Transform,
 }
 
-pub(super) struct Loader {
+/// What a group holds once its instances are expanded.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct GroupSize {
+    /// Its objects, each counted once for each place it ends up in ([`MAX_EXPANDED_OBJECTS`]).
+    pub(super) objects: u64,
+    /// How deep groups nest inside it (0: it holds shapes alone).
+    pub(super) nesting: u32,
+}
+
+pub(super) struct Loader<'t> {
+    /// The file's text, for places named in messages.
+    pub(super) text: &'t str,
     pub(super) b: SceneBuilder,
     pub(super) dir: PathBuf,
     pub(super) textures: Vec<(String, TextureId)>,
     pub(super) materials: Vec<(String, MaterialId)>,
+    /// `textures` and `materials` by name (a file of 100,000 materials looked each up in the list).
+    pub(super) texture_ids: HashMap<String, TextureId>,
+    pub(super) material_ids: HashMap<String, MaterialId>,
     pub(super) names: HashMap<String, (Span, Named)>,
     pub(super) shutter: (f64, f64),
+    /// Per group (by index), what it holds so far once expanded; the world's is the scene's.
+    pub(super) sizes: Vec<GroupSize>,
+    /// Per group the file writes (a `group`, a `box`, a medium's boundary), how messages name it.
+    pub(super) labels: HashMap<u32, String>,
 }
 
-impl Loader {
-    pub(super) fn new(dir: PathBuf) -> Self {
+impl<'t> Loader<'t> {
+    pub(super) fn new(dir: PathBuf, text: &'t str) -> Self {
         Loader {
+            text,
             b: SceneBuilder::new(),
             dir,
             textures: Vec::new(),
             materials: Vec::new(),
+            texture_ids: HashMap::new(),
+            material_ids: HashMap::new(),
             names: HashMap::new(),
             shutter: (0.0, 1.0),
+            sizes: Vec::new(),
+            labels: HashMap::new(),
         }
+    }
+
+    /// `line L:C`, the place of byte `offset` of the file.
+    pub(super) fn at(&self, offset: usize) -> String {
+        let (line, col) = line_col(self.text, offset);
+        format!("line {line}:{col}")
+    }
+
+    fn size(&mut self, g: GroupId) -> &mut GroupSize {
+        let i = g.0 as usize;
+        if self.sizes.len() <= i {
+            self.sizes.resize(i + 1, GroupSize::default());
+        }
+        &mut self.sizes[i]
+    }
+
+    /// How messages name group `g`: "the scene", "group `name`", ...
+    fn label(&self, g: GroupId) -> String {
+        if g == self.b.world() {
+            "the scene".into()
+        } else {
+            self.labels
+                .get(&g.0)
+                .cloned()
+                .unwrap_or_else(|| "its group".into())
+        }
+    }
+
+    /// Count an object added to group `into` by the object of the file at `span` (`what` names it in
+    /// messages): a shape (`inner` = `None`), or an instance, nested group or medium that places group
+    /// `inner`, which counts again every object of `inner` and nests one deeper. Refused once `into`
+    /// would hold more than [`MAX_EXPANDED_OBJECTS`] objects expanded or nest deeper than
+    /// [`MAX_NESTING`]: before anything is expanded, so that a few kilobytes of instances of instances
+    /// (2^40 shapes) are refused at once.
+    pub(super) fn count(
+        &mut self,
+        into: GroupId,
+        inner: Option<GroupId>,
+        span: &Span,
+        what: &str,
+    ) -> Result<(), Fail> {
+        let placed = match inner {
+            Some(g) => *self.size(g),
+            None => GroupSize::default(),
+        };
+        let added = placed.objects.saturating_add(1);
+        let nesting = if inner.is_some() {
+            placed.nesting.saturating_add(1)
+        } else {
+            0
+        };
+        let size = *self.size(into);
+        let objects = size.objects.saturating_add(added);
+        if objects > MAX_EXPANDED_OBJECTS {
+            let total = if objects == u64::MAX {
+                "more than 2^64".to_owned()
+            } else {
+                objects.to_string()
+            };
+            return fail(
+                span.clone(),
+                format!(
+                    "too many objects once instances are expanded: {what} ({added} object{}) brings \
+                     {} to {total}, more than the {MAX_EXPANDED_OBJECTS} a scene may hold (an \
+                     instance counts again every object of the group it places)",
+                    if added == 1 { "" } else { "s" },
+                    self.label(into),
+                ),
+            );
+        }
+        if nesting > MAX_NESTING {
+            return fail(
+                span.clone(),
+                format!(
+                    "groups nest too deep: {what} puts {nesting} levels of groups, instances and \
+                     media inside one another in {}, more than the {MAX_NESTING} allowed",
+                    self.label(into),
+                ),
+            );
+        }
+        *self.size(into) = GroupSize {
+            objects,
+            nesting: size.nesting.max(nesting),
+        };
+        Ok(())
     }
 
     pub(super) fn load(mut self, root: Spanned<DeTable<'_>>) -> Result<SceneFile, Fail> {
@@ -95,15 +203,20 @@ impl Loader {
         if let Some(textures) = take(&mut t, "textures") {
             for (name, v) in in_file_order(self.table(textures)?) {
                 let tex = self.texture(v)?;
-                self.textures.push((name.into_inner(), self.b.texture(tex)));
+                let (name, id) = (name.into_inner(), self.b.texture(tex));
+                self.texture_ids.insert(name.clone(), id);
+                self.textures.push((name, id));
             }
         }
         if let Some(materials) = take(&mut t, "materials") {
             for (name, v) in in_file_order(self.table(materials)?) {
                 let m = self.material(v)?;
-                self.materials.push((name.into_inner(), self.b.material(m)));
+                let (name, id) = (name.into_inner(), self.b.material(m));
+                self.material_ids.insert(name.clone(), id);
+                self.materials.push((name, id));
             }
         }
+        self.size(self.b.world());
         let (objects, objects_span) = match take(&mut t, "objects") {
             Some(o) => {
                 let span = o.span();
@@ -207,29 +320,46 @@ impl Loader {
         if !(vfov > 0.0 && vfov < 180.0) {
             return fail(
                 vfov_span,
-                format!("vfov must lie in (0, 180) degrees, got {vfov}"),
+                format!("vfov must lie in (0, 180) degrees, got {}", Num(vfov)),
             );
         }
         let (defocus_angle, da_span) = real(&c.defocus_angle, d.defocus_angle);
         if !(0.0..180.0).contains(&defocus_angle) {
             return fail(
                 da_span,
-                format!("defocus_angle must lie in [0, 180) degrees, got {defocus_angle}"),
+                format!(
+                    "defocus_angle must lie in [0, 180) degrees, got {}",
+                    Num(defocus_angle)
+                ),
             );
         }
         let (focus_dist, fd_span) = real(&c.focus_dist, d.focus_dist);
         if focus_dist <= 0.0 {
             return fail(
                 fd_span,
-                format!("focus_dist must be positive, got {focus_dist}"),
+                format!("focus_dist must be positive, got {}", Num(focus_dist)),
             );
         }
         let (lookfrom, lookat) = (c.lookfrom.get_ref().0, c.lookat.get_ref().0);
         let view = lookfrom - lookat;
-        if view.length_squared() == 0.0 {
+        if lookfrom == lookat {
             return fail(
                 c.lookat.span(),
                 "lookfrom and lookat are the same point: the camera has no view direction",
+            );
+        }
+        // (the distance scaled by the largest difference: its square would underflow to 0 for points
+        // 1e-300 apart)
+        let largest = view.abs().max_element();
+        let distance = largest * (view / largest).length();
+        if distance < MIN_POSITIVE {
+            return fail(
+                c.lookat.span(),
+                format!(
+                    "lookfrom and lookat are only {} apart: they must be at least {MIN_POSITIVE:e} \
+                     apart to give the camera a view direction",
+                    Num(distance)
+                ),
             );
         }
         let vup = c.vup.as_ref().map_or(d.vup, |v| v.get_ref().0);
@@ -238,8 +368,8 @@ impl Loader {
             return fail(
                 c.vup.as_ref().map_or(c.lookat.span(), |v| v.span()),
                 format!(
-                    "vup ({}, {}, {}) is parallel to the view direction (or zero): the image has no up",
-                    vup.x, vup.y, vup.z
+                    "vup {} is parallel to the view direction (or zero): the image has no up",
+                    Num::v3(vup)
                 ),
             );
         }
@@ -248,7 +378,11 @@ impl Loader {
             if open > close {
                 return fail(
                     s.span(),
-                    format!("the shutter closes ({close}) before it opens ({open})"),
+                    format!(
+                        "the shutter closes ({}) before it opens ({})",
+                        Num(close),
+                        Num(open)
+                    ),
                 );
             }
             self.shutter = (open, close);
@@ -281,7 +415,7 @@ impl Loader {
             "image" => {
                 let d: ImageDoc = de_table(table, &span)?;
                 let file = self.dir.join(d.file.get_ref());
-                if !file.is_file() {
+                if !file.exists() {
                     return fail(
                         d.file.span(),
                         format!(
@@ -301,8 +435,8 @@ impl Loader {
     pub(super) fn albedo(&self, c: &Spanned<ColorSpec>) -> Result<Albedo, Fail> {
         match c.get_ref() {
             ColorSpec::Rgb(c) => Ok(Albedo::Constant(*c)),
-            ColorSpec::Texture(name) => match self.textures.iter().find(|(n, _)| n == name) {
-                Some((_, id)) => Ok(Albedo::Texture(*id)),
+            ColorSpec::Texture(name) => match self.texture_ids.get(name) {
+                Some(id) => Ok(Albedo::Texture(*id)),
                 None => fail(
                     c.span(),
                     format!(
@@ -333,7 +467,8 @@ impl Loader {
                 c.span(),
                 format!(
                     "an albedo reflects a fraction of the light, so its components must lie in [0, 1]; \
-                     got {most}"
+                     got {}",
+                    Num(most)
                 ),
             );
         }
@@ -355,7 +490,7 @@ impl Loader {
                     Some(f) if !(0.0..=1.0).contains(&f.get_ref().0) => {
                         return fail(
                             f.span(),
-                            format!("fuzz must lie in [0, 1], got {}", f.get_ref().0),
+                            format!("fuzz must lie in [0, 1], got {}", Num(f.get_ref().0)),
                         );
                     }
                     Some(f) => f.get_ref().0,
@@ -368,7 +503,7 @@ impl Loader {
                         format!(
                             "a metal reflects a fraction of the light, so its albedo must lie in \
                              [0, 1]; got {}",
-                            albedo.max_element()
+                            Num(albedo.max_element())
                         ),
                     );
                 }
@@ -392,8 +527,8 @@ impl Loader {
     }
 
     pub(super) fn material_id(&self, name: &Spanned<String>) -> Result<MaterialId, Fail> {
-        match self.materials.iter().find(|(n, _)| n == name.get_ref()) {
-            Some((_, id)) => Ok(*id),
+        match self.material_ids.get(name.get_ref()) {
+            Some(id) => Ok(*id),
             None => fail(
                 name.span(),
                 format!(
@@ -411,9 +546,9 @@ impl Loader {
             return fail(
                 name.span(),
                 format!(
-                    "the name `{}` is already used (first at byte {})",
+                    "the name `{}` is already used (first at {})",
                     name.get_ref(),
-                    first.start
+                    self.at(first.start)
                 ),
             );
         }
@@ -456,18 +591,27 @@ impl Loader {
             fail(
                 span.clone(),
                 format!(
-                    "field `transform`: the steps add up to a translation of [{}, {}, {}], which is \
-                     not finite",
-                    t.translation.x, t.translation.y, t.translation.z
+                    "field `transform`: the steps add up to a translation of {}, which is not finite",
+                    Num::v3(t.translation)
                 ),
             )
         }
     }
 
-    pub(super) fn place(&mut self, into: GroupId, p: &Placement) {
+    /// Put the parts of the object at `span` (`what`, for messages) where `p` says: through an instance
+    /// into `into` if it has a transform (counted there; its parts were counted in their own group).
+    pub(super) fn place(
+        &mut self,
+        into: GroupId,
+        p: &Placement,
+        span: &Span,
+        what: &str,
+    ) -> Result<(), Fail> {
         if let Some(t) = p.instance {
+            self.count(into, Some(p.group), span, what)?;
             self.b.instance(into, p.group, t);
         }
+        Ok(())
     }
 }
 
@@ -481,7 +625,7 @@ pub(super) fn positive(x: &Spanned<Real>, what: &str) -> Result<f64, Fail> {
             format!("{what} must be at least {MIN_POSITIVE:e}, got {v:e}"),
         )
     } else {
-        fail(x.span(), format!("{what} must be positive, got {v}"))
+        fail(x.span(), format!("{what} must be positive, got {}", Num(v)))
     }
 }
 
@@ -499,18 +643,30 @@ pub(super) fn check_quad(u: Vec3, v: Vec3, us: &Spanned<V3>, vs: &Spanned<V3>) -
     fail(
         span,
         format!(
-            "zero-area quad: u x v = 0 (u = [{}, {}, {}], v = [{}, {}, {}] are parallel or zero)",
-            u.x, u.y, u.z, v.x, v.y, v.z
+            "zero-area quad: u x v = 0 (u = {}, v = {} are parallel or zero)",
+            Num::v3(u),
+            Num::v3(v)
         ),
     )
 }
 
-/// "known materials: a, b" or "no materials are defined".
+/// "known materials: a, b" or "no materials are defined"; past 20 names, "and 99980 more".
 pub(super) fn known<'a>(what: &str, names: impl Iterator<Item = &'a str>) -> String {
-    let names: Vec<String> = names.map(|n| format!("`{n}`")).collect();
-    if names.is_empty() {
-        format!("no {what} are defined")
-    } else {
-        format!("known {what}: {}", names.join(", "))
+    const SHOWN: usize = 20;
+    let mut names = names.peekable();
+    if names.peek().is_none() {
+        return format!("no {what} are defined");
     }
+    let shown: Vec<String> = names
+        .by_ref()
+        .take(SHOWN)
+        .map(|n| format!("`{n}`"))
+        .collect();
+    let more = names.count();
+    let more = if more > 0 {
+        format!(" and {more} more")
+    } else {
+        String::new()
+    };
+    format!("known {what}: {}{more}", shown.join(", "))
 }

@@ -7,13 +7,13 @@ use super::doc::{
 };
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
-use super::values::Step;
+use super::values::{Num, Step};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::shapes::{Quad, Sphere};
 use toml::de::DeTable;
 
-impl Loader {
+impl Loader<'_> {
     /// Build the object `v` into group `into`; `to_world` maps the group's space to world space.
     pub(super) fn object(
         &mut self,
@@ -46,10 +46,11 @@ impl Loader {
         let m = self.material_id(&d.material)?;
         let r = positive(&d.radius, "radius")?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.count(p.group, None, &span, "this sphere")?;
         self.b
             .sphere(p.group, d.center.0, r, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
-        self.place(into, &p);
+        self.place(into, &p, &span, "this sphere")?;
         let world = Sphere::new(p.to_world.point(d.center.0), r, m);
         self.name(d.name, Named::Sphere(world))
     }
@@ -71,10 +72,11 @@ impl Loader {
         let motion = d.center1.0 - d.center0.0;
         let (c0, c1) = (d.center0.0 + open * motion, d.center0.0 + close * motion);
         let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.count(p.group, None, &span, "this moving sphere")?;
         self.b
             .moving_sphere(p.group, c0, c1, r, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
-        self.place(into, &p);
+        self.place(into, &p, &span, "this moving sphere")?;
         self.name(d.name, Named::Other("a moving sphere"))
     }
 
@@ -91,10 +93,11 @@ impl Loader {
         let (q, u, v) = (d.q.0, d.u.get_ref().0, d.v.get_ref().0);
         check_quad(u, v, &d.u, &d.v)?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.count(p.group, None, &span, "this quad")?;
         self.b
             .quad(p.group, q, u, v, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
-        self.place(into, &p);
+        self.place(into, &p, &span, "this quad")?;
         let t = p.to_world;
         let world = Quad::new(t.point(q), t.vector(u), t.vector(v), m)
             .map_or(Named::Other("a quad"), Named::Quad);
@@ -112,7 +115,9 @@ impl Loader {
                 d.b.span(),
                 format!(
                     "the box is flat: corners a and b must differ in x, y and z (size {} x {} x {})",
-                    size.x, size.y, size.z
+                    Num(size.x),
+                    Num(size.y),
+                    Num(size.z)
                 ),
             );
         }
@@ -120,7 +125,16 @@ impl Loader {
             .b
             .box_group(a, b, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
-        self.add_placed(into, g, &d.transform, &span)?;
+        let label = match &d.name {
+            Some(n) => format!("box `{}`", n.get_ref()),
+            None => format!("the box at {}", self.at(span.start)),
+        };
+        self.labels.insert(g.0, label.clone());
+        // (a box is six quads)
+        for _ in 0..6 {
+            self.count(g, None, &span, "this box")?;
+        }
+        self.add_placed(into, g, &d.transform, &span, &format!("this {label}"))?;
         self.name(d.name, Named::Group(g))
     }
 
@@ -144,12 +158,17 @@ impl Loader {
             );
         }
         let g = self.b.group();
+        let label = match &d.name {
+            Some(n) => format!("group `{}`", n.get_ref()),
+            None => format!("the group at {}", self.at(span.start)),
+        };
+        self.labels.insert(g.0, label.clone());
         let t = self.compose(&d.transform, &span)?;
         let inner_to_world = t.then(to_world);
         for c in children {
             self.object(g, c, inner_to_world)?;
         }
-        self.add_placed(into, g, &d.transform, &span)?;
+        self.add_placed(into, g, &d.transform, &span, &format!("this {label}"))?;
         self.name(d.name, Named::Group(g))
     }
 
@@ -176,7 +195,8 @@ impl Loader {
                 );
             }
         };
-        self.add_placed(into, g, &d.transform, &span)?;
+        let what = format!("this instance of `{}`", d.of.get_ref());
+        self.add_placed(into, g, &d.transform, &span, &what)?;
         self.name(d.name, Named::Other("an instance"))
     }
 
@@ -196,23 +216,31 @@ impl Loader {
         let albedo = self.reflectance(&d.albedo)?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
         let bounds = self.b.group();
+        self.labels.insert(
+            bounds.0,
+            format!("the boundary of the medium at {}", self.at(span.start)),
+        );
         self.object(bounds, boundary, p.to_world)?;
         let phase = self.b.material(Material::Isotropic { albedo });
+        self.count(p.group, Some(bounds), &span, "this medium")?;
         self.b
             .medium(p.group, bounds, density, phase)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
-        self.place(into, &p);
+        self.place(into, &p, &span, "this medium")?;
         self.name(d.name, Named::Other("a medium"))
     }
 
-    /// Add group `g` to `into`, through an instance if it has a transform.
+    /// Add group `g` to `into`, through an instance if it has a transform (`what`: the object at
+    /// `span` that places it, for messages).
     fn add_placed(
         &mut self,
         into: GroupId,
         g: GroupId,
         steps: &[Step],
         span: &Span,
+        what: &str,
     ) -> Result<(), Fail> {
+        self.count(into, Some(g), span, what)?;
         if steps.is_empty() {
             self.b.add_to(into, Object::Group(g));
         } else {

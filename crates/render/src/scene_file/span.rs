@@ -45,12 +45,10 @@ impl fmt::Display for Field {
 /// anything inside it the line, the column and the field.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneFileError {
-    /// The file cannot be read.
-    #[error("{}: cannot read scene file: {source}", path.display())]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    /// The file cannot be read, or is not one to read: not a regular file, too large, not UTF-8.
+    /// The message names the file.
+    #[error("{message}")]
+    Read { path: PathBuf, message: String },
     /// The text is not TOML.
     #[error("{place}: {message}")]
     Syntax { place: Place, message: String },
@@ -88,9 +86,97 @@ impl SceneFileError {
                 "recursion limit" => "the file nests tables or arrays deeper than the TOML reader \
                                       allows (recursion limit)"
                     .to_owned(),
+                "duplicate key" => match e.span() {
+                    Some(span) => duplicate_key(text, span),
+                    None => "duplicate key".to_owned(),
+                },
                 m => m.to_owned(),
             },
         }
+    }
+}
+
+/// The TOML reader's "duplicate key" (at `span`, the second key) with the key, the table it is
+/// defined twice in, and where it was first: "duplicate key `radius` in [[objects]] (first at line
+/// 9:1)", "duplicate key `camera`: the table [camera] is defined twice (first at line 1:1)". (The
+/// reader's error holds the first key's place but does not give it out: it is looked for again.)
+fn duplicate_key(text: &str, span: Span) -> String {
+    let Some(key) = text.get(span.clone()).map(str::trim) else {
+        return "duplicate key".to_owned();
+    };
+    let bare = key.trim_matches(|c| c == '"' || c == '\'');
+    let line_start = text[..span.start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[span.start..]
+        .find('\n')
+        .map_or(text.len(), |i| span.start + i);
+    let line = &text[line_start..line_end];
+    let header = |l: &str| {
+        let l = l.trim();
+        l.starts_with('[').then(|| {
+            // the header up to its closing bracket (a comment may follow)
+            let end = l.rfind(']').map_or(l.len(), |i| i + 1);
+            l[..end].to_owned()
+        })
+    };
+    let first_at = |offset: usize| {
+        let (line, col) = line_col(text, offset);
+        format!(" (first at line {line}:{col})")
+    };
+    // Lines before the key's, with their offsets, last first.
+    let before = || {
+        text[..line_start]
+            .split_inclusive('\n')
+            .scan(0, |at, l| {
+                let start = *at;
+                *at += l.len();
+                Some((start, l))
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+    };
+    if let Some(h) = header(line) {
+        // A table header names a table already defined.
+        let first = before()
+            .find(|(_, l)| header(l).as_deref() == Some(h.as_str()))
+            .map_or(String::new(), |(at, l)| {
+                first_at(at + l.len() - l.trim_start().len())
+            });
+        return format!("duplicate key `{bare}`: the table {h} is defined twice{first}");
+    }
+    // The table the key is in: the inline table around it, or the last header before it.
+    let tree = DeTable::parse_recoverable(text).0;
+    let inline = field_at(tree.get_ref(), &span);
+    let (table, from) = match before().find(|(_, l)| header(l).is_some()) {
+        _ if !inline.is_empty() => (format!("in `{inline}`"), 0),
+        Some((at, l)) => (format!("in {}", header(l).unwrap_or_default()), at),
+        None => ("at the top level of the file".to_owned(), 0),
+    };
+    // Its first definition: the last key of that name before this one, after the table starts.
+    let mut first = None;
+    find_keys(tree.get_ref(), bare, &mut |s: &Span| {
+        if s.start >= from && s.start < span.start && first.is_none_or(|f| s.start > f) {
+            first = Some(s.start);
+        }
+    });
+    let first = first.map_or(String::new(), first_at);
+    format!("duplicate key `{bare}` {table}{first}")
+}
+
+/// Calls `found` with the span of every key named `name` in `t`, at any depth.
+fn find_keys(t: &DeTable, name: &str, found: &mut dyn FnMut(&Span)) {
+    fn in_value(v: &Val, name: &str, found: &mut dyn FnMut(&Span)) {
+        match v.get_ref() {
+            DeValue::Table(t) => find_keys(t, name, found),
+            DeValue::Array(a) => a.iter().for_each(|v| in_value(v, name, found)),
+            _ => {}
+        }
+    }
+    for (k, v) in t.iter() {
+        if k.get_ref().as_ref() == name {
+            found(&k.span());
+        }
+        in_value(v, name, found);
     }
 }
 
