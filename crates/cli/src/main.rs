@@ -51,7 +51,44 @@ fn main() {
         Command::Exercises(args) => std::process::exit(exercises_cmd::run(args)),
     };
     if let Err(err) = result {
-        eprintln!("error: {err:#}");
+        eprintln!("error: {}", message(&err));
         std::process::exit(1);
+    }
+}
+
+/// The error and its causes joined by `": "`, as anyhow's `{:#}` joins them, but without a cause
+/// whose text its error already ends with (our errors quote their I/O error in their own message
+/// and keep it as their source too, which `{:#}` printed twice).
+fn message(err: &anyhow::Error) -> String {
+    let mut out = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if out.is_empty() {
+            out = text;
+        } else if !out.ends_with(&text) {
+            out.push_str(": ");
+            out.push_str(&text);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::message;
+
+    #[test]
+    fn a_cause_already_quoted_is_not_printed_twice() {
+        #[derive(Debug, thiserror::Error)]
+        #[error("cannot read a.ck: {source}")]
+        struct Quoting {
+            source: std::io::Error,
+        }
+        let io = || std::io::Error::from(std::io::ErrorKind::NotFound);
+        let err = anyhow::Error::new(Quoting { source: io() });
+        assert_eq!(message(&err), format!("cannot read a.ck: {}", io()));
+        // a cause not quoted is still printed, after its context
+        let err = anyhow::Error::new(io()).context("reading a.ck");
+        assert_eq!(message(&err), format!("reading a.ck: {}", io()));
     }
 }

@@ -43,11 +43,23 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
     if t.is_empty() {
         return Err(err());
     }
+    // A positive time shorter than the nanosecond a `Duration` counts in would read as 0.
+    let positive = |d: Duration, secs: f64| {
+        if d.is_zero() && secs > 0.0 {
+            Err(format!(
+                "'{s}' is shorter than a nanosecond, the shortest time there is here"
+            ))
+        } else {
+            Ok(d)
+        }
+    };
     if let Ok(secs) = t.parse::<f64>() {
-        return Duration::try_from_secs_f64(secs).map_err(|_| err());
+        let d = Duration::try_from_secs_f64(secs).map_err(|_| err())?;
+        return positive(d, secs);
     }
     let mut total = 0.0;
     let mut rest = t;
+    let mut units: Vec<&str> = Vec::new();
     while !rest.is_empty() {
         let num_end = rest
             .find(|c: char| !(c.is_ascii_digit() || c == '.'))
@@ -65,10 +77,16 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
             "d" => 86400.0,
             _ => return Err(err()),
         };
+        let unit = &rest[..unit_end];
+        if units.contains(&unit) {
+            return Err(format!("'{s}': the unit '{unit}' appears twice (a typo?)"));
+        }
+        units.push(unit);
         total += value * scale;
         rest = &rest[unit_end..];
     }
-    Duration::try_from_secs_f64(total).map_err(|_| err())
+    let d = Duration::try_from_secs_f64(total).map_err(|_| err())?;
+    positive(d, total)
 }
 
 /// How the loop ended.
@@ -234,5 +252,13 @@ mod tests {
         for bad in ["", "s", "5x", "-3", "1h-", "inf"] {
             assert!(parse_duration(bad).is_err(), "{bad}");
         }
+        // zero is zero (the callers refuse it by name); a positive time is never read as zero
+        assert_eq!(s("0"), Duration::ZERO);
+        for tiny in ["1e-300", "0.0000000001s"] {
+            let e = parse_duration(tiny).unwrap_err();
+            assert!(e.contains(tiny) && e.contains("nanosecond"), "{e}");
+        }
+        let e = parse_duration("1h1h").unwrap_err();
+        assert!(e.contains("'h' appears twice"), "{e}");
     }
 }

@@ -447,6 +447,32 @@ struct Job {
 /// Resolve and check every flag against the scene: what is accepted renders, the rest is refused here,
 /// naming the flag, the value and the limit.
 fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
+    if let Some(t) = &args.texture {
+        let is_file = scene_arg.ends_with(".toml") || Path::new(scene_arg).is_file();
+        let takes =
+            !is_file && matches!(find(scene_arg).map(|b| b.name), Ok("earth" | "book2-final"));
+        if !takes {
+            bail!(
+                "--texture {}: only the built-in scenes `earth` and `book2-final` take an image (for \
+                 their earth), not '{scene_arg}'; a scene file names its own image textures",
+                t.display()
+            );
+        }
+    }
+    if !matches!(args.strategy, Strategy::Mis(_)) {
+        let switches = [
+            (args.no_rr, "--no-rr"),
+            (args.sph_rect, "--sph-rect"),
+            (args.no_lds, "--no-lds"),
+            (args.no_manifold, "--no-manifold"),
+        ];
+        if let Some((_, flag)) = switches.iter().find(|(on, _)| *on) {
+            bail!(
+                "{flag}: only the 'mis' strategy has this switch, not '{}'",
+                args.strategy.name()
+            );
+        }
+    }
     let opts = SceneOptions {
         texture: args.texture.clone(),
     };

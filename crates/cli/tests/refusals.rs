@@ -676,3 +676,140 @@ fn explain_says_through_which_glass_the_manifold_connections_go() {
     assert!(mixture.contains("not used"), "{mixture}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_merge_whose_mean_a_32_bit_float_cannot_hold_writes_no_linear_file() {
+    let d = dir("beyond-f32");
+    ok(&d, &render(&["--part", "good"]));
+    let good = Checkpoint::read(&d.join("good")).unwrap();
+    // a finite sum (1e300 over 2 samples) whose mean is far beyond f32::MAX
+    lying_copy(&good, Color::new(0.0, 1e300, 0.0), &d.join("huge"));
+    let out = rtl(&d, &["merge", "huge", "-o", "m.png", "--linear", "m.pfm"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("pixel (x 3, y 0)") && err.contains("32-bit float"),
+        "{err}"
+    );
+    assert!(!d.join("m.pfm").exists(), "no PFM of infinities");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn a_device_or_a_directory_is_no_checkpoint_and_is_not_read() {
+    let d = dir("not-a-file");
+    // /dev/zero would give bytes without end; a directory none
+    for what in ["/dev/zero", "."] {
+        refused(
+            &d,
+            &["merge", what, "-o", "m.png"],
+            &[what, "not a regular file"],
+        );
+    }
+    refused(
+        &d,
+        &render(&["--resume", "/dev/zero"]),
+        &["/dev/zero", "not a regular file"],
+    );
+    refused(&d, &render(&["--resume", "."]), &[".", "a directory"]);
+    // a pipe is refused without waiting for a writer (opening it would)
+    let fifo = d.join("ck.fifo");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    refused(
+        &d,
+        &["merge", "ck.fifo", "-o", "m.png"],
+        &["ck.fifo", "not a regular file"],
+    );
+    refused(
+        &d,
+        &render(&["--resume", "ck.fifo"]),
+        &["ck.fifo", "not a regular file"],
+    );
+    // an I/O error is quoted once, not twice
+    let out = rtl(&d, &["merge", "missing.ck", "-o", "m.png"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    let io = std::io::Error::from(std::io::ErrorKind::NotFound).to_string();
+    assert_eq!(err.matches("os error 2").count(), 1, "{err} ({io})");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn switches_of_another_strategy_and_a_texture_no_scene_takes_are_refused() {
+    let d = dir("ignored-flags");
+    for flag in ["--no-rr", "--sph-rect", "--no-lds", "--no-manifold"] {
+        refused(
+            &d,
+            &render(&["--strategy", "cosine", flag]),
+            &[flag, "only the 'mis' strategy", "'cosine'"],
+        );
+    }
+    // with mis (the default) they are taken
+    ok(&d, &render(&["--no-rr", "--no-lds", "-o", "a.png"]));
+    refused(
+        &d,
+        &render(&["--texture", "nonexistent.jpg"]),
+        &[
+            "--texture nonexistent.jpg",
+            "`earth` and `book2-final`",
+            "'cornell'",
+        ],
+    );
+    assert!(!d.join("cornell.png").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn study_render_refuses_zero_repeats_and_a_file_as_its_directory_leaving_nothing() {
+    let d = dir("study-flags");
+    refused(
+        &d,
+        &[
+            "study", "render", "--quick", "--repeat", "0", "--out", "out",
+        ],
+        &["--repeat 0"],
+    );
+    refused(
+        &d,
+        &["study", "render", "--quick", "--width", "0", "--out", "out"],
+        &["--width 0"],
+    );
+    assert!(
+        !d.join("out").exists(),
+        "a refused study leaves no directory"
+    );
+    std::fs::write(d.join("afile"), "x").unwrap();
+    refused(
+        &d,
+        &["study", "samples", "--out", "afile"],
+        &["--out afile", "a file, not a directory"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn time_budgets_shorter_than_a_nanosecond_are_quoted_as_given() {
+    let d = dir("tiny-time");
+    // (a value the flag's parser refuses is a usage error: clap's exit code 2)
+    for (args, words) in [
+        (render(&["--time", "1e-300"]), ["'1e-300'", "nanosecond"]),
+        (
+            render(&["--checkpoint-every", "1e-300"]),
+            ["'1e-300'", "nanosecond"],
+        ),
+        (render(&["--time", "1h1h"]), ["'1h1h'", "appears twice"]),
+    ] {
+        let out = rtl(&d, &args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{args:?}: wanted {w:?} in {err}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -109,13 +109,34 @@ pub fn pfm_bytes(width: usize, height: usize, pixels: &[Color]) -> Vec<u8> {
     out
 }
 
-/// Write linear radiance: PFM for `.pfm`, OpenEXR (f32 RGB) for `.exr`.
+/// The first pixel with a channel that a 32-bit float cannot hold (beyond `f32::MAX`, or NaN),
+/// which a linear file would store as an infinity or NaN: its index and colour.
+pub fn beyond_f32(pixels: &[Color]) -> Option<(usize, Color)> {
+    pixels
+        .iter()
+        .position(|c| !c.to_array().iter().all(|&v| (v as f32).is_finite()))
+        .map(|i| (i, pixels[i]))
+}
+
+/// Write linear radiance: PFM for `.pfm`, OpenEXR (f32 RGB) for `.exr`. Refused (nothing written)
+/// where a pixel does not fit a 32-bit float ([`beyond_f32`]): an image of infinities is no image.
 pub fn write_linear(
     path: &Path,
     width: usize,
     height: usize,
     pixels: &[Color],
 ) -> Result<(), String> {
+    if let Some((i, c)) = beyond_f32(pixels) {
+        let (x, y) = (i % width.max(1), i / width.max(1));
+        return Err(format!(
+            "{}: pixel (x {x}, y {y}) is [{:e}, {:e}, {:e}], which a 32-bit float cannot hold \
+             (it would be written as an infinity), so no linear file is written",
+            path.display(),
+            c.x,
+            c.y,
+            c.z
+        ));
+    }
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
@@ -290,6 +311,27 @@ mod tests {
         assert_eq!(&b[..header.len()], header);
         let first = f32::from_le_bytes(b[header.len()..header.len() + 4].try_into().unwrap());
         assert_eq!(first, 2.0);
+    }
+
+    #[test]
+    fn a_linear_file_of_radiance_beyond_f32_is_refused_and_not_written() {
+        let dir = std::env::temp_dir().join(format!("rtl-beyond-f32-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fits = [Color::splat(1.0), Color::new(3.0e38, 0.0, 1.0)];
+        assert_eq!(beyond_f32(&fits), None);
+        for ext in ["pfm", "exr"] {
+            let path = dir.join(format!("m.{ext}"));
+            write_linear(&path, 2, 1, &fits).unwrap();
+            std::fs::remove_file(&path).unwrap();
+            for bad in [Color::new(0.0, 1e300, 0.0), Color::new(f64::NAN, 0.0, 0.0)] {
+                let pixels = [Color::splat(1.0), bad];
+                assert_eq!(beyond_f32(&pixels).map(|(i, _)| i), Some(1));
+                let e = write_linear(&path, 2, 1, &pixels).unwrap_err();
+                assert!(e.contains("pixel (x 1, y 0)"), "{e}");
+                assert!(!path.exists(), "{ext}: nothing may be written");
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -59,6 +59,25 @@ pub enum ImageError {
     },
     #[error("images differ in size: {0}x{1} against {2}x{3}")]
     Size(usize, usize, usize, usize),
+    #[error(
+        "{what}: pixel (x {x}, y {y}), channel {channel}, is {value}: radiance is finite and never \
+         negative, so this render went wrong (its noise would be measured as if it were black or white)"
+    )]
+    Value {
+        what: String,
+        x: usize,
+        y: usize,
+        channel: usize,
+        value: f32,
+    },
+    #[error(
+        "{what}: {extra} bytes follow the {expected} values of pixel data (a file that is not one PFM)"
+    )]
+    Trailing {
+        what: String,
+        expected: usize,
+        extra: usize,
+    },
 }
 
 /// The book's encoding of one linear channel (`write_color` of book 3's `color.h`): rtl's own
@@ -235,7 +254,10 @@ pub fn parse_pfm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
         .ok_or_else(|| ImageError::Header {
             what: what.into(),
             field: "scale",
-            problem: format!("expected a non-zero number, got {:?}", tokens.get(3)),
+            problem: match tokens.get(3) {
+                Some(t) => format!("expected a finite, non-zero number, got `{t}`"),
+                None => "missing (the file ends in its header)".into(),
+            },
         })?;
     let little = scale < 0.0;
     let expected = value_count(what, width, height)?;
@@ -245,6 +267,13 @@ pub fn parse_pfm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
             what: what.into(),
             expected,
             found: body.len() / 4,
+        });
+    }
+    if body.len() > expected * 4 {
+        return Err(ImageError::Trailing {
+            what: what.into(),
+            expected,
+            extra: body.len() - expected * 4,
         });
     }
     let mut values = vec![0.0; expected];
@@ -257,6 +286,15 @@ pub fn parse_pfm(bytes: &[u8], what: &str) -> Result<DisplayImage, ImageError> {
         };
         let (row_from_bottom, rest) = (k / (width * 3), k % (width * 3));
         let row = height - 1 - row_from_bottom;
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(ImageError::Value {
+                what: what.into(),
+                x: rest / 3,
+                y: row,
+                channel: rest % 3,
+                value: x,
+            });
+        }
         values[row * width * 3 + rest] = book_byte(x) as f64 / 256.0;
     }
     Ok(DisplayImage {
@@ -383,13 +421,35 @@ mod tests {
     }
 
     #[test]
+    fn a_pfm_of_impossible_radiance_or_with_bytes_after_it_is_refused() {
+        let good = [Color::splat(0.5), Color::splat(0.25)];
+        assert!(parse_pfm(&rtl_render::output::pfm_bytes(2, 1, &good), "t.pfm").is_ok());
+        for (bad, channel) in [(f64::NAN, 0), (f64::INFINITY, 1), (-1.0, 2)] {
+            let mut c = [0.25; 3];
+            c[channel] = bad;
+            let pixels = [Color::splat(0.5), Color::from_array(c)];
+            let e = parse_pfm(&rtl_render::output::pfm_bytes(2, 1, &pixels), "t.pfm").unwrap_err();
+            assert!(
+                matches!(e, ImageError::Value { x: 1, y: 0, channel: ch, .. } if ch == channel),
+                "{e}"
+            );
+        }
+        let mut bytes = rtl_render::output::pfm_bytes(2, 1, &good);
+        bytes.extend_from_slice(b"junk");
+        let e = parse_pfm(&bytes, "t.pfm").unwrap_err();
+        assert!(matches!(e, ImageError::Trailing { extra: 4, .. }), "{e}");
+        let e = parse_pfm(b"PF\n1 1\n0.0\n\0\0\0\0\0\0\0\0\0\0\0\0", "t.pfm").unwrap_err();
+        assert!(e.to_string().ends_with("got `0.0`"), "{e}");
+    }
+
+    #[test]
     fn pfm_rows_are_flipped_and_encoded() {
         // rtl's own writer: pixel (0, 0) top-left is 0.25, the bottom row is 1.0.
         let pixels = vec![
             Color::splat(0.25),
             Color::splat(0.0),
             Color::splat(1.0),
-            Color::new(f64::NAN, 0.0, 0.25),
+            Color::new(0.0, 0.0, 0.25),
         ];
         let img = parse_pfm(&rtl_render::output::pfm_bytes(2, 2, &pixels), "t.pfm").unwrap();
         assert_eq!((img.width, img.height), (2, 2));

@@ -69,6 +69,12 @@ pub fn out_dir(out: Option<PathBuf>, name: &str) -> anyhow::Result<PathBuf> {
             dir
         }
     };
+    if dir.exists() && !dir.is_dir() {
+        anyhow::bail!(
+            "--out {}: it is a file, not a directory (a study writes several files into it)",
+            dir.display()
+        );
+    }
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     eprintln!("output directory: {}", dir.display());
     Ok(dir)

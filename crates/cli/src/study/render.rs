@@ -361,7 +361,6 @@ fn shown(label: &str) -> String {
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
-    let out_dir = super::out_dir(args.out.clone(), "render")?;
     let b = find(&args.scene).map_err(anyhow::Error::msg)?;
     let scene = (b.build)(&Default::default())
         .map_err(|e| anyhow::anyhow!("scene {}: {e}", b.name))?
@@ -371,7 +370,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .reference_spp
         .unwrap_or(if args.quick { 1024 } else { 8192 });
     let max_spp = args.max_spp.unwrap_or(if args.quick { 16 } else { 256 });
-    let repeat = args.repeat.unwrap_or(if args.quick { 1 } else { 2 }).max(1);
+    let repeat = args.repeat.unwrap_or(if args.quick { 1 } else { 2 });
+    if repeat == 0 {
+        bail!("--repeat 0: each timing needs at least one run");
+    }
     if width < 2 {
         bail!("--width {width}: the study needs an image at least 2 pixels wide");
     }
@@ -393,6 +395,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
         rtl_render::limits::available_memory(),
     )
     .map_err(|e| anyhow::anyhow!("--width {width}: {e}"))?;
+    // (made only once every flag is checked, so that a refused command leaves nothing behind)
+    let out_dir = super::out_dir(args.out.clone(), "render")?;
     let mut threads = rayon::current_num_threads();
     if args.replot {
         let (rows, csv_width, csv_threads, csv_ref_spp) = read_rows(&out_dir.join("render.csv"))?;
