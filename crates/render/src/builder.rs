@@ -204,13 +204,13 @@ impl SceneBuilder {
         Ok(())
     }
 
-    /// The groups a group refers to (by instance, nesting or medium boundary).
-    fn references(objects: &[Object]) -> impl Iterator<Item = usize> + '_ {
-        objects.iter().filter_map(|o| match o {
+    /// The group an object refers to (by instance, nesting or medium boundary), if any.
+    fn reference(o: &Object) -> Option<usize> {
+        match o {
             Object::Instance { group, .. } | Object::Group(group) => Some(group.0 as usize),
             Object::Medium(m) => Some(m.boundary.0 as usize),
             _ => None,
-        })
+        }
     }
 
     /// Groups in an order where every group comes after the groups it refers to (depth-first); a
@@ -224,13 +224,18 @@ impl SceneBuilder {
             if state[root] != 0 {
                 continue;
             }
-            // Explicit stack of (group, next reference index) to avoid deep recursion.
+            // Explicit stack of (group, index of the next object to look at) to avoid deep
+            // recursion; each group's objects are scanned once, so the order takes linear time.
             let mut stack = vec![(root, 0usize)];
             state[root] = 1;
             while let Some(&mut (g, ref mut next)) = stack.last_mut() {
-                let refs: Vec<usize> = Self::references(&self.groups[g]).collect();
-                if let Some(&r) = refs.get(*next) {
-                    *next += 1;
+                let objects = &self.groups[g];
+                let found = objects[*next..]
+                    .iter()
+                    .enumerate()
+                    .find_map(|(k, o)| Self::reference(o).map(|r| (k, r)));
+                if let Some((k, r)) = found {
+                    *next += k + 1;
                     if r >= n {
                         return Err(SceneError::MissingGroup {
                             group: g as u32,
