@@ -162,7 +162,7 @@ fn inverse_transform() -> anyhow::Result<Svg> {
     }
     s.text(
         (w / 2.0, h - 14.0),
-        "equally spaced u (orange) land where p is large (red): x = 2√u",
+        "equally spaced u (orange) land where p is large (vermilion): x = 2√u",
         13.0,
         Anchor::Middle,
         c::INK,
