@@ -299,7 +299,7 @@ fn damaged_and_mismatched_checkpoints_are_refused() {
     let e = resume("x.png", &[]);
     assert!(e.contains("x.png is not an rtl checkpoint"), "{e}");
     let e = resume("nothing-here", &[]);
-    assert!(e.contains("cannot read nothing-here"), "{e}");
+    assert!(e.contains("nothing-here: cannot read checkpoint"), "{e}");
     // Not overwritten by a new render that does not resume it.
     let e = refused(&d, &args(&["--spp", "4", "--checkpoint", "ck"]));
     assert!(e.contains("ck exists: continue it with --resume ck"), "{e}");

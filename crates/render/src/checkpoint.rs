@@ -214,11 +214,10 @@ pub struct Checkpoint {
 /// Why a checkpoint file cannot be used.
 #[derive(Debug, thiserror::Error)]
 pub enum CheckpointError {
-    #[error("cannot read {path}: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    /// Not read: not a regular file, larger than the memory available, or an I/O error (the
+    /// message names the file, [`crate::limits::read_regular_file`]).
+    #[error("{0}")]
+    Read(String),
     #[error("{0} is not an rtl checkpoint (it does not start with the checkpoint signature)")]
     NotACheckpoint(PathBuf),
     #[error("{path} is a checkpoint of format version {found}; this rtl reads version {VERSION}")]
@@ -231,16 +230,6 @@ pub enum CheckpointError {
     },
     #[error("{path} is corrupt: {what}")]
     Corrupt { path: PathBuf, what: String },
-    #[error("{path} is not a regular file (a directory, a device or a pipe), so not a checkpoint")]
-    NotAFile { path: PathBuf },
-    #[error(
-        "{path} is {len} bytes, more than the {available} bytes of memory available to read it into"
-    )]
-    TooLarge {
-        path: PathBuf,
-        len: u64,
-        available: u64,
-    },
 }
 
 impl Checkpoint {
@@ -386,32 +375,12 @@ impl Checkpoint {
     }
 
     /// Read and check a checkpoint file: a regular file (not a device or a pipe, which could
-    /// give bytes without end), no larger than the memory available
-    /// ([`crate::limits::available_memory`]), read at most to its length when opened.
+    /// give bytes without end) no larger than the memory available
+    /// ([`crate::limits::available_memory`]), by [`crate::limits::read_regular_file`].
     pub fn read(path: &Path) -> Result<Checkpoint, CheckpointError> {
-        let io = |source| CheckpointError::Io {
-            path: path.into(),
-            source,
-        };
-        // (looked at before it is opened: opening a pipe would wait for a writer)
-        let meta = std::fs::metadata(path).map_err(io)?;
-        if !meta.is_file() {
-            return Err(CheckpointError::NotAFile { path: path.into() });
-        }
-        let file = std::fs::File::open(path).map_err(io)?;
-        let len = meta.len();
-        if let Some(available) = crate::limits::available_memory().filter(|&a| len > a) {
-            return Err(CheckpointError::TooLarge {
-                path: path.into(),
-                len,
-                available,
-            });
-        }
-        // (a file that grows while it is read is read to its length when opened, plus one byte,
-        // which the checks below find out of place)
-        let mut bytes = Vec::with_capacity(len as usize);
-        std::io::Read::read_to_end(&mut std::io::Read::take(file, len + 1), &mut bytes)
-            .map_err(io)?;
+        let max = crate::limits::available_memory().unwrap_or(u64::MAX);
+        let bytes = crate::limits::read_regular_file(path, "checkpoint", max)
+            .map_err(CheckpointError::Read)?;
         Checkpoint::from_bytes(&bytes, path)
     }
 

@@ -150,7 +150,9 @@ pub fn read_regular_file(path: &std::path::Path, what: &str, max: u64) -> Result
         )
     })?;
     // (a file that grows while it is read stops at one byte past the limit)
-    file.take(max + 1).read_to_end(&mut bytes).map_err(io)?;
+    file.take(max.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
     if bytes.len() as u64 > max {
         return Err(too_large(bytes.len() as u64));
     }
