@@ -7,6 +7,8 @@
 //   - any raw TeX is visible in its text (outside code), or KaTeX reports a formula it cannot parse,
 //   - the console shows an error (or a script throws),
 //   - a request leaves 127.0.0.1.
+// A missing page must be answered by the book's 404 page, with its styles and a working link to
+// chapter 1 (the site is served under /book/, as `rtl lab` serves it).
 // It also asserts that every chapter page (chNN-*) shows a figure and that the book shows at least
 // 25 distinct ones.
 //
@@ -52,6 +54,10 @@ const pages = walk(root)
   .map((p) => relative(root, p).split(sep).join("/"))
   .filter((p) => !opt("--only") || p === opt("--only"))
   .sort();
+// A page that does not exist, two levels deep: the host answers with 404.html, whose styles, scripts
+// and links must load from there too (its <base> is book.toml's site-url).
+const PROBE = "no-such-part/no-such-page.html";
+if (!opt("--only") || opt("--only") === PROBE) pages.push(PROBE);
 
 const types = {
   ".html": "text/html; charset=utf-8", ".js": "text/javascript", ".mjs": "text/javascript",
@@ -59,16 +65,24 @@ const types = {
   ".woff2": "font/woff2", ".woff": "font/woff", ".ttf": "font/ttf", ".json": "application/json",
   ".ico": "image/x-icon", ".csv": "text/csv", ".txt": "text/plain",
 };
+// The site is served under /book/, as `rtl lab` serves it (and as book.toml's site-url says), and a
+// missing page is answered with the site's 404.html and status 404, as static hosts do.
+const PREFIX = "/book/";
 const server = createServer((req, res) => {
   const path = decodeURIComponent(new URL(req.url, "http://127.0.0.1").pathname);
-  let file = resolve(join(root, path));
-  if (!file.startsWith(root)) { res.writeHead(403).end(); return; }
+  if (!path.startsWith(PREFIX)) { res.writeHead(404).end("not under /book/"); return; }
+  let file = resolve(join(root, path.slice(PREFIX.length)));
+  if (file !== root && !file.startsWith(root + sep)) { res.writeHead(403).end(); return; }
   try {
     if (statSync(file).isDirectory()) file = join(file, "index.html");
     const body = readFileSync(file);
     res.writeHead(200, { "content-type": types[extname(file)] ?? "application/octet-stream" }).end(body);
   } catch {
-    res.writeHead(404).end("not found");
+    try {
+      res.writeHead(404, { "content-type": types[".html"] }).end(readFileSync(join(root, "404.html")));
+    } catch {
+      res.writeHead(404).end("not found");
+    }
   }
 });
 await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
@@ -94,9 +108,13 @@ const problems = [];
 const figures = new Set();
 for (const rel of pages) {
   const page = await context.newPage();
-  const url = `${origin}/${rel}`;
+  const url = `${origin}${PREFIX}${rel}`;
+  const probe = rel === PROBE;
   const here = [];
-  page.on("console", (m) => { if (m.type() === "error") here.push(`console error: ${m.text()} (${m.location().url.replace(origin, "")})`); });
+  page.on("console", (m) => {
+    if (probe && m.location().url === url && /status of 404/.test(m.text())) return; // the probe's own 404
+    if (m.type() === "error") here.push(`console error: ${m.text()} (${m.location().url.replace(origin, "")})`);
+  });
   page.on("pageerror", (e) => here.push(`script error: ${e.message}`));
   page.on("request", (r) => {
     const u = new URL(r.url());
@@ -107,9 +125,23 @@ for (const rel of pages) {
     if (new URL(r.url()).hostname === "127.0.0.1") here.push(`request failed: ${r.url().slice(origin.length)}`);
   });
   page.on("response", (r) => {
+    if (probe && r.url() === url) return; // its 404 is the point; checked below
     if (r.status() >= 400) here.push(`HTTP ${r.status()}: ${r.url().slice(origin.length)}`);
   });
-  await page.goto(url, { waitUntil: "load" });
+  const answer = await page.goto(url, { waitUntil: "load" });
+  if (probe) {
+    if (answer.status() !== 404) here.push(`a missing page answered ${answer.status()}, not 404`);
+    const found = await page.evaluate(async () => {
+      const styled = [...document.styleSheets]
+        .some((s) => s.href && s.href.includes("css/general") && s.cssRules.length > 0);
+      const link = [...document.querySelectorAll("a[href]")].find((a) => /ch01-[^/]*\.html$/.test(a.href));
+      const status = link ? (await fetch(link.href)).status : 0;
+      return { styled, title: document.querySelector("main h1")?.textContent ?? "", href: link?.href ?? "", status };
+    });
+    if (!found.styled) here.push("the 404 page has no styles (its <base> does not match where the site is served)");
+    if (!/not found/i.test(found.title)) here.push(`the 404 page's heading is "${found.title}"`);
+    if (found.status !== 200) here.push(`the 404 page's link to chapter 1 (${found.href || "none"}) answers ${found.status}`);
+  }
   await page.waitForLoadState("networkidle").catch(() => {});
   const seen = await page.evaluate(() => {
     const main = document.querySelector("main") ?? document.body;

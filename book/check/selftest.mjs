@@ -26,6 +26,16 @@ try {
   failed = true;
   out = e.stdout;
 }
+// A 404 page built for the root of a host (mdBook's default site-url) while the site is under /book/.
+const notFound = join(dir, "404.html");
+writeFileSync(notFound, readFileSync(notFound, "utf8").replace('<base href="/book/">', '<base href="/">'));
+let probeOut = "";
+try {
+  probeOut = execFileSync("node", [new URL("check.mjs", import.meta.url).pathname, "--built", dir,
+    "--only", "no-such-part/no-such-page.html"], { encoding: "utf8" });
+} catch (e) {
+  probeOut = e.stdout;
+}
 rmSync(dir, { recursive: true, force: true });
 const want = [
   ["exit status", failed],
@@ -33,10 +43,11 @@ const want = [
   ["request to another host", /request leaves 127\.0\.0\.1: http:\/\/example\.com/.test(out)],
   ["raw TeX", /raw TeX fragments visible/.test(out)],
   ["console error", /console error: deliberate console error/.test(out)],
+  ["404 page with the wrong base", /the 404 page has no styles/.test(probeOut)],
 ];
 const missed = want.filter(([, ok]) => !ok).map(([what]) => what);
 if (missed.length) {
-  console.log(out);
+  console.log(out + probeOut);
   console.log(`selftest: the check did not report: ${missed.join(", ")}`);
   process.exit(1);
 }

@@ -179,6 +179,26 @@ fn the_page_comes_from_the_binary() {
 }
 
 #[test]
+fn a_missing_page_of_a_built_book_is_its_404_page() {
+    // A stand-in for `mdbook build book`: a page and the 404 page mdBook writes beside it.
+    let built = temp_dir("built-book");
+    std::fs::write(built.0.join("index.html"), "<h1>the book</h1>").unwrap();
+    std::fs::write(
+        built.0.join("404.html"),
+        "<h1>Document not found (404)</h1>",
+    )
+    .unwrap();
+    let lab = start("book404", &["--book-dir", built.0.to_str().unwrap()]);
+    assert_eq!(lab.get("/book/").status, 200);
+    for missing in ["/book/ch99-none.html", "/book/part/deeper/page.html"] {
+        let r = lab.get(missing);
+        assert_eq!(r.status, 404, "{missing}");
+        assert!(r.text().contains("Document not found"), "{missing}");
+        assert!(r.headers.contains("text/html"), "{missing}");
+    }
+}
+
+#[test]
 fn every_bad_parameter_is_refused_with_a_message() {
     let lab = start("bad", &[]);
     let long = format!("/api/mc/run?integral={}", "x".repeat(5000));

@@ -33,7 +33,7 @@ pub struct MeanTest {
 /// let est = plain(|x| x * x, Interval::new(0.0, 2.0)?, 10_000, &mut rng)?;
 /// assert!(mean_test(&est, 8.0 / 3.0, 1e-6).passed);
 /// assert!(!mean_test(&est, 3.0, 1e-6).passed);
-/// # Ok::<(), rtl_mc::McError>(())
+/// Ok::<(), rtl_mc::McError>(()) // what `?` above returns into
 /// ```
 pub fn mean_test(estimate: &Estimate, exact: f64, alpha: f64) -> MeanTest {
     let units = estimate.stats.count();

@@ -128,7 +128,7 @@ pub(crate) fn nonzero(estimator: &'static str, n: u64) -> Result<(), McError> {
 /// let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(1);
 /// let est = plain(|x| x * x, Interval::new(0.0, 2.0)?, 100_000, &mut rng)?;
 /// assert!((est.value() - 8.0 / 3.0).abs() < 6.0 * est.std_error().unwrap());
-/// # Ok::<(), rtl_mc::McError>(())
+/// Ok::<(), rtl_mc::McError>(()) // what `?` above returns into
 /// ```
 pub fn plain<F, R>(f: F, domain: Interval, n: u64, rng: &mut R) -> Result<Estimate, McError>
 where

@@ -174,8 +174,9 @@ fn error(status: u16, message: &str) -> Response {
 enum Answer {
     Json(Value),
     Bytes(&'static str, Vec<u8>),
-    /// A page of the built book: its own scripts and styles, so no Content-Security-Policy of ours.
-    Book(&'static str, Vec<u8>),
+    /// A page of the built book, with its status (200, or 404 for the book's own 404 page): its own
+    /// scripts and styles, so no Content-Security-Policy of ours.
+    Book(u16, &'static str, Vec<u8>),
     Error(u16, String),
     /// 405: the path is there for the methods in `allow` (the `Allow` header).
     WrongMethod {
@@ -210,8 +211,8 @@ fn handle(app: &App, request: &Request) -> Response {
             headers: common(t),
             body,
         },
-        Answer::Book(t, body) => Response {
-            status: 200,
+        Answer::Book(status, t, body) => Response {
+            status,
             headers: vec![
                 ("Content-Type", t.into()),
                 ("Cache-Control", "no-store".into()),
@@ -426,7 +427,7 @@ fn book_page(dir: &Path, rest: &str) -> Answer {
         _ => "application/octet-stream",
     };
     if let Ok(body) = std::fs::read(dir.join(rest)) {
-        return Answer::Book(kind, body);
+        return Answer::Book(200, kind, body);
     }
     // Not built: the chapter's source (book/src/NAME.md beside book/book), as text.
     let source = rest
@@ -434,7 +435,11 @@ fn book_page(dir: &Path, rest: &str) -> Answer {
         .zip(dir.parent())
         .map(|(stem, book)| book.join("src").join(format!("{stem}.md")));
     if let Some(body) = source.and_then(|p| std::fs::read(p).ok()) {
-        return Answer::Book("text/plain; charset=utf-8", body);
+        return Answer::Book(200, "text/plain; charset=utf-8", body);
+    }
+    // A built book has a page for this (its links and styles from /book/, book.toml's site-url).
+    if let Ok(body) = std::fs::read(dir.join("404.html")) {
+        return Answer::Book(404, "text/html; charset=utf-8", body);
     }
     Answer::Error(
         404,
