@@ -3,6 +3,7 @@
 //! chapter exercises.
 
 mod bench_cmd;
+mod csv;
 mod exercises_cmd;
 mod lab;
 mod merge_cmd;

@@ -10,6 +10,7 @@
 //! Jittered and Sobol estimators take their standard error from 4 independent replicates of N/4 samples
 //! each (randomised QMC); all N samples count towards N and the time.
 
+use crate::csv::{CsvError, CsvTable, csv_field};
 use crate::plot;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -26,7 +27,7 @@ use rtl_pdf::warp;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::hint::black_box;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args)]
@@ -38,6 +39,10 @@ pub struct McArgs {
     /// N up to 2^16 instead of 2^24: seconds instead of minutes.
     #[arg(long)]
     pub quick: bool,
+    /// Redraw the plots from the measurements already in the output directory (mc.csv), timing
+    /// nothing and writing no CSV: for a change of labels or layout, or on a busy machine.
+    #[arg(long, conflicts_with = "quick")]
+    pub replot: bool,
 }
 
 /// Independent repetitions of every estimator at every N.
@@ -249,7 +254,8 @@ pub(crate) fn cases() -> Vec<Case> {
     ]
 }
 
-/// One row of mc.csv.
+/// The measurements of one estimator at one N (a line of mc.csv without its names).
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Row {
     pub(crate) n: u64,
     pub(crate) rms_error: f64,
@@ -291,8 +297,19 @@ pub(crate) fn measure(index: usize, case: &Case, log2_n: u32) -> Result<Row> {
 }
 
 pub fn run(args: McArgs) -> Result<()> {
-    let largest = if args.quick { 16 } else { 24 };
     let out_dir = super::out_dir(args.out.clone(), "mc")?;
+    let csv_path = out_dir.join("mc.csv");
+    if args.replot {
+        let lines = read(&csv_path)?;
+        plots(&lines, &out_dir)?;
+        println!(
+            "redrew the plots mc_*.png in {} from {}, timing nothing",
+            out_dir.display(),
+            csv_path.display()
+        );
+        return Ok(());
+    }
+    let largest = if args.quick { 16 } else { 24 };
     let cases = cases();
     println!(
         "study mc: {} estimators, N = 2^{SMALLEST_LOG2_N} .. 2^{largest}, R = {REPETITIONS} repetitions each, \
@@ -306,27 +323,16 @@ pub fn run(args: McArgs) -> Result<()> {
         }
     );
     let start = Instant::now();
-    let mut csv = String::from(
-        "integral,estimator,n,repetitions,rms_error,mean_std_error,ns_per_sample,seconds_per_estimate\n",
-    );
-    let mut results: Vec<(usize, Vec<Row>)> = Vec::new();
+    let mut lines: Vec<Line> = Vec::new();
     for (i, case) in cases.iter().enumerate() {
         let t = Instant::now();
-        let rows = (SMALLEST_LOG2_N..=largest)
-            .map(|k| measure(i, case, k))
-            .collect::<Result<Vec<_>>>()?;
-        for r in &rows {
-            writeln!(
-                csv,
-                "{},{},{},{REPETITIONS},{:.6e},{:.6e},{:.3},{:.6e}",
-                case.integral,
-                case.estimator,
-                r.n,
-                r.rms_error,
-                r.mean_std_error,
-                r.ns_per_sample,
-                r.seconds_per_estimate
-            )?;
+        for k in SMALLEST_LOG2_N..=largest {
+            lines.push(Line {
+                integral: case.integral.to_string(),
+                estimator: case.estimator.to_string(),
+                repetitions: REPETITIONS,
+                row: measure(i, case, k)?,
+            });
         }
         eprintln!(
             "  {:<32} {:<26} {:.1} s",
@@ -334,71 +340,37 @@ pub fn run(args: McArgs) -> Result<()> {
             case.estimator,
             t.elapsed().as_secs_f64()
         );
-        results.push((i, rows));
     }
-    let csv_path = out_dir.join("mc.csv");
-    std::fs::write(&csv_path, csv).with_context(|| format!("writing {}", csv_path.display()))?;
+    std::fs::write(&csv_path, csv(&lines))
+        .with_context(|| format!("writing {}", csv_path.display()))?;
 
-    // Slopes and plots, one pair of plots per integral.
+    // Slopes, and a pair of plots per integral.
     let mut slopes =
         String::from("integral,estimator,slope_error_vs_n,ns_per_sample_at_largest_n\n");
     println!(
         "\n| integral | estimator | slope of RMS error vs N | RMS error at N = 2^{largest} | ns/sample |"
     );
     println!("|---|---|---|---|---|");
-    let mut slugs: Vec<&str> = cases.iter().map(|c| c.slug).collect();
-    slugs.dedup();
-    for slug in slugs {
-        let mut by_n = Vec::new();
-        let mut by_time = Vec::new();
-        let mut title = "";
-        for (i, rows) in &results {
-            let case = &cases[*i];
-            if case.slug != slug {
-                continue;
-            }
-            title = case.integral;
-            let vs_n: Vec<(f64, f64)> = rows.iter().map(|r| (r.n as f64, r.rms_error)).collect();
-            let slope = plot::loglog_slope(&vs_n).unwrap_or(f64::NAN);
-            let last = rows.last().expect("at least one N");
-            writeln!(
-                slopes,
-                "{},{},{slope:.3},{:.3}",
-                case.integral, case.estimator, last.ns_per_sample
-            )?;
-            println!(
-                "| {} | {} | {slope:.2} | {:.2e} | {:.1} |",
-                case.integral, case.estimator, last.rms_error, last.ns_per_sample
-            );
-            by_n.push(plot::Series {
-                label: case.estimator.to_string(),
-                points: vs_n,
-            });
-            by_time.push(plot::Series {
-                label: case.estimator.to_string(),
-                points: rows
-                    .iter()
-                    .map(|r| (r.seconds_per_estimate, r.rms_error))
-                    .collect(),
-            });
-        }
-        plot::loglog(
-            &out_dir.join(format!("mc_{slug}_error_vs_n.png")),
-            &format!("{title}: RMS error against N (R = {REPETITIONS})"),
-            "samples N",
-            "RMS error",
-            &by_n,
-            true,
+    for (integral, estimator, rows) in groups(&lines) {
+        let vs_n: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|l| (l.row.n as f64, l.row.rms_error))
+            .collect();
+        let slope = plot::loglog_slope(&vs_n).unwrap_or(f64::NAN);
+        let last = &rows.last().expect("at least one N").row;
+        writeln!(
+            slopes,
+            "{},{},{slope:.3},{:.3}",
+            csv_field(integral),
+            csv_field(estimator),
+            last.ns_per_sample
         )?;
-        plot::loglog(
-            &out_dir.join(format!("mc_{slug}_error_vs_time.png")),
-            &format!("{title}: RMS error against time per estimate"),
-            "seconds per estimate",
-            "RMS error",
-            &by_time,
-            true,
-        )?;
+        println!(
+            "| {integral} | {estimator} | {slope:.2} | {:.2e} | {:.1} |",
+            last.rms_error, last.ns_per_sample
+        );
     }
+    plots(&lines, &out_dir)?;
     let slopes_path = out_dir.join("mc_slopes.csv");
     std::fs::write(&slopes_path, slopes)
         .with_context(|| format!("writing {}", slopes_path.display()))?;
@@ -411,6 +383,148 @@ pub fn run(args: McArgs) -> Result<()> {
     Ok(())
 }
 
+/// One line of mc.csv: one estimator of one integral at one N.
+#[derive(Clone, Debug, PartialEq)]
+struct Line {
+    integral: String,
+    estimator: String,
+    repetitions: u64,
+    row: Row,
+}
+
+/// The columns of mc.csv.
+const COLUMNS: [&str; 8] = [
+    "integral",
+    "estimator",
+    "n",
+    "repetitions",
+    "rms_error",
+    "mean_std_error",
+    "ns_per_sample",
+    "seconds_per_estimate",
+];
+
+/// mc.csv's text.
+fn csv(lines: &[Line]) -> String {
+    let mut s = COLUMNS.join(",");
+    s.push('\n');
+    for l in lines {
+        let r = &l.row;
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{:.6e},{:.6e},{:.3},{:.6e}",
+            csv_field(&l.integral),
+            csv_field(&l.estimator),
+            r.n,
+            l.repetitions,
+            r.rms_error,
+            r.mean_std_error,
+            r.ns_per_sample,
+            r.seconds_per_estimate
+        );
+    }
+    s
+}
+
+/// The lines of an mc.csv written by an earlier run.
+fn read(path: &Path) -> Result<Vec<Line>, CsvError> {
+    parse(&CsvTable::read(path)?)
+}
+
+fn parse(table: &CsvTable) -> Result<Vec<Line>, CsvError> {
+    let [c_int, c_est, c_n, c_reps, c_rms, c_se, c_ns, c_sec] = COLUMNS.map(|c| table.column(c));
+    let (c_int, c_est, c_n, c_reps) = (c_int?, c_est?, c_n?, c_reps?);
+    let (c_rms, c_se, c_ns, c_sec) = (c_rms?, c_se?, c_ns?, c_sec?);
+    let integrals: Vec<&str> = cases().iter().map(|c| c.integral).collect();
+    table
+        .rows()
+        .map(|r| {
+            let integral = r.text(c_int);
+            if !integrals.contains(&integral) {
+                return Err(r.invalid(
+                    c_int,
+                    format!(
+                        "`{integral}` is none of the study's integrals ({})",
+                        integrals.join("; ")
+                    ),
+                ));
+            }
+            Ok(Line {
+                integral: integral.to_string(),
+                estimator: r.text(c_est).to_string(),
+                repetitions: r.value(c_reps)?,
+                row: Row {
+                    n: r.value(c_n)?,
+                    rms_error: r.value(c_rms)?,
+                    mean_std_error: r.value(c_se)?,
+                    ns_per_sample: r.value(c_ns)?,
+                    seconds_per_estimate: r.value(c_sec)?,
+                },
+            })
+        })
+        .collect()
+}
+
+/// The lines of each (integral, estimator), in the order they first appear.
+fn groups(lines: &[Line]) -> Vec<(&str, &str, Vec<&Line>)> {
+    let mut groups: Vec<(&str, &str, Vec<&Line>)> = Vec::new();
+    for l in lines {
+        match groups
+            .iter_mut()
+            .find(|(i, e, _)| *i == l.integral && *e == l.estimator)
+        {
+            Some(g) => g.2.push(l),
+            None => groups.push((&l.integral, &l.estimator, vec![l])),
+        }
+    }
+    groups
+}
+
+/// The two plots of each integral, `mc_SLUG_error_vs_n.png` and `mc_SLUG_error_vs_time.png`, with a
+/// series per estimator; the same from a run's lines and from mc.csv read back.
+fn plots(lines: &[Line], out_dir: &Path) -> Result<()> {
+    let cases = cases();
+    let slug_of = |integral: &str| {
+        cases
+            .iter()
+            .find(|c| c.integral == integral)
+            .map_or("unknown", |c| c.slug)
+    };
+    let groups = groups(lines);
+    let mut integrals: Vec<&str> = groups.iter().map(|g| g.0).collect();
+    integrals.dedup();
+    for integral in integrals {
+        let mine: Vec<_> = groups.iter().filter(|g| g.0 == integral).collect();
+        let series = |point: fn(&Row) -> (f64, f64)| -> Vec<plot::Series> {
+            mine.iter()
+                .map(|(_, estimator, rows)| plot::Series {
+                    label: estimator.to_string(),
+                    points: rows.iter().map(|l| point(&l.row)).collect(),
+                })
+                .collect()
+        };
+        let slug = slug_of(integral);
+        let reps = mine[0].2[0].repetitions;
+        plot::loglog(
+            &out_dir.join(format!("mc_{slug}_error_vs_n.png")),
+            &format!("{integral}: RMS error against N (R = {reps})"),
+            "samples N",
+            "RMS error",
+            &series(|r| (r.n as f64, r.rms_error)),
+            true,
+        )?;
+        plot::loglog(
+            &out_dir.join(format!("mc_{slug}_error_vs_time.png")),
+            &format!("{integral}: RMS error against time per estimate"),
+            "seconds per estimate",
+            "RMS error",
+            &series(|r| (r.seconds_per_estimate, r.rms_error)),
+            true,
+        )?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -420,6 +534,68 @@ mod tests {
         for c in cases() {
             assert!(!c.integral.contains([',', '"']) && !c.estimator.contains([',', '"']));
         }
+    }
+
+    fn some_lines() -> Vec<Line> {
+        cases()
+            .iter()
+            .take(3)
+            .flat_map(|c| {
+                (4..7).map(|k| Line {
+                    integral: c.integral.to_string(),
+                    estimator: c.estimator.to_string(),
+                    repetitions: REPETITIONS,
+                    row: Row {
+                        n: 1 << k,
+                        rms_error: 2f64.powi(-k),
+                        mean_std_error: 1.5e-3,
+                        ns_per_sample: 6.948,
+                        seconds_per_estimate: 1.5e-7 * f64::from(1 << k),
+                    },
+                })
+            })
+            .collect()
+    }
+
+    #[test]
+    fn mc_csv_reads_back_as_the_lines_it_was_written_from() {
+        let lines = some_lines();
+        let text = csv(&lines);
+        let table = CsvTable::parse(Path::new("mc.csv"), &text).unwrap();
+        assert_eq!(parse(&table).unwrap(), lines);
+    }
+
+    #[test]
+    fn a_malformed_mc_csv_is_an_error_naming_its_line() {
+        let text = csv(&some_lines());
+        let mut bad: Vec<String> = text.lines().map(String::from).collect();
+        bad[3] = bad[3].replace(",30,", ",thirty,");
+        let table = CsvTable::parse(Path::new("d/mc.csv"), &bad.join("\n")).unwrap();
+        let e = parse(&table).unwrap_err();
+        assert_eq!(e.line(), Some(4));
+        assert_eq!(
+            e.to_string(),
+            "d/mc.csv:4: field 4 (`repetitions`): `thirty` is not a whole number"
+        );
+        let unknown = text.replace("x^2 over 0..2", "x^3 over 0..2");
+        let table = CsvTable::parse(Path::new("mc.csv"), &unknown).unwrap();
+        let e = parse(&table).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("mc.csv:2: field 1 (`integral`): `x^3 over 0..2` is none"),
+            "{e}"
+        );
+        let short = text.replacen(",30,", ",", 1);
+        let e = CsvTable::parse(Path::new("mc.csv"), &short).err().unwrap();
+        assert_eq!(e.to_string(), "mc.csv:2: 7 fields, where the header has 8");
+    }
+
+    #[test]
+    fn the_committed_mc_csv_reads_back() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../book/src/figures/mc.csv");
+        let lines = read(&path).unwrap();
+        assert!(!lines.is_empty());
+        assert_eq!(csv(&lines), std::fs::read_to_string(&path).unwrap());
     }
 
     #[test]

@@ -11,6 +11,7 @@
 //! the CSV holds the RMS error over the repetitions and the time per estimate, and the plots show
 //! error against time: a better density reaches an error sooner, even if each sample costs more.
 
+use crate::csv::{CsvError, CsvTable, csv_field};
 use crate::plot::{Series, loglog};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -21,7 +22,7 @@ use rtl_mc::RunningStats;
 use rtl_pdf::{CosinePdf, HemispherePdf, MixturePdf, Pdf, SpherePdf};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args)]
@@ -33,12 +34,17 @@ pub struct PdfArgs {
     /// Fewer and smaller runs (a few seconds), for a quick look or CI.
     #[arg(long)]
     pub quick: bool,
+    /// Redraw the plots from the measurements already in the output directory (pdf.csv), timing
+    /// nothing and writing no CSV: for a change of labels or layout, or on a busy machine.
+    #[arg(long, conflicts_with = "quick")]
+    pub replot: bool,
 }
 
-/// One row of the study.
+/// One row of the study: a line of pdf.csv (whose `ns_per_sample` is `seconds_per_estimate / n`).
+#[derive(Clone, Debug, PartialEq)]
 struct Row {
-    integral: &'static str,
-    pdf: &'static str,
+    integral: String,
+    pdf: String,
     n: usize,
     reps: usize,
     rms_error: f64,
@@ -94,8 +100,8 @@ fn series<P: Pdf>(
         }
         let seconds = start.elapsed().as_secs_f64() / reps as f64;
         rows.push(Row {
-            integral,
-            pdf: name,
+            integral: integral.to_string(),
+            pdf: name.to_string(),
             n,
             reps,
             rms_error: (se2 / reps as f64).sqrt(),
@@ -105,15 +111,132 @@ fn series<P: Pdf>(
     }
 }
 
+/// The integrals of the study, and the plot of each.
+const CH4: &str = "cos^2 over the sphere (ch. 4)";
+const CH7: &str = "cos^3 over the hemisphere (ch. 7)";
+const PLOTS: [(&str, &str); 2] = [(CH7, "pdf.png"), (CH4, "pdf_ch4.png")];
+
+/// The columns of pdf.csv.
+const COLUMNS: [&str; 8] = [
+    "integral",
+    "pdf",
+    "n",
+    "reps",
+    "rms_error",
+    "seconds_per_estimate",
+    "ns_per_sample",
+    "variance_per_sample",
+];
+
+/// pdf.csv's text.
+fn csv(rows: &[Row]) -> String {
+    let mut s = COLUMNS.join(",");
+    s.push('\n');
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{:.6e},{:.6e},{:.3},{:.6e}",
+            csv_field(&r.integral),
+            csv_field(&r.pdf),
+            r.n,
+            r.reps,
+            r.rms_error,
+            r.seconds_per_estimate,
+            r.seconds_per_estimate * 1e9 / r.n as f64,
+            r.variance_per_sample
+        );
+    }
+    s
+}
+
+/// The rows of a pdf.csv written by an earlier run. Before the names were quoted, the comma of
+/// "cosine, both sides (mixture)" was written bare: a row with fields to spare has them in `pdf`.
+fn read(path: &Path) -> Result<Vec<Row>, CsvError> {
+    parse(&CsvTable::read(path)?)
+}
+
+fn parse(table: &CsvTable) -> Result<Vec<Row>, CsvError> {
+    let [c_int, c_pdf, c_n, c_reps, c_rms, c_sec, _, c_var] = COLUMNS.map(|c| table.column(c));
+    let (c_int, c_pdf, c_n, c_reps) = (c_int?, c_pdf?, c_n?, c_reps?);
+    let (c_rms, c_sec, c_var) = (c_rms?, c_sec?, c_var?);
+    table
+        .rows()
+        .map(|r| {
+            let integral = r.text(c_int);
+            if !PLOTS.iter().any(|(i, _)| *i == integral) {
+                return Err(r.invalid(
+                    c_int,
+                    format!("`{integral}` is neither `{CH4}` nor `{CH7}`"),
+                ));
+            }
+            Ok(Row {
+                integral: integral.to_string(),
+                pdf: r.text(c_pdf).to_string(),
+                n: r.value(c_n)?,
+                reps: r.value(c_reps)?,
+                rms_error: r.value(c_rms)?,
+                seconds_per_estimate: r.value(c_sec)?,
+                variance_per_sample: r.value(c_var)?,
+            })
+        })
+        .collect()
+}
+
+/// One plot per integral, RMS error against seconds per estimate, a series per pdf; the same from a
+/// run's rows and from pdf.csv read back.
+fn plots(rows: &[Row], out_dir: &Path) -> Result<()> {
+    for (integral, file) in PLOTS {
+        let mut names: Vec<&str> = Vec::new();
+        for r in rows.iter().filter(|r| r.integral == integral) {
+            if !names.contains(&r.pdf.as_str()) {
+                names.push(&r.pdf);
+            }
+        }
+        if names.is_empty() {
+            anyhow::bail!("no rows for `{integral}`: nothing to plot in {file}");
+        }
+        let plot_series: Vec<Series> = names
+            .iter()
+            .map(|&name| Series {
+                label: name.to_string(),
+                points: rows
+                    .iter()
+                    .filter(|r| r.integral == integral && r.pdf == name)
+                    .map(|r| (r.seconds_per_estimate, r.rms_error))
+                    .collect(),
+            })
+            .collect();
+        let path = out_dir.join(file);
+        loglog(
+            &path,
+            &format!("{integral}: RMS error against time"),
+            "seconds per estimate",
+            "RMS error",
+            &plot_series,
+            true,
+        )?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 pub fn run(args: PdfArgs) -> Result<()> {
     let out_dir = super::out_dir(args.out.clone(), "pdf")?;
+    let csv_path = out_dir.join("pdf.csv");
+    if args.replot {
+        plots(&read(&csv_path)?, &out_dir)?;
+        println!(
+            "redrew the plots from {}, timing nothing",
+            csv_path.display()
+        );
+        return Ok(());
+    }
     let (max_pow, reps) = if args.quick { (7, 12) } else { (9, 40) };
     let sizes: Vec<usize> = (2..=max_pow).map(|k| 4usize.pow(k)).collect();
     let z = DVec3::Z;
     let mut rows = Vec::new();
 
     // Chapter 4: the sphere integral of cos^2 theta = 4 pi / 3.
-    const CH4: &str = "cos^2 over the sphere (ch. 4)";
     let cos2 = |d: DVec3| d.z * d.z;
     let truth4 = 4.0 * PI / 3.0;
     series(
@@ -153,7 +276,6 @@ pub fn run(args: PdfArgs) -> Result<()> {
     );
 
     // Chapter 7: the hemisphere integral of cos^3 theta = pi / 2.
-    const CH7: &str = "cos^3 over the hemisphere (ch. 7)";
     let cos3 = |d: DVec3| if d.z > 0.0 { d.z * d.z * d.z } else { 0.0 };
     let truth7 = PI / 2.0;
     series(
@@ -201,56 +323,9 @@ pub fn run(args: PdfArgs) -> Result<()> {
         74,
     );
 
-    let mut csv = String::from(
-        "integral,pdf,n,reps,rms_error,seconds_per_estimate,ns_per_sample,variance_per_sample\n",
-    );
-    for r in &rows {
-        writeln!(
-            csv,
-            "{},{},{},{},{:.6e},{:.6e},{:.3},{:.6e}",
-            r.integral,
-            r.pdf,
-            r.n,
-            r.reps,
-            r.rms_error,
-            r.seconds_per_estimate,
-            r.seconds_per_estimate * 1e9 / r.n as f64,
-            r.variance_per_sample
-        )?;
-    }
-    let csv_path = out_dir.join("pdf.csv");
-    std::fs::write(&csv_path, csv).with_context(|| format!("writing {}", csv_path.display()))?;
-
-    // One plot per integral: RMS error against seconds per estimate.
-    for (integral, file) in [(CH7, "pdf.png"), (CH4, "pdf_ch4.png")] {
-        let mut names: Vec<&str> = rows
-            .iter()
-            .filter(|r| r.integral == integral)
-            .map(|r| r.pdf)
-            .collect();
-        names.dedup();
-        let plot_series: Vec<Series> = names
-            .iter()
-            .map(|&name| Series {
-                label: name.to_string(),
-                points: rows
-                    .iter()
-                    .filter(|r| r.integral == integral && r.pdf == name)
-                    .map(|r| (r.seconds_per_estimate, r.rms_error))
-                    .collect(),
-            })
-            .collect();
-        let path = out_dir.join(file);
-        loglog(
-            &path,
-            &format!("{integral}: RMS error against time"),
-            "seconds per estimate",
-            "RMS error",
-            &plot_series,
-            true,
-        )?;
-        println!("wrote {}", path.display());
-    }
+    std::fs::write(&csv_path, csv(&rows))
+        .with_context(|| format!("writing {}", csv_path.display()))?;
+    plots(&rows, &out_dir)?;
     println!("wrote {}", csv_path.display());
 
     // Summary: the variance of one sample and its cost; their product is the time to a given error.
@@ -271,4 +346,67 @@ pub fn run(args: PdfArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn some_rows() -> Vec<Row> {
+        let row = |integral: &str, pdf: &str, n| Row {
+            integral: integral.into(),
+            pdf: pdf.into(),
+            n,
+            reps: (1 << 17) / n,
+            rms_error: 0.5 / n as f64,
+            seconds_per_estimate: 3.7e-7 * (n / 16) as f64,
+            variance_per_sample: 2.207759,
+        };
+        vec![
+            row(CH4, "uniform sphere", 16),
+            row(CH4, "cosine, both sides (mixture)", 16),
+            row(CH4, "cosine, both sides (mixture)", 64),
+            row(CH7, "a \"quoted\" name", 256),
+        ]
+    }
+
+    #[test]
+    fn pdf_csv_reads_back_as_the_rows_it_was_written_from() {
+        let rows = some_rows();
+        let text = csv(&rows);
+        assert!(text.contains(",\"cosine, both sides (mixture)\",16,"));
+        let table = CsvTable::parse(Path::new("pdf.csv"), &text).unwrap();
+        assert_eq!(parse(&table).unwrap(), rows);
+    }
+
+    #[test]
+    fn a_malformed_pdf_csv_is_an_error_naming_its_line() {
+        let text = csv(&some_rows()).replace(",2048,", ",2048.5,");
+        let table = CsvTable::parse(Path::new("pdf.csv"), &text).unwrap();
+        let e = parse(&table).unwrap_err();
+        assert_eq!(e.line(), Some(4));
+        assert_eq!(
+            e.to_string(),
+            "pdf.csv:4: field 4 (`reps`): `2048.5` is not a whole number"
+        );
+        let text = csv(&some_rows()).replace("(ch. 7)", "(ch. 8)");
+        let table = CsvTable::parse(Path::new("pdf.csv"), &text).unwrap();
+        assert_eq!(parse(&table).unwrap_err().line(), Some(5));
+    }
+
+    /// The committed pdf.csv predates the quoting: its "cosine, both sides (mixture)" is bare.
+    #[test]
+    fn the_committed_pdf_csv_reads_back() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../book/src/figures/pdf.csv");
+        let rows = read(&path).unwrap();
+        assert!(rows.iter().any(|r| r.pdf == "cosine, both sides (mixture)"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(
+            csv(&rows),
+            text.replace(
+                ",cosine, both sides (mixture),",
+                ",\"cosine, both sides (mixture)\","
+            )
+        );
+    }
 }

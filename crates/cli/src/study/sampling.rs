@@ -25,6 +25,7 @@
 //! (the same piecewise-constant density as the table, whose maximum u-error is the Kolmogorov
 //! distance to the target) and no x-error.
 
+use crate::csv::{CsvError, CsvTable, csv_field};
 use crate::plot::{Series, loglog};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -38,7 +39,7 @@ use rtl_sampling::{
 };
 use std::fmt::Write as _;
 use std::hint::black_box;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args)]
@@ -50,12 +51,17 @@ pub struct SamplingArgs {
     /// Tables only up to N = 10^5 and fewer queries: a look in seconds.
     #[arg(long)]
     pub quick: bool,
+    /// Redraw the plots from the measurements already in the output directory (sampling.csv),
+    /// timing nothing and writing no CSV: for a change of labels or layout, or on a busy machine.
+    #[arg(long, conflicts_with = "quick")]
+    pub replot: bool,
 }
 
 /// One line of `sampling.csv`.
+#[derive(Clone, Debug, PartialEq)]
 struct Row {
-    target: &'static str,
-    method: &'static str,
+    target: String,
+    method: String,
     n: Option<usize>,
     tolerance: Option<f64>,
     build_ms: f64,
@@ -313,8 +319,8 @@ fn study_target(
         let (eu, ex) = table_errors(target, &table, |u| table.sample(u).x);
         let mut row = |method, build_ms, ns_random, ns_sorted, x_error| {
             rows.push(Row {
-                target: name,
-                method,
+                target: name.to_string(),
+                method: String::from(method),
                 n: Some(n),
                 tolerance: None,
                 build_ms,
@@ -388,8 +394,8 @@ fn study_target(
             let ns = time_per_sample(&sorted_q, |u| as_sample(inv.x(u)));
             let (eu, ex) = reference.errors(target, |u| inv.x(u));
             rows.push(Row {
-                target: name,
-                method,
+                target: name.to_string(),
+                method: method.to_string(),
                 n: None,
                 tolerance: Some(tolerance),
                 build_ms: 0.0,
@@ -413,17 +419,30 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> Invert for NumericInverse<F, P> {
     }
 }
 
+/// The columns of `sampling.csv`.
+const COLUMNS: [&str; 9] = [
+    "target",
+    "method",
+    "n",
+    "tolerance",
+    "build_ms",
+    "ns_per_sample_random",
+    "ns_per_sample_sorted",
+    "max_u_error",
+    "max_x_error",
+];
+
+/// `sampling.csv`'s text.
 fn csv(rows: &[Row]) -> String {
-    let mut s = String::from(
-        "target,method,n,tolerance,build_ms,ns_per_sample_random,ns_per_sample_sorted,max_u_error,max_x_error\n",
-    );
+    let mut s = COLUMNS.join(",");
+    s.push('\n');
     let opt = |v: Option<String>| v.unwrap_or_default();
     for r in rows {
         let _ = writeln!(
             s,
             "{},{},{},{},{:.3},{:.2},{:.2},{:.3e},{}",
-            r.target,
-            r.method,
+            csv_field(&r.target),
+            csv_field(&r.method),
             opt(r.n.map(|n| n.to_string())),
             opt(r.tolerance.map(|t| format!("{t:e}"))),
             r.build_ms,
@@ -434,6 +453,44 @@ fn csv(rows: &[Row]) -> String {
         );
     }
     s
+}
+
+/// The rows of a `sampling.csv` written by an earlier run (an empty `n`, `tolerance` or
+/// `max_x_error` is none).
+fn read(path: &Path) -> Result<Vec<Row>, CsvError> {
+    parse(&CsvTable::read(path)?)
+}
+
+fn parse(table: &CsvTable) -> Result<Vec<Row>, CsvError> {
+    let [c_t, c_m, c_n, c_tol, c_build, c_nr, c_ns, c_eu, c_ex] = COLUMNS.map(|c| table.column(c));
+    let (c_t, c_m, c_n, c_tol, c_build) = (c_t?, c_m?, c_n?, c_tol?, c_build?);
+    let (c_nr, c_ns, c_eu, c_ex) = (c_nr?, c_ns?, c_eu?, c_ex?);
+    table
+        .rows()
+        .map(|r| {
+            let method = r.text(c_m);
+            if !METHODS.contains(&method) {
+                return Err(r.invalid(
+                    c_m,
+                    format!(
+                        "`{method}` is none of the study's methods ({})",
+                        METHODS.join(", ")
+                    ),
+                ));
+            }
+            Ok(Row {
+                target: r.text(c_t).to_string(),
+                method: method.to_string(),
+                n: r.optional(c_n)?,
+                tolerance: r.optional(c_tol)?,
+                build_ms: r.value(c_build)?,
+                ns_random: r.value(c_nr)?,
+                ns_sorted: r.value(c_ns)?,
+                u_error: r.value(c_eu)?,
+                x_error: r.optional(c_ex)?,
+            })
+        })
+        .collect()
 }
 
 const METHODS: [&str; 7] = [
@@ -457,13 +514,17 @@ fn series(rows: &[Row], target: &str, method: &str, point: impl Fn(&Row) -> (f64
     }
 }
 
-fn plots(
-    rows: &[Row],
-    targets: &[&(dyn TargetDensity + Sync)],
-    out: &std::path::Path,
-) -> Result<()> {
-    for t in targets {
-        let name = t.name();
+/// The plots of `sampling.csv`: error against time per target, time against N and error against N
+/// for the first target (the book's), error against N for every target; the same from a run's rows
+/// and from the CSV read back.
+fn plots(rows: &[Row], out: &Path) -> Result<()> {
+    let mut targets: Vec<&str> = Vec::new();
+    for r in rows {
+        if !targets.contains(&r.target.as_str()) {
+            targets.push(&r.target);
+        }
+    }
+    for &name in &targets {
         let all: Vec<Series> = METHODS
             .iter()
             .map(|m| series(rows, name, m, |r| (r.ns_random, r.u_error)))
@@ -471,7 +532,7 @@ fn plots(
         loglog(
             &out.join(format!("sampling_error_vs_time_{name}.png")),
             &format!(
-                "{name}: max u-error against time (tables: N = 16 ... 1e7; numeric: tol 1e-4 ... 1e-12)"
+                "{name}: max u-error against time\n(tables: N = 16 ... 1e7; numeric: tol 1e-4 ... 1e-12)"
             ),
             "ns per sample (random queries)",
             "max |F(x) - u|",
@@ -479,7 +540,7 @@ fn plots(
             false,
         )?;
     }
-    let book = targets[0].name();
+    let book = targets[0];
     let time: Vec<Series> = METHODS[..5]
         .iter()
         .map(|m| series(rows, book, m, |r| (r.n.unwrap_or(0) as f64, r.ns_random)))
@@ -501,8 +562,7 @@ fn plots(
         false,
     )?;
     let mut conv = Vec::new();
-    for t in targets {
-        let name = t.name();
+    for &name in &targets {
         conv.push(series(rows, name, "binary_search", |r| {
             (r.n.unwrap_or(0) as f64, r.u_error)
         }));
@@ -562,6 +622,16 @@ fn summary(rows: &[Row], target: &str, sizes: &[usize]) -> String {
 
 pub fn run(args: SamplingArgs) -> Result<()> {
     let out_dir = super::out_dir(args.out.clone(), "sampling")?;
+    let path = out_dir.join("sampling.csv");
+    if args.replot {
+        plots(&read(&path)?, &out_dir)?;
+        println!(
+            "redrew the plots sampling_*.png in {} from {}, timing nothing",
+            out_dir.display(),
+            path.display()
+        );
+        return Ok(());
+    }
     let sizes: Vec<usize> = if args.quick {
         vec![16, 100, 1_000, 10_000, 100_000]
     } else {
@@ -575,9 +645,8 @@ pub fn run(args: SamplingArgs) -> Result<()> {
         eprintln!("target {}", t.name());
         study_target(t, &sizes, queries, &mut rows);
     }
-    let path = out_dir.join("sampling.csv");
     std::fs::write(&path, csv(&rows)).with_context(|| format!("writing {}", path.display()))?;
-    plots(&rows, &targets, &out_dir)?;
+    plots(&rows, &out_dir)?;
     for t in targets {
         println!("{}", summary(&rows, t.name(), &sizes));
     }
@@ -610,6 +679,61 @@ mod tests {
             let eu = eu.max((target.cdf(xh) - u).abs());
             (eu, ex.max((xh - target.quantile(u)).abs()))
         })
+    }
+
+    fn some_rows() -> Vec<Row> {
+        let row = |method: &str, n, tolerance, x_error| Row {
+            target: "book_sin2".into(),
+            method: method.into(),
+            n,
+            tolerance,
+            build_ms: 0.017,
+            ns_random: 16.73,
+            ns_sorted: 6.72,
+            u_error: 7.667e-3,
+            x_error,
+        };
+        vec![
+            row("linear_scan", Some(16), None, Some(1.511e-1)),
+            row("alias", Some(10_000_000), None, None),
+            row("numeric_newton", None, Some(1e-12), Some(3.159e-13)),
+        ]
+    }
+
+    #[test]
+    fn sampling_csv_reads_back_as_the_rows_it_was_written_from() {
+        let rows = some_rows();
+        let table = CsvTable::parse(Path::new("sampling.csv"), &csv(&rows)).unwrap();
+        assert_eq!(parse(&table).unwrap(), rows);
+    }
+
+    #[test]
+    fn a_malformed_sampling_csv_is_an_error_naming_its_line() {
+        let text = csv(&some_rows()).replace("0.017,16.73", "0.017,fast");
+        let table = CsvTable::parse(Path::new("sampling.csv"), &text).unwrap();
+        let e = parse(&table).unwrap_err();
+        assert_eq!(e.line(), Some(2));
+        assert_eq!(
+            e.to_string(),
+            "sampling.csv:2: field 6 (`ns_per_sample_random`): `fast` is not a number"
+        );
+        let text = csv(&some_rows()).replace("alias", "ziggurat");
+        let table = CsvTable::parse(Path::new("sampling.csv"), &text).unwrap();
+        let e = parse(&table).unwrap_err();
+        assert_eq!(e.line(), Some(3));
+        assert!(
+            e.to_string()
+                .contains("`ziggurat` is none of the study's methods"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_committed_sampling_csv_reads_back() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../book/src/figures/sampling.csv");
+        let rows = read(&path).unwrap();
+        assert_eq!(csv(&rows), std::fs::read_to_string(&path).unwrap());
     }
 
     #[test]
