@@ -1,16 +1,22 @@
-//! # Chapter 2, "Stratified Samples (Jittering)": estimate pi with one point per grid cell
+//! # Chapter 2, A Simple Monte Carlo Program, "Stratified samples (jittering)": estimate pi with one point per grid cell
 //!
-//! **Task.** Split the square [-1, 1]^2 into `sqrt_n x sqrt_n` equal cells and draw one uniform point
-//! inside each cell (cell (i, j) spans x in [-1 + 2i/k, -1 + 2(i+1)/k), likewise y, with k = `sqrt_n`).
-//! Return `4 * inside / sqrt_n^2`, the same estimator as [`estimate_pi`](crate::ch02_estimate_pi::estimate_pi)
-//! but with stratified samples; `None` for `sqrt_n = 0`.
+//! **Read first:** the section "Stratified samples (jittering)" of chapter 2
+//! (`book/src/ch02-a-simple-monte-carlo-program.md`).
 //!
-//! Stratification keeps the estimator unbiased but only the cells cut by the circle contribute
-//! variance, so its variance falls well below the binomial 16 p (1 - p) / N of independent points.
-//! The check z-tests the mean of 400 estimates against pi, and tests (a chi-square test on the sample
-//! variance, false failure 1e-6) that the variance is below that of independent points.
+//! **Task.** Write [`jittered_pi`]: split the square [-1, 1]^2 into `sqrt_n x sqrt_n` equal square
+//! cells and draw one point uniformly inside each cell (not at its centre), then return the same
+//! estimate of pi as [`estimate_pi`](crate::ch02_estimate_pi::estimate_pi) from those
+//! `sqrt_n^2` points; `None` for `sqrt_n = 0`. Mind the last row and column of cells: together the
+//! cells cover the whole square, once.
 //!
-//! Check your code with `rtl exercises check ch02_jittered_pi`; `rtl exercises hint ch02_jittered_pi` gives a hint.
+//! Stratification keeps the estimator unbiased, but only the cells cut by the circle contribute
+//! variance, so its variance falls well below that of as many independent points. The check z-tests
+//! the mean of 400 estimates of 16 x 16 points against pi, and tests (a chi-square test on the sample
+//! variance, false failure 1e-6) that their variance is below that of 256 independent points.
+//!
+//! Check your code with `cargo exercises check ch02_jittered_pi` (or
+//! `rtl exercises check ch02_jittered_pi`, the same); `cargo exercises hint ch02_jittered_pi` gives
+//! a hint.
 
 use rand::Rng;
 

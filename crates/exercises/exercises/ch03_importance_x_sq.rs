@@ -1,28 +1,34 @@
-//! # Chapter 3, "Importance Sampling": integrate x^2 on [0, 2] with three densities
+//! # Chapter 3, One Dimensional Monte Carlo Integration, "Importance sampling": integrate x^2 on [0, 2] with three densities
 //!
-//! **Task.** Write the importance-sampled estimator [`importance_estimate`] of I = integral of f:
-//! draw u uniform in [0, 1), take x = `sample(u)` (distributed with density p = `pdf`), and average
-//! f(x) / p(x) over `n` samples. Where p(x) = 0 the sample contributes 0 (f must vanish there for the
-//! estimate to be unbiased), never 0/0 = NaN. `None` for `n = 0`.
+//! **Read first:** the section "Importance sampling" of chapter 3
+//! (`book/src/ch03-one-dimensional-mc-integration.md`), which derives the estimator.
 //!
-//! The check integrates f(x) = x^2 on [0, 2] (I = 8/3) with three densities, each z-tested with its
-//! exact variance Var(f/p) = integral of f^2/p - I^2:
+//! **Task.** Write [`importance_estimate`], the importance-sampled Monte Carlo estimate of the
+//! integral I of `f`, from `n` samples: each draws u uniform in [0, 1) with `rng.random()` and takes
+//! x = `sample(u)`, which has the density `pdf` (w.r.t. length). A sample where `pdf(x) = 0`
+//! contributes 0 (f must vanish there for the estimate to be unbiased), never 0/0 = NaN. `None` for
+//! `n = 0`.
 //!
-//! | density p(x) | sample(u)    | Var(f/p)  |
-//! |--------------|--------------|-----------|
-//! | 1/2          | 2u           | 256/45    |
-//! | x/2          | 2 sqrt(u)    | 8/9       |
-//! | 3x^2/8       | 2 cbrt(u)    | 0: every sample is exactly 8/3 |
+//! The check integrates f(x) = x^2 on [0, 2] (I = 8/3) with three densities, each z-tested at its
+//! exact variance (false failure 1e-6):
 //!
-//! and the hard case u = 0 with p = x/2: x = 0, p = 0, f = 0, and the sample contributes 0.
+//! | density p(x) on [0, 2] | variance of one sample |
+//! |------------------------|------------------------|
+//! | 1/2                    | 256/45                 |
+//! | x/2                    | 8/9                    |
+//! | 3x^2/8                 | 0: every sample is exactly 8/3 |
 //!
-//! Check your code with `rtl exercises check ch03_importance_x_sq`; `rtl exercises hint ch03_importance_x_sq` gives a hint.
+//! and the hard case u = 0 with p = x/2, where x = 0, p(x) = 0 and f(x) = 0: that sample contributes 0.
+//!
+//! Check your code with `cargo exercises check ch03_importance_x_sq` (or
+//! `rtl exercises check ch03_importance_x_sq`, the same);
+//! `cargo exercises hint ch03_importance_x_sq` gives a hint.
 
 use rand::Rng;
 
 // ANCHOR: exercise
-/// The importance-sampled estimate (1/n) sum f(x_k) / p(x_k), x_k = `sample(u_k)`, counting a sample
-/// with p(x_k) = 0 as 0; `None` when `n = 0`.
+/// The importance-sampled estimate of the integral of `f` from `n` samples x = `sample(u)`, u uniform
+/// in [0, 1), whose density is `pdf`; a sample with `pdf(x) = 0` contributes 0. `None` when `n = 0`.
 pub fn importance_estimate<R: Rng + ?Sized>(
     n: usize,
     rng: &mut R,
@@ -31,6 +37,6 @@ pub fn importance_estimate<R: Rng + ?Sized>(
     pdf: impl Fn(f64) -> f64,
 ) -> Option<f64> {
     let _ = (n, rng, f, sample, pdf);
-    todo!("ch03 importance_estimate: average f(x)/p(x) over x = sample(u), 0 where p(x) = 0")
+    todo!("ch03 importance_estimate: the integral of f from n samples of the density pdf")
 }
 // ANCHOR_END: exercise

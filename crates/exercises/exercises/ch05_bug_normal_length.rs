@@ -1,14 +1,19 @@
-//! # Bug museum, chapter 5: find and fix the bug
+//! # Bug museum, chapter 5, Light Scattering, "The Lambertian surface": find and fix the bug
+//!
+//! **Read first:** the section "The Lambertian surface" of chapter 5
+//! (`book/src/ch05-light-scattering.md`).
 //!
 //! A renderer's spheres reflect too much light: a white sphere of radius 2 glows brighter than the
 //! light that falls on it, and the bigger the sphere, the worse. Small unit spheres look right.
 //!
-//! **Task.** [`outward_normal`] feeds the Lambertian density max(0, n . d) / pi. Find why the light
-//! grows with the radius and fix it. Keep the book's convention for the hollow glass sphere, which
-//! has a *negative* radius so that its normal points inwards.
+//! **Task.** [`outward_normal`] feeds the Lambertian density, which takes n . d as the cosine of
+//! the angle between the normal n and a direction d. Find why the light grows with the radius and
+//! fix it. Keep the book's convention for the hollow glass sphere, which has a *negative* radius
+//! so that its normal points inwards.
 //!
-//! Check your code with `rtl exercises check ch05_bug_normal_length`; `rtl exercises hint
-//! ch05_bug_normal_length` gives a hint.
+//! Check your code with `cargo exercises check ch05_bug_normal_length` (or
+//! `rtl exercises check ch05_bug_normal_length`, the same);
+//! `cargo exercises hint ch05_bug_normal_length` gives a hint.
 
 use glam::DVec3;
 

@@ -1,4 +1,7 @@
-//! # Bug museum, chapter 8: find and fix the bug
+//! # Bug museum, chapter 8, Orthonormal Bases, "Building a basis from one vector": find and fix the bug
+//!
+//! **Read first:** the section "Building a basis from one vector" of chapter 8
+//! (`book/src/ch08-orthonormal-bases.md`).
 //!
 //! This basis looks orthonormal: every axis has unit length and every pair is perpendicular. Yet a
 //! light sampled through it by spherical rectangles comes out mirrored, and an anisotropic highlight
@@ -7,8 +10,9 @@
 //! **Task.** Find the bug in [`Onb::from_w`] and fix it: (u, v, w) must be orthonormal and
 //! right-handed, u x v = w, with `w` the unit vector given.
 //!
-//! Check your code with `rtl exercises check ch08_bug_left_handed_onb`; `rtl exercises hint
-//! ch08_bug_left_handed_onb` gives a hint.
+//! Check your code with `cargo exercises check ch08_bug_left_handed_onb` (or
+//! `rtl exercises check ch08_bug_left_handed_onb`, the same);
+//! `cargo exercises hint ch08_bug_left_handed_onb` gives a hint.
 
 use glam::DVec3;
 

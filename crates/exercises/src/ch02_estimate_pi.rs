@@ -1,9 +1,9 @@
-//! # Chapter 2, "Estimating Pi": estimate pi by throwing darts
+//! # Chapter 2, A Simple Monte Carlo Program, "Estimating π": estimate pi by throwing darts
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch02_estimate_pi.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch02_estimate_pi.rs`, which states the
+//! task.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use rand::RngCore;
 use std::f64::consts::PI;
 
@@ -11,8 +11,16 @@ use std::f64::consts::PI;
 pub trait PiEstimator: Fn(usize, &mut dyn RngCore) -> Option<f64> {}
 impl<F: Fn(usize, &mut dyn RngCore) -> Option<f64>> PiEstimator for F {}
 
+/// `estimate` with its calls recorded, so that a panic names the `n` that caused it.
+fn recorded(estimate: impl PiEstimator) -> impl PiEstimator {
+    move |n: usize, rng: &mut dyn RngCore| {
+        check::calling("estimate_pi", &[("n", Arg::Count(n))], || estimate(n, rng))
+    }
+}
+
 /// With 1e5 points the estimate is within 4.89 standard errors of pi (false failure 1e-6).
 pub fn check_value(estimate: impl PiEstimator) -> CheckResult {
+    let estimate = recorded(estimate);
     let n = 100_000;
     let p = PI / 4.0;
     let se = 4.0 * (p * (1.0 - p) / n as f64).sqrt();
@@ -22,9 +30,11 @@ pub fn check_value(estimate: impl PiEstimator) -> CheckResult {
 
 /// `n = 0` gives `None`; otherwise the estimate is 4 k / n for a whole number k in [0, n].
 pub fn check_lattice(estimate: impl PiEstimator) -> CheckResult {
+    let estimate = recorded(estimate);
     if let Some(x) = estimate(0, &mut check::seeded(3)) {
         return Err(format!(
-            "estimate_pi(0) returned Some({x}); no samples give no estimate (None)"
+            "estimate_pi(0) returned Some({}); no samples give no estimate (None)",
+            check::num(x)
         ));
     }
     let mut rng = check::seeded(4);
@@ -33,7 +43,8 @@ pub fn check_lattice(estimate: impl PiEstimator) -> CheckResult {
         let k = got * n as f64 / 4.0;
         if !(0.0..=n as f64).contains(&k) || (k - k.round()).abs() > 1e-9 {
             return Err(format!(
-                "estimate_pi({n}) = {got} is not 4 k / {n} for a count k in 0..={n}"
+                "estimate_pi({n}) = {} is not 4 k / {n} for a count k in 0..={n}",
+                check::num(got)
             ));
         }
     }

@@ -1,9 +1,9 @@
-//! # Chapter 2, "Stratified Samples (Jittering)": estimate pi with one point per grid cell
+//! # Chapter 2, A Simple Monte Carlo Program, "Stratified samples (jittering)": estimate pi with one point per grid cell
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch02_jittered_pi.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch02_jittered_pi.rs`, which states the
+//! task.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use rand::RngCore;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
@@ -11,9 +11,15 @@ use std::f64::consts::PI;
 /// Unbiased (mean of 400 estimates of 16 x 16 points z-tested against pi) and of variance below
 /// the variance of 256 independent points.
 pub fn check_jittered_pi(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f64>) -> CheckResult {
+    let estimate = |k: usize, rng: &mut dyn RngCore| {
+        check::calling("jittered_pi", &[("sqrt_n", Arg::Count(k))], || {
+            estimate(k, rng)
+        })
+    };
     if let Some(x) = estimate(0, &mut check::seeded(5)) {
         return Err(format!(
-            "jittered_pi(0) returned Some({x}); no samples give no estimate (None)"
+            "jittered_pi(0) returned Some({}); no samples give no estimate (None)",
+            check::num(x)
         ));
     }
     let (k, reps) = (16usize, 400usize);
@@ -42,8 +48,10 @@ pub fn check_jittered_pi(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f6
         Ok(())
     } else {
         Err(format!(
-            "jittered_pi: variance {s_sq:.2e} is not below the {sigma0_sq:.2e} of independent points \
-             (ratio {:.2}); are the points stratified, one per cell?",
+            "jittered_pi: variance {} is not below the {} of independent points (ratio {:.2}); are \
+             the points stratified, one per cell?",
+            check::sig(s_sq, 3),
+            check::sig(sigma0_sq, 3),
             s_sq / sigma0_sq
         ))
     }

@@ -1,12 +1,12 @@
-//! # Chapter 3, "Importance Sampling": integrate x^2 on [0, 2] with three densities
+//! # Chapter 3, One Dimensional Monte Carlo Integration, "Importance sampling": integrate x^2 on [0, 2] with three densities
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch03_importance_x_sq.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch03_importance_x_sq.rs`, which states the
+//! task.
 //!
 //! The check integrates f(x) = x^2 on [0, 2] (I = 8/3) with three densities, each z-tested with its
 //! exact variance Var(f/p) = integral of f^2/p - I^2:
 
-use crate::check::{self, CheckResult, ScriptedRng};
+use crate::check::{self, Arg, CheckResult, ScriptedRng};
 use rand::RngCore;
 
 pub type Fx<'a> = &'a dyn Fn(f64) -> f64;
@@ -17,12 +17,22 @@ impl<F: Fn(usize, &mut dyn RngCore, Fx, Fx, Fx) -> Option<f64>> Estimator for F 
 
 const I: f64 = 8.0 / 3.0;
 
+/// `estimate` with its calls recorded, so that a panic names the `n` that caused it.
+fn recorded(estimate: impl Estimator) -> impl Estimator {
+    move |n: usize, rng: &mut dyn RngCore, f: Fx, sample: Fx, pdf: Fx| {
+        check::calling("importance_estimate", &[("n", Arg::Count(n))], || {
+            estimate(n, rng, f, sample, pdf)
+        })
+    }
+}
+
 fn f(x: f64) -> f64 {
     x * x
 }
 
 /// z-tests with the uniform and the linear density, 1e5 samples each.
 pub fn check_unbiased(estimate: impl Estimator) -> CheckResult {
+    let estimate = recorded(estimate);
     let n = 100_000usize;
     let cases: [(&str, Fx, Fx, f64); 2] = [
         ("uniform pdf 1/2", &|u| 2.0 * u, &|_| 0.5, 256.0 / 45.0),
@@ -48,6 +58,7 @@ pub fn check_unbiased(estimate: impl Estimator) -> CheckResult {
 
 /// The density proportional to f gives every sample f/p = 8/3: the estimate equals 8/3 to rounding.
 pub fn check_zero_variance(estimate: impl Estimator) -> CheckResult {
+    let estimate = recorded(estimate);
     let got = estimate(
         1000,
         &mut check::seeded(34),
@@ -66,6 +77,7 @@ pub fn check_zero_variance(estimate: impl Estimator) -> CheckResult {
 
 /// u = 0 gives x = 0 where p = x/2 vanishes: the sample counts 0, not NaN. `n = 0` gives `None`.
 pub fn check_pdf_zero(estimate: impl Estimator) -> CheckResult {
+    let estimate = recorded(estimate);
     let (sample, pdf): (Fx, Fx) = (&|u| 2.0 * u.sqrt(), &|x| x / 2.0);
     let got = estimate(1, &mut ScriptedRng::new(&[0.0], 35), &f, sample, pdf);
     if got != Some(0.0) {
@@ -89,7 +101,8 @@ pub fn check_pdf_zero(estimate: impl Estimator) -> CheckResult {
     match estimate(0, &mut check::seeded(36), &f, sample, pdf) {
         None => Ok(()),
         Some(x) => Err(format!(
-            "importance_estimate(0) returned Some({x}); no samples give None"
+            "importance_estimate(0) returned Some({}); no samples give None",
+            check::num(x)
         )),
     }
 }

@@ -1,31 +1,47 @@
-//! # Chapter 3, "Inverse Transform Sampling": sample x/2 and 3x^2/8 on [0, 2]
+//! # Chapter 3, Inverse Transform Sampling, "Choosing our samples": sample x/2 and 3x^2/8 on [0, 2]
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch03_inverse_x_sq.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch03_inverse_x_sq.rs`, which states the
+//! task.
+//!
+//! The check: exact values x = P^-1(P(x)) at x = 0, 1/2, 1; a value just below 2 at u = 1 - 2^-53;
+//! monotone in u; and a chi-square test of 1e5 samples in 40 equal bins of [0, 2] against
+//! n (P(b) - P(a)).
 
-use crate::check::{self, CheckResult, U_MAX};
+use crate::check::{self, Arg, CheckResult, Intervals, U_MAX};
 use rand::Rng;
 
 /// Exact values, range and monotonicity of a sampler of the density with CDF `cdf`, and a chi-square
 /// test of 1e5 samples in 40 bins of [0, 2].
 pub fn check_sampler(
-    name: &str,
+    name: &'static str,
     sample: impl Fn(f64) -> f64,
     cdf: impl Fn(f64) -> f64,
 ) -> CheckResult {
+    let sample = |u: f64| check::calling(name, &[("u", Arg::Real(u))], || sample(u));
     // Exact values: P^-1(P(x)) = x at x = 0, 1/2, 1 (P(x) is dyadic there, so u is exact).
     for x in [0.0, 0.5, 1.0] {
-        check::close(&format!("{name}(u = P({x}))"), sample(cdf(x)), x, 1e-15)?;
+        let u = cdf(x);
+        let what = format!("{name}(u = P({x}) = {})", check::num(u));
+        check::close(&what, sample(u), x, 1e-15)?;
     }
     let top = sample(U_MAX);
     if !(top.is_finite() && (1.99..=2.0).contains(&top)) {
-        return Err(format!("{name}(1 - 2^-53) = {top}, expected just below 2"));
+        return Err(format!(
+            "{name}(u = 1 - 2^-53) = {}, expected just below 2",
+            check::num(top)
+        ));
     }
     let mut last = sample(0.0);
     for i in 1..=1000 {
-        let x = sample(i as f64 / 1001.0);
+        let u = i as f64 / 1001.0;
+        let x = sample(u);
         if x.is_nan() || x < last {
-            return Err(format!("{name} is not increasing in u: {x} after {last}"));
+            return Err(format!(
+                "{name} is not increasing in u: {name}(u = {}) = {} after {}",
+                check::num(u),
+                check::num(x),
+                check::num(last)
+            ));
         }
         last = x;
     }
@@ -35,7 +51,7 @@ pub fn check_sampler(
     for _ in 0..n {
         let x = sample(rng.random());
         if !(0.0..=2.0).contains(&x) {
-            return Err(format!("{name} returned {x}, outside [0, 2]"));
+            return Err(format!("{name} returned {}, outside [0, 2]", check::num(x)));
         }
         observed[((x / 2.0 * bins as f64) as usize).min(bins - 1)] += 1;
     }
@@ -48,7 +64,12 @@ pub fn check_sampler(
             n as f64 * (cdf(b) - cdf(a))
         })
         .collect();
-    check::chi_square(name, &observed, &expected)
+    check::chi_square(
+        name,
+        &observed,
+        &expected,
+        &Intervals::equal("x", 0.0, 2.0, bins),
+    )
 }
 
 /// [`check_sampler`] for a sampler of x/2.
@@ -76,6 +97,16 @@ mod tests {
         // Wrong: exact at u = 0, 1/64, 1/8 but not following the density elsewhere.
         let wiggly =
             |u: f64| 2.0 * u.cbrt() + 0.05 * (8.0 * std::f64::consts::PI * u.cbrt()).sin().powi(2);
-        assert!(check_quadratic(wiggly).is_err());
+        let err = check_quadratic(wiggly).unwrap_err();
+        assert!(
+            err.contains("do not follow the density") && err.contains("\ntoo few at x in ["),
+            "the failure says where: {err}"
+        );
+        // The exact value's message gives u's value, not only its formula.
+        let err = check_linear(|u| 2.0 * u).unwrap_err();
+        assert!(
+            err.starts_with("sample_linear(u = P(0.5) = 0.0625)"),
+            "{err}"
+        );
     }
 }

@@ -1,9 +1,9 @@
-//! # Chapter 3, "Approximating Distributions": invert a tabulated CDF by binary search
+//! # Chapter 3, Inverse Transform Sampling, "The table made right": invert a tabulated CDF by binary search
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch03_tabulated_inverse_cdf.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch03_tabulated_inverse_cdf.rs`, which
+//! states the task, and what that exercise is given ([`CdfTable`], [`CdfError`]).
 
-use crate::check::{self, CheckResult, U_MAX};
+use crate::check::{self, Arg, CheckResult, Intervals, U_MAX};
 use rand::Rng;
 use std::fmt;
 
@@ -98,14 +98,17 @@ fn table(edges: &[f64], weights: &[f64]) -> CdfTable {
 }
 
 fn lookup(invert: &impl Invert, t: &CdfTable, u: f64) -> Result<f64, String> {
-    match invert(t, u) {
+    match check::calling("invert", &[("u", Arg::Real(u))], || invert(t, u)) {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(x) => Err(format!(
-            "invert(u = {u:e}) returned {x} for cdf {:?}",
+            "invert(u = {}) returned {} for cdf {:?}",
+            check::num(u),
+            check::num(x),
             t.cdf
         )),
         Err(e) => Err(format!(
-            "invert(u = {u:e}) failed ({e}) for cdf {:?}",
+            "invert(u = {}) failed ({e}) for cdf {:?}",
+            check::num(u),
             t.cdf
         )),
     }
@@ -134,7 +137,8 @@ pub fn check_exact(invert: impl Invert) -> CheckResult {
     let top = lookup(&invert, &t, U_MAX)?;
     if !(3.99..=4.0).contains(&top) {
         return Err(format!(
-            "invert(u = 1 - 2^-53) = {top}, expected just below 4"
+            "invert(u = 1 - 2^-53) = {}, expected just below 4",
+            check::num(top)
         ));
     }
     // Leading zero bins: u = 0 lands at the start of the first bin of positive weight.
@@ -150,7 +154,8 @@ pub fn check_exact(invert: impl Invert) -> CheckResult {
     let x = lookup(&invert, &trail, U_MAX)?;
     if !(1.99..=2.0).contains(&x) {
         return Err(format!(
-            "invert(u = 1 - 2^-53) = {x} with trailing zero bins, expected just below 2"
+            "invert(u = 1 - 2^-53) = {} with trailing zero bins, expected just below 2",
+            check::num(x)
         ));
     }
     // A single bin: the identity map onto it.
@@ -184,7 +189,9 @@ pub fn check_zero_bins(invert: impl Invert) -> CheckResult {
         let ok = (0..weights.len()).any(|i| weights[i] > 0.0 && edges[i] <= x && x <= edges[i + 1]);
         if !ok {
             return Err(format!(
-                "invert(u = {u:e}) = {x} lies in a bin of zero weight (weights {weights:?})"
+                "invert(u = {}) = {} lies in a bin of zero weight (weights {weights:?})",
+                check::num(u),
+                check::num(x)
             ));
         }
     }
@@ -195,7 +202,7 @@ pub fn check_zero_bins(invert: impl Invert) -> CheckResult {
 pub fn check_out_of_range(invert: impl Invert) -> CheckResult {
     let t = table(&[0.0, 1.0, 2.0], &[1.0, 1.0]);
     for u in [-0.25, 1.0, 1.5, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        match invert(&t, u) {
+        match check::calling("invert", &[("u", Arg::Real(u))], || invert(&t, u)) {
             Err(CdfError::UOutOfRange(v)) if v.to_bits() == u.to_bits() => {}
             other => {
                 return Err(format!(
@@ -220,7 +227,8 @@ pub fn check_distribution(invert: impl Invert) -> CheckResult {
         let x = lookup(&invert, &t, rng.random())?;
         if !(edges[0]..=edges[edges.len() - 1]).contains(&x) {
             return Err(format!(
-                "invert returned {x}, outside [{}, {}]",
+                "invert returned {}, outside [{}, {}]",
+                check::num(x),
                 edges[0],
                 edges[edges.len() - 1]
             ));
@@ -232,10 +240,21 @@ pub fn check_distribution(invert: impl Invert) -> CheckResult {
     let expected: Vec<f64> = (0..weights.len() * sub)
         .map(|c| n as f64 * weights[c / sub] / total / sub as f64)
         .collect();
+    let cell_edges = (0..weights.len() * sub)
+        .map(|c| {
+            let (i, k) = (c / sub, c % sub);
+            edges[i] + (edges[i + 1] - edges[i]) * k as f64 / sub as f64
+        })
+        .chain([edges[edges.len() - 1]])
+        .collect();
     check::chi_square(
         "invert: samples of a tabulated density",
         &observed,
         &expected,
+        &Intervals {
+            var: "x",
+            edges: cell_edges,
+        },
     )
 }
 
@@ -305,7 +324,9 @@ mod tests {
         assert!(check_exact(first_bin_reaching_u).is_err());
         assert!(check_zero_bins(first_bin_reaching_u).is_err());
         assert!(check_exact(bin_start).is_err());
-        assert!(check_distribution(bin_start).is_err());
+        let err = check_distribution(bin_start).unwrap_err();
+        // Every sample at the start of its bin: too many in the first quarter of a bin.
+        assert!(err.contains("\ntoo many at x in ["), "{err}");
         // Wrong: accepts u = 1 (and clamps), instead of reporting it.
         let clamps = |t: &CdfTable, u: f64| bin_start(t, u.clamp(0.0, U_MAX));
         assert!(check_out_of_range(clamps).is_err());

@@ -1,19 +1,23 @@
-//! # Chapter 4, "Monte Carlo Integration on the Sphere of Directions": integrate cos^2 theta
+//! # Chapter 4, Monte Carlo Integration on the Sphere of Directions, "A density over directions": integrate cos^2 theta
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch04_sphere_integral.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch04_sphere_integral.rs`, which states the
+//! task.
 //!
 //! The check: unit length (to 1e-12) at u = 0 and u = 1 - 2^-53; a chi-square test of 1e5 directions
 //! in 16 x 9 equal-area (phi, z) cells; and a z-test of the estimate with its exact variance
 //! 16 pi^2 (1/5 - 1/9) / n.
 
-use crate::check::{self, CheckResult, SphereBins, U_MAX};
+use crate::check::{self, Arg, CheckResult, SphereBins, U_MAX};
 use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
 
 /// Unit length at the corners of [0, 1)^2, and a chi-square test of 1e5 directions.
 pub fn check_uniform_sphere(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
+    let sample = |u1: f64, u2: f64| {
+        let args = [("u1", Arg::Real(u1)), ("u2", Arg::Real(u2))];
+        check::calling("uniform_sphere", &args, || sample(u1, u2))
+    };
     for u1 in [0.0, 0.5, U_MAX] {
         for u2 in [0.0, 0.25, U_MAX] {
             check::unit(&format!("uniform_sphere({u1}, {u2})"), sample(u1, u2))?;
@@ -24,20 +28,27 @@ pub fn check_uniform_sphere(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
         n_z: 9,
         z_min: -1.0,
         z_max: 1.0,
+        pole: "+z",
     };
     let n = 100_000;
     let mut rng = check::seeded(40);
     let dirs: Vec<DVec3> = (0..n).map(|_| sample(rng.random(), rng.random())).collect();
     let observed = bins.histogram("uniform_sphere", dirs)?;
     let expected = bins.expected(n, |_| 1.0 / (4.0 * PI), |_, _| true, 4);
-    check::chi_square("uniform_sphere", &observed, &expected)
+    check::chi_square("uniform_sphere", &observed, &expected, &bins)
 }
 
 /// z-test of the estimate from 1e5 directions against 4 pi / 3; `None` for `n = 0`.
 pub fn check_estimate(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f64>) -> CheckResult {
+    let estimate = |n: usize, rng: &mut dyn RngCore| {
+        check::calling("estimate_cos_sq", &[("n", Arg::Count(n))], || {
+            estimate(n, rng)
+        })
+    };
     if let Some(x) = estimate(0, &mut check::seeded(41)) {
         return Err(format!(
-            "estimate_cos_sq(0) returned Some({x}); no samples give no estimate (None)"
+            "estimate_cos_sq(0) returned Some({}); no samples give no estimate (None)",
+            check::num(x)
         ));
     }
     let n = 100_000;
@@ -61,7 +72,14 @@ mod tests {
                 theta.cos(),
             )
         };
-        assert!(check_uniform_sphere(theta_uniform).is_err());
+        let err = check_uniform_sphere(theta_uniform).unwrap_err();
+        // theta uniform puts too many directions near the poles, too few at the equator.
+        assert!(
+            err.contains("\ntoo few at cos theta in [-0.111, 0.111]: ")
+                && (err.contains("\ntoo many opposite +z: cos theta in [-1, -0.778]: ")
+                    || err.contains("\ntoo many near +z: cos theta in [0.778, 1]: ")),
+            "{err}"
+        );
         // Wrong: forgets to divide by the pdf (estimates the mean of cos^2, 1/3).
         let mean_only = |n: usize, rng: &mut dyn RngCore| {
             (n > 0).then(|| {

@@ -1,4 +1,4 @@
-//! # Bug museum, chapter 5: the sphere's normal that is not of unit length
+//! # Bug museum, chapter 5, Light Scattering, "The Lambertian surface": the sphere's normal that is not of unit length
 //!
 //! The checks of the exercise `crates/exercises/exercises/ch05_bug_normal_length.rs`, which holds the
 //! bug to find.
@@ -8,7 +8,7 @@
 //! Lambertian density built on it integrates to 1 over the sphere of directions (z-test of 1e5
 //! uniform directions, false failure 1e-6), which a normal of length r would make r.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
 
@@ -30,7 +30,12 @@ pub fn check_unit(normal: impl Normal) -> CheckResult {
         for _ in 0..100 {
             let d = check::uniform_direction(&mut rng);
             let p = CENTER + radius.abs() * d;
-            let n = normal(CENTER, radius, p);
+            let args = [
+                ("center", Arg::Vector(CENTER)),
+                ("radius", Arg::Real(radius)),
+                ("point", Arg::Vector(p)),
+            ];
+            let n = check::calling("outward_normal", &args, || normal(CENTER, radius, p));
             if !n.is_finite() || (n.length() - 1.0).abs() > 1e-12 {
                 return Err(format!(
                     "the normal at {p} of the sphere of radius {radius} has length {} (it is {n}): \
@@ -64,15 +69,27 @@ pub fn check_normalised(normal: impl Normal) -> CheckResult {
     let mut rng = check::seeded(51);
     let values =
         (0..100_000).map(|_| 4.0 * PI * lambertian_pdf(n, check::uniform_direction(&mut rng)));
-    check::z_test_mean("the Lambertian density on your normal of a radius-2 sphere, integrated over the sphere", values, 1.0)
-        .map_err(|e| {
+    check::z_test_mean(
+        "the Lambertian density on your normal of a radius-2 sphere, integrated over the sphere",
+        values,
+        1.0,
+    )
+    .map_err(|e| {
+        let length = n.length();
+        if n.is_finite() && (length - 1.0).abs() > 1e-9 {
             format!(
-                "{e}\n(a density must integrate to 1; the cosine n . d grows with the length of n, {}, so the \
-                 surface would reflect {}x the light it receives)",
-                n.length(),
-                n.length()
+                "{e}\n(a density must integrate to 1; the cosine n . d grows with the length of n, \
+                     {}, so the surface would reflect {}x the light it receives)",
+                check::sig(length, 6),
+                check::sig(length, 4)
             )
-        })
+        } else {
+            format!(
+                "{e}\n(the normal there is {n}, of length {})",
+                check::num(length)
+            )
+        }
+    })
 }
 
 #[cfg(test)]

@@ -1,18 +1,22 @@
-//! # Chapter 5, "Light Scattering": the scattering pdf of a Lambertian surface
+//! # Chapter 5, Light Scattering, "The Lambertian surface": the scattering pdf of a Lambertian surface
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch05_lambertian_pdf.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch05_lambertian_pdf.rs`, which states the
+//! task.
 //!
 //! The check: exact values (1/pi along the normal, 1/(2 pi) at 60 degrees, 0 when grazing and below),
 //! never negative nor NaN, and a z-test (1e5 uniform directions, for a few normals) that
 //! E[4 pi s(d)] = 1, i.e. the density integrates to 1 over the sphere.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
 
 /// Exact values, including grazing and below the surface.
 pub fn check_values(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
+    let pdf = |n: DVec3, d: DVec3| {
+        let args = [("normal", Arg::Vector(n)), ("direction", Arg::Vector(d))];
+        check::calling("lambertian_scattering_pdf", &args, || pdf(n, d))
+    };
     let n = DVec3::new(0.0, 0.6, 0.8);
     let t = DVec3::new(1.0, 0.0, 0.0); // perpendicular to n: grazing
     let c60 = 0.5 * n + (0.75f64).sqrt() * t;
@@ -37,6 +41,10 @@ pub fn check_values(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
 
 /// Never negative or NaN, and E[4 pi s(d)] = 1 over uniform directions (z-test, 1e5 samples).
 pub fn check_normalised(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
+    let pdf = |n: DVec3, d: DVec3| {
+        let args = [("normal", Arg::Vector(n)), ("direction", Arg::Vector(d))];
+        check::calling("lambertian_scattering_pdf", &args, || pdf(n, d))
+    };
     let mut rng = check::seeded(50);
     for normal in [DVec3::Z, -DVec3::X, DVec3::new(1.0, -2.0, 2.0) / 3.0] {
         let mut values = Vec::with_capacity(100_000);
@@ -45,7 +53,8 @@ pub fn check_normalised(pdf: impl Fn(DVec3, DVec3) -> f64) -> CheckResult {
             let s = pdf(normal, d);
             if s.is_nan() || s < 0.0 {
                 return Err(format!(
-                    "lambertian_scattering_pdf({normal}, {d}) = {s}, must be >= 0"
+                    "lambertian_scattering_pdf({normal}, {d}) = {}, must be >= 0",
+                    check::num(s)
                 ));
             }
             values.push(4.0 * PI * s);

@@ -1,13 +1,13 @@
-//! # Chapter 6, "Playing with Importance Sampling": one bounce of `ray_color`
+//! # Chapter 6, Playing with Importance Sampling, "The strategies": one bounce of `ray_color`
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch06_scatter_weight.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch06_scatter_weight.rs`, which states the
+//! task.
 //!
 //! The check: exact values with dyadic inputs, every degenerate density, and a white-furnace test: a
 //! Lambertian surface (s = cos/pi) of albedo 0.75 under uniform incoming radiance 1, with directions
 //! drawn uniformly on the hemisphere (p = 1/(2 pi)), must return 0.75 on average (z-test, 1e5 samples).
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::PI;
@@ -18,6 +18,18 @@ impl<F: Fn(DVec3, DVec3, f64, f64, DVec3) -> DVec3> Contribution for F {}
 
 /// Exact values and every degenerate density.
 pub fn check_cases(contribution: impl Contribution) -> CheckResult {
+    let contribution = |e: DVec3, a: DVec3, s: f64, p: f64, li: DVec3| {
+        let args = [
+            ("emitted", Arg::Vector(e)),
+            ("attenuation", Arg::Vector(a)),
+            ("scattering_pdf", Arg::Real(s)),
+            ("pdf_value", Arg::Real(p)),
+            ("incoming", Arg::Vector(li)),
+        ];
+        check::calling("scatter_contribution", &args, || {
+            contribution(e, a, s, p, li)
+        })
+    };
     let e = DVec3::new(0.25, 0.5, 1.0);
     let a = DVec3::new(0.5, 0.75, 1.0);
     let li = DVec3::new(2.0, 4.0, 8.0);
@@ -59,6 +71,18 @@ pub fn check_cases(contribution: impl Contribution) -> CheckResult {
 
 /// White furnace: albedo 0.75, L_i = 1, uniform hemisphere sampling; the mean is 0.75 (z-test).
 pub fn check_furnace(contribution: impl Contribution) -> CheckResult {
+    let contribution = |e: DVec3, a: DVec3, s: f64, p: f64, li: DVec3| {
+        let args = [
+            ("emitted", Arg::Vector(e)),
+            ("attenuation", Arg::Vector(a)),
+            ("scattering_pdf", Arg::Real(s)),
+            ("pdf_value", Arg::Real(p)),
+            ("incoming", Arg::Vector(li)),
+        ];
+        check::calling("scatter_contribution", &args, || {
+            contribution(e, a, s, p, li)
+        })
+    };
     let albedo = 0.75;
     let mut rng = check::seeded(60);
     let mut values = Vec::with_capacity(100_000);

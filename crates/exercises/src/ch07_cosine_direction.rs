@@ -1,28 +1,43 @@
-//! # Chapter 7, "Cosine Sampling a Hemisphere": a cosine-weighted direction and its pdf
+//! # Chapter 7, Generating Random Directions, "Cosine-weighted": a cosine-weighted direction and its pdf
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch07_cosine_direction.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch07_cosine_direction.rs`, which states the
+//! task.
 //!
 //! The check: unit length to 1e-12 and z >= 0 at u = 0 and u = 1 - 2^-53 (where z = sqrt(2^-53) is
 //! tiny but must not underflow the length); exact pdf values; and a chi-square test of 1e5 directions
 //! in 16 x 10 cells of (phi, z) on the hemisphere, against n (delta phi / 2 pi) (z_hi^2 - z_lo^2), the
 //! exact integral of the density over each cell.
 
-use crate::check::{self, CheckResult, SphereBins, U_MAX};
+use crate::check::{self, Arg, CheckResult, SphereBins, U_MAX};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
 
+/// `sample` with its call recorded, so that a panic names the (u1, u2) that caused it.
+fn recorded(sample: impl Fn(f64, f64) -> DVec3) -> impl Fn(f64, f64) -> DVec3 {
+    move |u1, u2| {
+        let args = [("u1", Arg::Real(u1)), ("u2", Arg::Real(u2))];
+        check::calling("random_cosine_direction", &args, || sample(u1, u2))
+    }
+}
+
 /// Unit, upper-hemisphere directions at the corners of [0, 1)^2.
 pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
+    let sample = recorded(sample);
     for u1 in [0.0, 0.25, U_MAX] {
         for u2 in [0.0, 0.5, U_MAX] {
             let d = sample(u1, u2);
-            check::unit(&format!("random_cosine_direction({u1}, {u2})"), d)?;
+            let u = |x: f64| {
+                if x == U_MAX {
+                    "1 - 2^-53".to_string()
+                } else {
+                    check::num(x)
+                }
+            };
+            let what = format!("random_cosine_direction(u1 = {}, u2 = {})", u(u1), u(u2));
+            check::unit(&what, d)?;
             if d.z.is_nan() || d.z < 0.0 {
-                return Err(format!(
-                    "random_cosine_direction({u1}, {u2}) = {d} is below the horizon"
-                ));
+                return Err(format!("{what} = {d} is below the horizon"));
             }
         }
     }
@@ -36,7 +51,9 @@ pub fn check_distribution(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
         n_z: 10,
         z_min: 0.0,
         z_max: 1.0,
+        pole: "the normal",
     };
+    let sample = recorded(sample);
     let n = 100_000;
     let mut rng = check::seeded(70);
     let dirs: Vec<DVec3> = (0..n).map(|_| sample(rng.random(), rng.random())).collect();
@@ -47,7 +64,7 @@ pub fn check_distribution(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
             n as f64 * (hi * hi - lo * lo) / bins.n_phi as f64
         })
         .collect();
-    check::chi_square("random_cosine_direction", &observed, &expected)
+    check::chi_square("random_cosine_direction", &observed, &expected, &bins)
 }
 
 /// Exact values of the pdf: 1/pi at the pole, 1/(2 pi) at 60 degrees, 0 at and below the horizon.
@@ -60,13 +77,22 @@ pub fn check_pdf(pdf: impl Fn(f64) -> f64) -> CheckResult {
         (-1e-12, 0.0),
         (-1.0, 0.0),
     ] {
-        let got = pdf(c);
+        let got = check::calling("cosine_pdf_value", &[("cos_theta", Arg::Real(c))], || {
+            pdf(c)
+        });
         if got.is_nan() || got < 0.0 {
             return Err(format!(
-                "cosine_pdf_value({c}) = {got}; a density is never negative or NaN"
+                "cosine_pdf_value({}) = {}; a density is never negative or NaN",
+                check::num(c),
+                check::num(got)
             ));
         }
-        check::close(&format!("cosine_pdf_value({c})"), got, want, 1e-15)?;
+        check::close(
+            &format!("cosine_pdf_value({})", check::num(c)),
+            got,
+            want,
+            1e-15,
+        )?;
     }
     Ok(())
 }
@@ -95,6 +121,19 @@ mod tests {
         };
         assert!(check_corners(no_sqrt).is_err());
         assert!(check_distribution(no_sqrt).is_err());
+        // Wrong: z = 1 - u2 instead of sqrt(1 - u2): directions lean to the horizon, and the failure
+        // says where.
+        let linear_z = |u1: f64, u2: f64| {
+            let phi = 2.0 * PI * u1;
+            DVec3::new(phi.cos() * u2.sqrt(), phi.sin() * u2.sqrt(), 1.0 - u2)
+        };
+        let err = check_distribution(linear_z).unwrap_err();
+        assert!(
+            err.contains("\ntoo many near the horizon: cos theta in [0, 0.1]: ")
+                && err.contains("1,000 expected")
+                && err.contains("\ntoo few at cos theta in ["),
+            "{err}"
+        );
         // Wrong: uniform hemisphere z = u2 is not cosine-weighted.
         let uniform = |u1: f64, u2: f64| {
             let phi = 2.0 * PI * u1;

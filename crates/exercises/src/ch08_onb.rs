@@ -1,13 +1,12 @@
-//! # Chapter 8, "Orthonormal Bases": a right-handed basis around a unit vector
+//! # Chapter 8, Orthonormal Bases, "Building a basis from one vector": a right-handed basis around a unit vector
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch08_onb.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch08_onb.rs`, which states the task.
 //!
 //! The check: w = +-x, +-y, +-z, the f32 case of Duff et al. near -z, and 1000 random unit vectors:
 //! u, v of unit length and orthogonal to each other and to w (to 1e-12), u x v = w, `w` kept as given;
 //! and `Onb::transform` of the axes gives u, v, w.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 
 /// An orthonormal basis (u, v, w), right-handed: u x v = w.
@@ -33,7 +32,7 @@ fn orthonormal_right_handed(w: DVec3, b: Onb) -> CheckResult {
     }
     for (name, x) in [("|u|", b.u.length()), ("|v|", b.v.length())] {
         if (x - 1.0).abs() > 1e-12 {
-            return fail(&format!("{name} = {x}, not 1"));
+            return fail(&format!("{name} = {}, not 1", check::num(x)));
         }
     }
     for (name, x) in [
@@ -42,7 +41,7 @@ fn orthonormal_right_handed(w: DVec3, b: Onb) -> CheckResult {
         ("v.w", b.v.dot(b.w)),
     ] {
         if x.abs() > 1e-12 {
-            return fail(&format!("{name} = {x:e}, not 0"));
+            return fail(&format!("{name} = {}, not 0", check::num(x)));
         }
     }
     if (b.u.cross(b.v) - b.w).length() > 1e-12 {
@@ -71,7 +70,8 @@ pub fn check_basis(from_w: impl FromW) -> CheckResult {
     let mut rng = check::seeded(80);
     ws.extend((0..1000).map(|_| check::uniform_direction(&mut rng)));
     for w in ws {
-        orthonormal_right_handed(w, from_w(w))?;
+        let basis = check::calling("Onb::from_w", &[("w", Arg::Vector(w))], || from_w(w));
+        orthonormal_right_handed(w, basis)?;
     }
     Ok(())
 }
@@ -90,7 +90,9 @@ pub fn check_transform(transform: impl Fn(&Onb, DVec3) -> DVec3) -> CheckResult 
         (DVec3::new(0.5, -2.0, 0.25), DVec3::new(-2.0, 0.25, 0.5)),
     ];
     for (a, want) in cases {
-        let got = transform(&b, a);
+        let got = check::calling("Onb::transform", &[("a", Arg::Vector(a))], || {
+            transform(&b, a)
+        });
         if got != want {
             return Err(format!(
                 "Onb::transform({a}) = {got} in the basis {b:?}, expected {want}"

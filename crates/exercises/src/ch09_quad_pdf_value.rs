@@ -1,13 +1,13 @@
-//! # Chapter 9, "Sampling Lights Directly": the solid-angle pdf of a quad light
+//! # Chapter 9, Sampling Lights Directly, "A quad light: from area to solid angle": the solid-angle pdf of a quad light
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch09_quad_pdf_value.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch09_quad_pdf_value.rs`, which states the
+//! task, and what that exercise is given ([`Quad`]).
 //!
 //! The check: exact values head-on and oblique, the hard cases (origin in the plane, 1e-9 above it,
 //! parallel, behind, from the back side), and a z-test that E[4 pi p(omega)] = 1 over uniform
 //! directions: the density integrates to 1 over the sphere.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -32,6 +32,13 @@ const SQUARE: Quad = Quad {
 
 /// Exact values: head-on, oblique, and the misses.
 pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
+    let pdf = |quad: &Quad, origin: DVec3, direction: DVec3| {
+        let args = [
+            ("origin", Arg::Vector(origin)),
+            ("direction", Arg::Vector(direction)),
+        ];
+        check::calling("quad_pdf_value", &args, || pdf(quad, origin, direction))
+    };
     let o = DVec3::ZERO;
     check::close(
         "quad_pdf_value head-on at distance 1 (1/A)",
@@ -102,14 +109,16 @@ pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
         let got = pdf(&SQUARE, origin, d);
         if got != 0.0 {
             return Err(format!(
-                "quad_pdf_value {what} = {got}, expected 0 (a miss)"
+                "quad_pdf_value {what} = {}, expected 0 (a miss)",
+                check::num(got)
             ));
         }
     }
     let got = pdf(&SQUARE, DVec3::new(0.0, 0.0, -1.0 + 1e-9), -DVec3::Z);
     if !(got.is_finite() && got > 0.0) {
         return Err(format!(
-            "quad_pdf_value from 1e-9 above the light = {got}, expected small, finite and > 0"
+            "quad_pdf_value from 1e-9 above the light = {}, expected small, finite and > 0",
+            check::num(got)
         ));
     }
     Ok(())
@@ -117,6 +126,13 @@ pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
 
 /// E[4 pi p(omega)] = 1 over 1e5 uniform directions (z-test), for the square and a skewed quad.
 pub fn check_normalised(pdf: impl QuadPdf) -> CheckResult {
+    let pdf = |quad: &Quad, origin: DVec3, direction: DVec3| {
+        let args = [
+            ("origin", Arg::Vector(origin)),
+            ("direction", Arg::Vector(direction)),
+        ];
+        check::calling("quad_pdf_value", &args, || pdf(quad, origin, direction))
+    };
     let skew = Quad {
         q: DVec3::new(-0.5, 1.0, 0.2),
         u: DVec3::new(1.0, 0.3, 0.0),
@@ -132,7 +148,10 @@ pub fn check_normalised(pdf: impl QuadPdf) -> CheckResult {
             let d = check::uniform_direction(&mut rng);
             let p = pdf(&quad, origin, d);
             if !(p >= 0.0 && p.is_finite()) {
-                return Err(format!("quad_pdf_value({quad:?}, {origin}, {d}) = {p}"));
+                return Err(format!(
+                    "quad_pdf_value({quad:?}, {origin}, {d}) = {}",
+                    check::num(p)
+                ));
             }
             values.push(4.0 * PI * p);
         }

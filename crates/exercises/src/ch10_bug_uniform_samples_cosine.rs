@@ -1,10 +1,11 @@
-//! # Bug museum, chapter 10: a "uniform" pdf whose sampler still samples cosine
+//! # Bug museum, chapter 10, Mixture Densities, "The Pdf trait": a "uniform" pdf whose sampler still samples cosine
 //!
 //! The checks of the exercise `crates/exercises/exercises/ch10_bug_uniform_samples_cosine.rs`, which
 //! holds the bug to find.
 //!
-//! The check: `value` is 1/(2 pi) above the horizon and 0 below; a chi-square test of 1e5 directions
-//! from `generate` against `value`, in 16 x 10 equal-area cells of the hemisphere; and the estimate of
+//! The check: `value` is 1/(2 pi) above the horizon and 0 below; `generate` gives unit directions,
+//! and a chi-square test of 1e5 of them against `value`, in 16 x 10 equal-area cells of the
+//! hemisphere, says where they differ; and the estimate of
 //! the integral of cos theta over the hemisphere (exactly pi) with f / value over `generate`'s
 //! directions, z-tested (false failure 1e-6): a sampler that does not draw the density `value` states
 //! gives a biased image, not just a noisy one.
@@ -20,51 +21,65 @@ pub fn check_value(pdf: &dyn Pdf) -> CheckResult {
     for _ in 0..1000 {
         let d = check::uniform_direction(&mut rng);
         let want = if d.z >= 0.0 { 1.0 / (2.0 * PI) } else { 0.0 };
-        check::close(&format!("value({d})"), pdf.value(d), want, 1e-12)?;
+        let got = check::calling("value", &[("direction", d.into())], || pdf.value(d));
+        check::close(&format!("value({d})"), got, want, 1e-12)?;
     }
     Ok(())
 }
 
-/// Chi-square of 1e5 generated directions against the density `value` claims.
+/// Unit directions from `generate`, and a chi-square test of 1e5 of them against the density
+/// `value` claims.
 pub fn check_generate(pdf: &dyn Pdf) -> CheckResult {
     let bins = SphereBins {
         n_phi: 16,
         n_z: 10,
         z_min: 0.0,
         z_max: 1.0,
+        pole: "the normal",
     };
     let n = 100_000;
     let mut rng = check::seeded(101);
-    let dirs: Vec<DVec3> = (0..n).map(|_| pdf.generate(&mut rng)).collect();
-    let top = dirs.iter().filter(|d| d.z > 0.9).count();
+    let mut dirs: Vec<DVec3> = Vec::with_capacity(n);
+    for _ in 0..n {
+        let d = pdf.generate(&mut rng);
+        check::unit("generate()", d).map_err(|e| {
+            format!("{e}: a direction is a unit vector, and value's density is per unit direction")
+        })?;
+        dirs.push(d);
+    }
     let observed = bins.histogram("generate", dirs)?;
     let expected = bins.expected(n, |d| pdf.value(d), |_, _| true, 4);
-    check::chi_square("generate against value", &observed, &expected).map_err(|e| {
-        format!(
-            "{e}\n({top} of {n} directions have cos theta > 0.9, where a uniform hemisphere puts \
-             {:.0}: generate does not draw the density value states)",
-            0.1 * n as f64
-        )
-    })
+    check::chi_square("generate against value", &observed, &expected, &bins)
+        .map_err(|e| format!("{e}\n(generate does not draw the density value states)"))
 }
 
 /// The integral of cos theta over the hemisphere, pi, estimated with f / value from 1e5 directions.
 pub fn check_estimate(pdf: &dyn Pdf) -> CheckResult {
     let mut rng = check::seeded(102);
-    let values = (0..100_000).map(|_| {
-        let d = pdf.generate(&mut rng);
-        let p = pdf.value(d);
-        if p > 0.0 { d.z.max(0.0) / p } else { 0.0 }
-    });
+    let estimates: Vec<f64> = (0..100_000)
+        .map(|_| {
+            let d = pdf.generate(&mut rng);
+            let p = pdf.value(d);
+            if p > 0.0 { d.z.max(0.0) / p } else { 0.0 }
+        })
+        .collect();
     check::z_test_mean(
         "the estimate of the integral of cos theta over the hemisphere (pi)",
-        values,
+        estimates.iter().copied(),
         PI,
     )
     .map_err(|e| {
+        // The estimate is too large when generate favours large cos theta more than value says,
+        // too small when it favours it less.
+        let (mean, _) = check::mean_and_std_error(estimates.iter().copied());
+        let which = if mean > PI {
+            "more often near the normal (where cos theta is large) than value says, so the estimate is too large"
+        } else {
+            "less often near the normal (where cos theta is large) than value says, so the estimate is too small"
+        };
         format!(
-            "{e}\n(f / p is unbiased only when the directions are drawn with density p; drawn more \
-                 often near the normal, where cos theta is large, they overestimate)"
+            "{e}\n(f / p is unbiased only when the directions are drawn with density p; these are drawn \
+             {which})"
         )
     })
 }
@@ -90,7 +105,33 @@ mod tests {
     fn checks_reject_a_uniform_value_with_a_cosine_sampler() {
         assert!(check_value(&Mislabelled).is_ok());
         let err = check_generate(&Mislabelled).unwrap_err();
-        assert!(err.contains("cos theta > 0.9"), "{err}");
-        assert!(check_estimate(&Mislabelled).is_err());
+        assert!(
+            err.contains("\ntoo many near the normal: cos theta in [0.9, 1]: ")
+                && err.contains("10,000 expected"),
+            "{err}"
+        );
+        let err = check_estimate(&Mislabelled).unwrap_err();
+        assert!(err.contains("estimate is too large"), "{err}");
+    }
+
+    /// A wrong fix: z uniform in [0, 1] as it should be, but the radius left at sqrt(u2), so the
+    /// directions are not of unit length.
+    struct NotUnit;
+    impl Pdf for NotUnit {
+        fn value(&self, d: DVec3) -> f64 {
+            Mislabelled.value(d)
+        }
+        fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+            use rand::Rng;
+            let (u1, u2): (f64, f64) = (rng.random(), rng.random());
+            let phi = 2.0 * PI * u1;
+            DVec3::new(phi.cos() * u2.sqrt(), phi.sin() * u2.sqrt(), u2)
+        }
+    }
+
+    #[test]
+    fn checks_reject_directions_that_are_not_unit_vectors() {
+        let err = check_generate(&NotUnit).unwrap_err();
+        assert!(err.contains("not a unit vector"), "{err}");
     }
 }

@@ -1,7 +1,7 @@
-//! # Chapter 10, "Mixture Densities": a mixture pdf whose value is what it generates
+//! # Chapter 10, Mixture Densities, "MixturePdf": a mixture pdf whose value is what it generates
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch10_mixture_pdf.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch10_mixture_pdf.rs`, which states the
+//! task, and what that exercise is given ([`Pdf`], [`CosinePdf`], [`ConePdf`]).
 //!
 //! The check: `value` equals w a + (1 - w) b at 1000 random directions (to rounding), for weights 0,
 //! 0.3, 1; and, for the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
@@ -81,10 +81,14 @@ pub fn check_value<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckR
                 CONE.generate(&mut rng)
             };
             let want = w * CosinePdf.value(d) + (1.0 - w) * CONE.value(d);
-            let got = m.value(d);
+            let got = check::calling("MixturePdf::value", &[("direction", d.into())], || {
+                m.value(d)
+            });
             if (got.is_nan() || got < 0.0) || (got - want).abs() > 1e-14 * want.max(1.0) {
                 return Err(format!(
-                    "MixturePdf(weight {w}).value({d}) = {got}, expected {want}"
+                    "MixturePdf(weight {w}).value({d}) = {}, expected {}",
+                    check::num(got),
+                    check::num(want)
                 ));
             }
         }
@@ -101,6 +105,7 @@ pub fn check_generate<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> Che
         n_z: 25,
         z_min: -1.0,
         z_max: 1.0,
+        pole: "the normal",
     };
     let n = 100_000;
     let mut rng = check::seeded(101);
@@ -118,7 +123,7 @@ pub fn check_generate<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> Che
         let support =
             |_z_lo: f64, z_hi: f64| (w > 0.0 && z_hi > 0.0) || (w < 1.0 && z_hi > CONE.cos_max);
         let expected = bins.expected(n, |d| m.value(d), support, 16);
-        check::chi_square(&what, &observed, &expected)?;
+        check::chi_square(&what, &observed, &expected, &bins)?;
     }
     Ok(())
 }
@@ -169,7 +174,14 @@ mod tests {
             value_weight: w,
         };
         assert!(check_value(swapped).is_ok(), "value alone is right");
-        assert!(check_generate(swapped).is_err());
+        let err = check_generate(swapped).unwrap_err();
+        // Weight 0.3 samples the cone 30% of the time instead of 70%: too few in the cone
+        // (z >= 0.84), too many in the cosine lobe outside it.
+        assert!(
+            err.contains("\ntoo few at cos theta in [0.84, 0.92]: ")
+                && err.contains("\ntoo many at cos theta in [0.76, 0.84]: "),
+            "{err}"
+        );
         // Wrong: the book's 50/50 value whatever the weight.
         let half = |_: CosinePdf, _: ConePdf, w: f64| Inconsistent {
             sample_weight: w,

@@ -1,4 +1,4 @@
-//! # Bug museum, chapter 12: the sphere cone's cos theta_max
+//! # Bug museum, chapter 12, after chapter 9, Sampling Lights Directly, "A sphere light: the cone it subtends": the sphere cone's cos theta_max
 //!
 //! The checks of the exercise `crates/exercises/exercises/ch12_bug_cone_cos_theta_max.rs`, which
 //! holds the bug to find.
@@ -10,7 +10,7 @@
 //! cone (1e4) hits the sphere; and the fraction of 1e6 uniform directions that hit the sphere,
 //! z-tested (binomial standard error, false failure 1e-6) against your cone's solid angle / 4 pi.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
@@ -29,8 +29,20 @@ fn hits(d: DVec3, radius: f64, distance: f64) -> bool {
     along > 0.0 && distance * distance - along * along <= radius * radius
 }
 
+/// `cos_theta_max` with its calls recorded, so that a panic names the input that caused it.
+fn recorded(cos_theta_max: impl Fn(f64, f64) -> f64) -> impl Fn(f64, f64) -> f64 {
+    move |radius, distance| {
+        let args = [
+            ("radius", Arg::Real(radius)),
+            ("distance", Arg::Real(distance)),
+        ];
+        check::calling("cos_theta_max", &args, || cos_theta_max(radius, distance))
+    }
+}
+
 /// Exact values: d = 2r gives sqrt(3)/2, d = sqrt(2) r gives sqrt(1/2).
 pub fn check_values(cos_theta_max: impl Fn(f64, f64) -> f64) -> CheckResult {
+    let cos_theta_max = recorded(cos_theta_max);
     for (r, d, want) in [
         (1.0, 2.0, 0.75f64.sqrt()),
         (0.5, 1.0, 0.75f64.sqrt()),
@@ -48,6 +60,7 @@ pub fn check_values(cos_theta_max: impl Fn(f64, f64) -> f64) -> CheckResult {
 
 /// Every direction of the cone hits the sphere, which the cone must just enclose.
 pub fn check_cone_hits(cos_theta_max: impl Fn(f64, f64) -> f64) -> CheckResult {
+    let cos_theta_max = recorded(cos_theta_max);
     let (r, d) = (1.0, 2.5);
     let c = cos_theta_max(r, d);
     let mut rng = check::seeded(140);
@@ -69,6 +82,7 @@ pub fn check_cone_hits(cos_theta_max: impl Fn(f64, f64) -> f64) -> CheckResult {
 
 /// The fraction of uniform directions that hit the sphere estimates its solid angle / 4 pi.
 pub fn check_solid_angle(cos_theta_max: impl Fn(f64, f64) -> f64) -> CheckResult {
+    let cos_theta_max = recorded(cos_theta_max);
     let (r, d) = (1.0, 1.5);
     let c = cos_theta_max(r, d);
     let claimed = 2.0 * PI * (1.0 - c) / (4.0 * PI);

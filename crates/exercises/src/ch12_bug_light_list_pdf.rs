@@ -1,4 +1,4 @@
-//! # Bug museum, chapter 12: the black image of a light list without `pdf_value`
+//! # Bug museum, chapter 12, after chapter 9, Sampling Lights Directly, "Several lights": the black image of a light list without `pdf_value`
 //!
 //! The checks of the exercise `crates/exercises/exercises/ch12_bug_light_list_pdf.rs`, which holds the
 //! bug to find.
@@ -11,7 +11,10 @@
 //! integrates to 1 over the sphere (z-test of 1e5 uniform directions); and the estimate of the lights'
 //! total solid angle, the average of 1 / pdf_value over 1e5 generated directions, z-tested against the
 //! exact sum of the two cones (false failure 1e-6). An estimator that skips samples of density 0 (as it
-//! must, to avoid NaN) estimates 0 there: the black image.
+//! must, to avoid NaN) estimates 0 there: the black image. Then two lights whose cones overlap: a
+//! direction in both can be drawn through either, so its density is exactly (p_1 + p_2) / 2, and one
+//! in the first alone p_1 / 2; and that list's `pdf_value` integrates to 1 as well. (With disjoint
+//! cones only, the density of "the light the direction points at" divided by 2 would pass.)
 
 use crate::check::{self, CheckResult};
 use glam::DVec3;
@@ -112,6 +115,71 @@ pub fn check_estimate(list: &dyn Light) -> CheckResult {
     )
 }
 
+/// Two lights whose cones overlap: each cone holds the other's axis.
+pub fn overlapping_lights() -> [ConeLight; 2] {
+    [
+        ConeLight {
+            axis: DVec3::new(0.0, 0.6, 0.8),
+            cos_max: 0.95,
+        },
+        ConeLight {
+            axis: DVec3::new(0.0, 0.8, 0.6),
+            cos_max: 0.9,
+        },
+    ]
+}
+
+/// For [`overlapping_lights`]: exactly (p_1 + p_2) / 2 where the cones overlap, p_1 / 2 where only the
+/// first holds the direction, 0 outside both; and the density integrates to 1 (z-test of 1e5 uniform
+/// directions).
+pub fn check_overlapping(list: &dyn Light) -> CheckResult {
+    let [a, b] = overlapping_lights();
+    // The first light's axis, in both cones; and the first axis turned 15 degrees away from the
+    // second, in the first cone only.
+    let turn = 15f64.to_radians();
+    let first_only = DVec3::new(
+        0.0,
+        0.6 * turn.cos() - 0.8 * turn.sin(),
+        0.8 * turn.cos() + 0.6 * turn.sin(),
+    );
+    let cases = [
+        (
+            a.axis,
+            "in both cones",
+            (a.pdf_value(a.axis) + b.pdf_value(a.axis)) / 2.0,
+        ),
+        (
+            first_only,
+            "in the first cone only",
+            a.pdf_value(first_only) / 2.0,
+        ),
+        (-a.axis, "in neither cone", 0.0),
+    ];
+    for (d, where_, want) in cases {
+        let got = check::calling("LightList::pdf_value", &[("direction", d.into())], || {
+            list.pdf_value(d)
+        });
+        if (got - want).abs() > 1e-12 * want.max(1e-300) || got.is_nan() {
+            return Err(format!(
+                "with two lights whose cones overlap, pdf_value({d}) ({where_}) = {}, expected {}: \
+                 random() can draw a direction through either light, each chosen with probability \
+                 1/2, so its density is the average (p_1 + p_2) / 2 of both lights' densities, \
+                 counting 0 for a light whose cone does not hold it",
+                check::num(got),
+                check::num(want)
+            ));
+        }
+    }
+    let mut rng = check::seeded(122);
+    let values =
+        (0..100_000).map(|_| 4.0 * PI * list.pdf_value(check::uniform_direction(&mut rng)));
+    check::z_test_mean(
+        "pdf_value of two overlapping lights, integrated over the sphere",
+        values,
+        1.0,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,6 +202,49 @@ mod tests {
         }
     }
 
+    /// Wrong: the density of the first light whose cone holds the direction, divided by the
+    /// number of lights. Right for disjoint cones only.
+    struct FirstHit(Vec<ConeLight>);
+    impl Light for FirstHit {
+        fn pdf_value(&self, d: DVec3) -> f64 {
+            self.0
+                .iter()
+                .map(|l| l.pdf_value(d))
+                .find(|&p| p > 0.0)
+                .unwrap_or(0.0)
+                / self.0.len() as f64
+        }
+        fn random(&self, rng: &mut dyn RngCore) -> DVec3 {
+            self.0[rng.random_range(0..self.0.len())].random(rng)
+        }
+    }
+
+    /// Right: the average of the lights' densities.
+    struct Average(Vec<ConeLight>);
+    impl Light for Average {
+        fn pdf_value(&self, d: DVec3) -> f64 {
+            self.0.iter().map(|l| l.pdf_value(d)).sum::<f64>() / self.0.len() as f64
+        }
+        fn random(&self, rng: &mut dyn RngCore) -> DVec3 {
+            self.0[rng.random_range(0..self.0.len())].random(rng)
+        }
+    }
+
+    #[test]
+    fn checks_reject_the_density_of_only_the_light_a_direction_points_at() {
+        let disjoint = FirstHit(lights().to_vec());
+        assert!(
+            check_pdf_value(&disjoint).is_ok(),
+            "disjoint cones cannot tell"
+        );
+        let err = check_overlapping(&FirstHit(overlapping_lights().to_vec())).unwrap_err();
+        assert!(
+            err.contains("(in both cones)") && err.contains("(p_1 + p_2) / 2"),
+            "{err}"
+        );
+        check_overlapping(&Average(overlapping_lights().to_vec())).unwrap();
+    }
+
     #[test]
     fn checks_reject_the_default_pdf_value_and_a_sum() {
         let err = check_pdf_value(&NoPdf(lights())).unwrap_err();
@@ -141,5 +252,6 @@ mod tests {
         assert!(check_estimate(&NoPdf(lights())).is_err());
         assert!(check_pdf_value(&Sum(lights())).is_err());
         assert!(check_estimate(&Sum(lights())).is_err());
+        assert!(check_overlapping(&NoPdf(overlapping_lights())).is_err());
     }
 }

@@ -1,7 +1,7 @@
-//! # Chapter 12, "Handling Surface Acne": keep NaNs out of a pixel
+//! # Chapter 12, Cleaning Up PDF Management, "The pitfalls as tests": keep NaNs out of a pixel
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch12_nan_guard.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch12_nan_guard.rs`, which states the task,
+//! and what that exercise is given.
 //!
 //! The check: constant samples 0.5 for 1, 2, 10, 16 and 1000 samples average to exactly 0.5 (a dyadic
 //! value, exact in floating point); one NaN, +inf, -inf or NaN-in-one-channel sample among 100 (first,

@@ -1,14 +1,14 @@
-//! # Chapter 12, "Sampling a Sphere Object": the pdf of directions towards a sphere light
+//! # Chapter 12, after chapter 9, Sampling Lights Directly, "A sphere light: the cone it subtends": the pdf of directions towards a sphere light
 //!
-//! The checks of the exercise `crates/exercises/exercises/ch12_sphere_pdf_value.rs`, which states the task, and what
-//! that exercise is given.
+//! The checks of the exercise `crates/exercises/exercises/ch12_sphere_pdf_value.rs`, which states the
+//! task.
 //!
 //! The check: the solid angle at distances 1e2 .. 1e9 within 1e-6 relative of a series expansion,
 //! finite positive pdfs far away, inside, on and 1e-4 above the sphere, 0 on a miss, a positive pdf
 //! for at least 99.9% of the directions drawn in the cone from just above, and a z-test that the
 //! density integrates to 1 over the sphere (E[4 pi p] = 1 over uniform directions).
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 use rand::Rng;
 use std::f64::consts::PI;
@@ -32,17 +32,24 @@ fn exact_solid_angle(d: f64) -> f64 {
 
 /// Solid angles: far away (against the series), nearby (against the direct formula), inside and on.
 pub fn check_solid_angle(omega: impl Fn(f64, f64) -> f64) -> CheckResult {
+    let omega = |radius: f64, distance: f64| {
+        let args = [
+            ("radius", Arg::Real(radius)),
+            ("distance", Arg::Real(distance)),
+        ];
+        check::calling("sphere_solid_angle", &args, || omega(radius, distance))
+    };
     for d in [1e2, 1e4, 1e6, 1e9] {
         let want = exact_solid_angle(d);
         check::close(
-            &format!("sphere_solid_angle(1, {d:e})"),
+            &format!("sphere_solid_angle(1, {})", check::num(d)),
             omega(1.0, d),
             want,
             1e-6,
         )?;
         // The same geometry scaled: radius 1e-3 at distance 1e-3 d.
         check::close(
-            &format!("sphere_solid_angle(1e-3, {:e})", d * 1e-3),
+            &format!("sphere_solid_angle(0.001, {})", check::num(d * 1e-3)),
             omega(1e-3, d * 1e-3),
             want,
             1e-6,
@@ -92,13 +99,24 @@ fn cone_direction(center: DVec3, radius: f64, origin: DVec3, rng: &mut impl Rng)
 
 /// Hard cases: hits far away, misses, inside, on and just above the sphere.
 pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
+    let pdf = |center: DVec3, radius: f64, origin: DVec3, direction: DVec3| {
+        let args = [
+            ("center", Arg::Vector(center)),
+            ("radius", Arg::Real(radius)),
+            ("origin", Arg::Vector(origin)),
+            ("direction", Arg::Vector(direction)),
+        ];
+        check::calling("sphere_pdf_value", &args, || {
+            pdf(center, radius, origin, direction)
+        })
+    };
     let c = DVec3::new(0.0, 0.0, 0.0);
     for d in [3.0, 1e2, 1e4, 1e6, 1e9] {
         let origin = DVec3::new(0.0, 0.0, -d);
         let got = pdf(c, 1.0, origin, DVec3::Z);
         let want = 1.0 / exact_solid_angle(d);
         check::close(
-            &format!("sphere_pdf_value towards the centre from {d:e}"),
+            &format!("sphere_pdf_value towards the centre from {}", check::num(d)),
             got,
             want,
             1e-6,
@@ -107,7 +125,10 @@ pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
         let behind = pdf(c, 1.0, origin, -DVec3::Z);
         if miss != 0.0 || behind != 0.0 {
             return Err(format!(
-                "sphere_pdf_value from {d:e}: a miss gave {miss}, pointing away {behind}; expected 0"
+                "sphere_pdf_value from {}: a miss gave {}, pointing away {}; expected 0",
+                check::num(d),
+                check::num(miss),
+                check::num(behind)
             ));
         }
     }
@@ -135,7 +156,8 @@ pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
             let p = pdf(c, 1.0, origin, d);
             if !(p.is_finite() && p >= 0.0) {
                 return Err(format!(
-                    "sphere_pdf_value from {origin} on the sphere towards {d} = {p}"
+                    "sphere_pdf_value from {origin} on the sphere towards {d} = {}",
+                    check::num(p)
                 ));
             }
         }
@@ -148,7 +170,8 @@ pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
         let p = pdf(c, 1.0, origin, d);
         if !(p.is_finite() && p >= 0.0) {
             return Err(format!(
-                "sphere_pdf_value from 1e-4 above the sphere towards {d} = {p}"
+                "sphere_pdf_value from 1e-4 above the sphere towards {d} = {}",
+                check::num(p)
             ));
         }
         positive += usize::from(p > 0.0);
@@ -163,6 +186,17 @@ pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
 
 /// E[4 pi p] = 1 over 1e5 uniform directions, from outside (z-test) and inside (exactly).
 pub fn check_normalised(pdf: impl SpherePdf) -> CheckResult {
+    let pdf = |center: DVec3, radius: f64, origin: DVec3, direction: DVec3| {
+        let args = [
+            ("center", Arg::Vector(center)),
+            ("radius", Arg::Real(radius)),
+            ("origin", Arg::Vector(origin)),
+            ("direction", Arg::Vector(direction)),
+        ];
+        check::calling("sphere_pdf_value", &args, || {
+            pdf(center, radius, origin, direction)
+        })
+    };
     let mut rng = check::seeded(121);
     let center = DVec3::new(1.0, -2.0, 0.5);
     for (what, origin) in [

@@ -1,13 +1,17 @@
-//! The statistical checks every exercise shares: a z-test against an exact answer, a chi-square
+//! The statistics every exercise's checks share: a z-test against an exact answer, a chi-square
+//! goodness-of-fit test that says where the samples went wrong, exact comparisons, the seeded
+//! generators, and the record of the call in progress that a panic report names.
 //!
-//! The checks of the exercise `crates/exercises/exercises/check.rs`, which states the task, and what
-//! that exercise is given.
+//! Numbers in messages are printed as a reader would write them ([`num`], [`sig`], [`count`]): 0.25
+//! and 19,000, not 2.5e-1 and 1.9e4; scientific notation only for the very small or very large.
 
 use glam::DVec3;
 use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use statrs::distribution::{ChiSquared, ContinuousCDF, Normal};
+use std::cell::Cell;
 use std::f64::consts::PI;
+use std::fmt;
 
 /// What a check returns: `Ok` or the reason it failed, naming the exercise and the case.
 pub type CheckResult = Result<(), String>;
@@ -67,6 +71,95 @@ pub fn mean_and_std_error(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
     (mean, (m2 / (n - 1.0) / n).sqrt())
 }
 
+/// `x` as a reader would write it: plainly from 1e-4 to 1e15 (0.25, 3.141592653589793, 100000),
+/// in scientific notation beyond (1e-300, 2.5e20), and 0, NaN, inf, -inf as such. The digits are the
+/// shortest that give `x` back, so no two different values print alike.
+///
+/// ```
+/// use rtl_exercises::check::num;
+/// assert_eq!(num(0.25), "0.25");
+/// assert_eq!(num(0.0), "0");
+/// assert_eq!(num(1e-300), "1e-300");
+/// ```
+pub fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `x` rounded to `digits` significant digits, plainly from 1e-4 to 1e15 (0.00519, 2.67),
+/// in scientific notation beyond (5.19e-12); trailing zeros are dropped (0.9, not 0.900).
+///
+/// ```
+/// use rtl_exercises::check::sig;
+/// assert_eq!(sig(0.005191234, 3), "0.00519");
+/// assert_eq!(sig(2.0 / 3.0, 4), "0.6667");
+/// assert_eq!(sig(1234.5, 2), "1200");
+/// ```
+pub fn sig(x: f64, digits: usize) -> String {
+    let digits = digits.max(1);
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let exponent = x.abs().log10().floor() as i32;
+    if (-4..15).contains(&exponent) {
+        let decimals = (digits as i32 - 1 - exponent).max(0) as usize;
+        let scale = 10f64.powi(exponent + 1 - digits as i32);
+        let rounded = if decimals == 0 {
+            (x / scale).round() * scale
+        } else {
+            x
+        };
+        trim_zeros(&format!("{rounded:.decimals$}"))
+    } else {
+        let text = format!("{x:.prec$e}", prec = digits - 1);
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        format!("{}e{exponent}", trim_zeros(mantissa))
+    }
+}
+
+/// "0.900" -> "0.9", "1.00" -> "1", "120" -> "120".
+fn trim_zeros(text: &str) -> String {
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text.to_string()
+    }
+}
+
+/// A p-value: 2 significant digits, or "< 1e-300" where it underflows to 0.
+fn p_value(p: f64) -> String {
+    if p == 0.0 {
+        "< 1e-300".to_string()
+    } else {
+        format!("= {}", sig(p, 2))
+    }
+}
+
+/// A count with thousands separators: 19,000.
+pub fn count(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// An expected count: whole (19,000) from 10 on, to one decimal below (2.5).
+fn expected_count(e: f64) -> String {
+    if e >= 10.0 {
+        count(e.round() as u64)
+    } else {
+        format!("{e:.1}")
+    }
+}
+
 /// z-test of `estimate` against the exact `truth`, given the estimate's standard error. A standard
 /// error of 0 (a zero-variance estimator) demands the truth to a relative `1e-12`.
 ///
@@ -78,12 +171,15 @@ pub fn mean_and_std_error(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
 pub fn z_test(what: &str, estimate: f64, std_error: f64, truth: f64) -> CheckResult {
     if !estimate.is_finite() {
         return Err(format!(
-            "{what}: the estimate is {estimate}, expected about {truth}"
+            "{what}: the estimate is {}, expected about {}",
+            num(estimate),
+            sig(truth, 6)
         ));
     }
     if !(std_error >= 0.0 && std_error.is_finite()) {
         return Err(format!(
-            "{what}: no usable standard error ({std_error}): fewer than two values?"
+            "{what}: no usable standard error ({}): fewer than two values?",
+            num(std_error)
         ));
     }
     if std_error == 0.0 {
@@ -94,7 +190,10 @@ pub fn z_test(what: &str, estimate: f64, std_error: f64, truth: f64) -> CheckRes
         Ok(())
     } else {
         Err(format!(
-            "{what}: estimate {estimate:.6} is {z:.1} standard errors ({std_error:.2e}) from the exact {truth:.6}"
+            "{what}: estimate {} is {z:.1} standard errors ({}) from the exact {}",
+            sig(estimate, 6),
+            sig(std_error, 3),
+            sig(truth, 6)
         ))
     }
 }
@@ -110,35 +209,186 @@ pub fn close(what: &str, got: f64, want: f64, rel: f64) -> CheckResult {
     let scale = if want == 0.0 { 1.0 } else { want.abs() };
     if got.is_finite() && (got - want).abs() <= rel * scale {
         Ok(())
+    } else if rel == 0.0 {
+        Err(format!(
+            "{what}: got {}, expected exactly {}",
+            num(got),
+            num(want)
+        ))
     } else {
         Err(format!(
-            "{what}: got {got:e}, expected {want:e} (relative tolerance {rel:e})"
+            "{what}: got {}, expected {} (to a relative {})",
+            num(got),
+            num(want),
+            num(rel)
         ))
     }
 }
 
-/// Chi-square goodness-of-fit test of `observed` counts against `expected` counts, cell by cell.
+/// A part of a sampler's domain made of chi-square cells, described in the learner's terms
+/// ("near the normal: cos theta in [0.9, 1]", "x in [0, 0.05)").
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    /// The cells it covers (indices into the observed and expected counts).
+    pub cells: Vec<usize>,
+    /// What it is, as the failure message names it.
+    pub name: String,
+}
+
+/// The cells of a chi-square test, seen as parts of the sampler's domain, so that a failure can say
+/// where the samples went wrong: each single cell, and groups of cells that a systematic mistake
+/// would affect together (rings of equal cos theta, sectors of equal azimuth).
+pub trait Cells {
+    /// Every region worth naming; the failure message names the one with the largest excess and
+    /// the one with the largest deficit, measured in standard deviations, (o - e) / sqrt(e).
+    fn regions(&self) -> Vec<Region>;
+    /// The name of cell `i` alone.
+    fn cell_name(&self, i: usize) -> String;
+}
+
+/// Cells that are intervals of a line: cell i is `[edges[i], edges[i + 1])` of the variable `var`.
+#[derive(Clone, Debug)]
+pub struct Intervals {
+    pub var: &'static str,
+    pub edges: Vec<f64>,
+}
+
+impl Intervals {
+    /// `n` equal intervals of [lo, hi].
+    pub fn equal(var: &'static str, lo: f64, hi: f64, n: usize) -> Self {
+        let edges = (0..=n)
+            .map(|i| lo + (hi - lo) * i as f64 / n as f64)
+            .collect();
+        Self { var, edges }
+    }
+}
+
+impl Cells for Intervals {
+    fn regions(&self) -> Vec<Region> {
+        (0..self.edges.len() - 1)
+            .map(|i| Region {
+                cells: vec![i],
+                name: format!("at {}", self.cell_name(i)),
+            })
+            .collect()
+    }
+    fn cell_name(&self, i: usize) -> String {
+        let close = if i + 2 == self.edges.len() { "]" } else { ")" };
+        format!(
+            "{} in [{}, {}{close}",
+            self.var,
+            sig(self.edges[i], 4),
+            sig(self.edges[i + 1], 4)
+        )
+    }
+}
+
+/// Why a chi-square test could not be computed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ChiSquareError {
+    /// `count` samples fell in `cell`, where the density (its expected count) is 0.
+    WhereTheDensityIsZero { cell: usize, count: u64 },
+    /// Fewer than 2 cells after pooling: no degrees of freedom.
+    NoDegreesOfFreedom,
+}
+
+impl fmt::Display for ChiSquareError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ChiSquareError::WhereTheDensityIsZero { cell, count } => write!(
+                f,
+                "{} samples fell in cell {cell}, where the density is 0",
+                self::count(*count)
+            ),
+            ChiSquareError::NoDegreesOfFreedom => write!(
+                f,
+                "fewer than 2 cells after pooling; the test has no degrees of freedom"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for ChiSquareError {}
+
+/// Chi-square goodness-of-fit test of `observed` counts against `expected` counts, cell by cell,
+/// `cells` saying what each cell is.
 ///
 /// A sample in a cell of expected count 0 fails at once. Cells of expected count < 5 are pooled
 /// (smallest first) until each pool reaches 5; a remainder joins the last pool. The p-value is
-/// `ChiSquared::new(cells - 1).sf(statistic)`, rejected below [`sidak_alpha`].
-pub fn chi_square(what: &str, observed: &[u64], expected: &[f64]) -> CheckResult {
-    let (statistic, dof, p) =
-        chi_square_p_value(observed, expected).map_err(|e| format!("{what}: {e}"))?;
+/// `ChiSquared::new(cells - 1).sf(statistic)`, rejected below [`sidak_alpha`]. A rejection names
+/// the region of `cells` with the largest excess of samples and the one with the largest deficit,
+/// each with its observed and expected count.
+pub fn chi_square(
+    what: &str,
+    observed: &[u64],
+    expected: &[f64],
+    cells: &dyn Cells,
+) -> CheckResult {
+    let (statistic, dof, p) = match chi_square_p_value(observed, expected) {
+        Ok(result) => result,
+        Err(ChiSquareError::WhereTheDensityIsZero { cell, count }) => {
+            return Err(format!(
+                "{what}: {} samples fell where the density is 0 ({})",
+                self::count(count),
+                cells.cell_name(cell)
+            ));
+        }
+        Err(e) => return Err(format!("{what}: {e}")),
+    };
     if p >= sidak_alpha() {
-        Ok(())
-    } else {
-        Err(format!(
-            "{what}: chi-square {statistic:.1} on {dof} degrees of freedom, p = {p:.2e} < {:.2e}: \
-             the samples do not follow the density",
-            sidak_alpha()
-        ))
+        return Ok(());
     }
+    let mut out = format!(
+        "{what}: the samples do not follow the density (chi-square {statistic:.1} on {dof} \
+         degrees of freedom, p {}, below the {} the test allows)",
+        p_value(p),
+        sig(sidak_alpha(), 2)
+    );
+    for line in where_the_samples_differ(observed, expected, cells) {
+        out += "\n";
+        out += &line;
+    }
+    Err(out)
+}
+
+/// "too many ..." and "too few ...": the regions of `cells` with the largest standardised excess
+/// and deficit of samples, (o - e) / sqrt(e), if beyond one standard deviation.
+fn where_the_samples_differ(observed: &[u64], expected: &[f64], cells: &dyn Cells) -> Vec<String> {
+    let mut most: Option<(f64, u64, f64, String)> = None;
+    let mut fewest: Option<(f64, u64, f64, String)> = None;
+    for region in cells.regions() {
+        let o: u64 = region.cells.iter().map(|&i| observed[i]).sum();
+        let e: f64 = region.cells.iter().map(|&i| expected[i]).sum();
+        if e <= 0.0 {
+            continue;
+        }
+        let r = (o as f64 - e) / e.sqrt();
+        if r > 1.0 && most.as_ref().is_none_or(|m| r > m.0) {
+            most = Some((r, o, e, region.name.clone()));
+        }
+        if r < -1.0 && fewest.as_ref().is_none_or(|m| r < m.0) {
+            fewest = Some((r, o, e, region.name));
+        }
+    }
+    let mut lines = Vec::new();
+    for (words, found) in [("too few", fewest), ("too many", most)] {
+        if let Some((_, o, e, name)) = found {
+            lines.push(format!(
+                "{words} {name}: {} samples, {} expected",
+                count(o),
+                expected_count(e)
+            ));
+        }
+    }
+    lines
 }
 
 /// The chi-square statistic, degrees of freedom and p-value of [`chi_square`], or why there is none
 /// (a sample where the density is 0, or no degrees of freedom).
-pub fn chi_square_p_value(observed: &[u64], expected: &[f64]) -> Result<(f64, f64, f64), String> {
+pub fn chi_square_p_value(
+    observed: &[u64],
+    expected: &[f64],
+) -> Result<(f64, f64, f64), ChiSquareError> {
     assert_eq!(
         observed.len(),
         expected.len(),
@@ -146,9 +396,7 @@ pub fn chi_square_p_value(observed: &[u64], expected: &[f64]) -> Result<(f64, f6
     );
     for (i, (&o, &e)) in observed.iter().zip(expected).enumerate() {
         if e == 0.0 && o > 0 {
-            return Err(format!(
-                "{o} samples fell in cell {i}, where the density is 0"
-            ));
+            return Err(ChiSquareError::WhereTheDensityIsZero { cell: i, count: o });
         }
     }
     let mut cells: Vec<(f64, f64)> = observed
@@ -178,9 +426,7 @@ pub fn chi_square_p_value(observed: &[u64], expected: &[f64]) -> Result<(f64, f6
         }
     }
     if pooled.len() < 2 {
-        return Err(
-            "fewer than 2 cells after pooling; the test has no degrees of freedom".to_string(),
-        );
+        return Err(ChiSquareError::NoDegreesOfFreedom);
     }
     let statistic: f64 = pooled.iter().map(|&(e, o)| (o - e) * (o - e) / e).sum();
     let dof = (pooled.len() - 1) as f64;
@@ -190,13 +436,15 @@ pub fn chi_square_p_value(observed: &[u64], expected: &[f64]) -> Result<(f64, f6
 
 /// Cells on the sphere of directions, or a zone of it, of equal area: `n_phi` equal steps of the
 /// azimuth phi in [0, 2 pi) times `n_z` equal steps of z = cos theta in [z_min, z_max]
-/// (solid angle d omega = d phi dz, so equal steps are equal areas).
+/// (solid angle d omega = d phi dz, so equal steps are equal areas). Cell `i_z * n_phi + i_phi`.
 #[derive(Clone, Copy, Debug)]
 pub struct SphereBins {
     pub n_phi: usize,
     pub n_z: usize,
     pub z_min: f64,
     pub z_max: f64,
+    /// What +z is to the learner ("the normal", "+z"), for the failure messages.
+    pub pole: &'static str,
 }
 
 impl SphereBins {
@@ -227,9 +475,16 @@ impl SphereBins {
             match self.cell(d) {
                 Some(i) => counts[i] += 1,
                 None => {
-                    return Err(format!(
-                        "{what}: generated direction {d} lies outside the zone sampled"
-                    ));
+                    let why = if !d.is_finite() {
+                        "is not finite".to_string()
+                    } else if d == DVec3::ZERO {
+                        "is the zero vector".to_string()
+                    } else if self.z_min == 0.0 && d.z < 0.0 {
+                        format!("lies below the horizon (cos theta = {})", sig(d.z, 3))
+                    } else {
+                        "lies outside the zone sampled".to_string()
+                    };
+                    return Err(format!("{what}: generated direction {d} {why}"));
                 }
             }
         }
@@ -278,6 +533,65 @@ impl SphereBins {
             }
         }
         out
+    }
+
+    /// Ring `i_z` in the learner's terms: "near the normal: cos theta in [0.9, 1]".
+    fn ring_name(&self, i_z: usize) -> String {
+        let (lo, hi) = self.z_range(i_z);
+        let range = format!("cos theta in [{}, {}]", sig(lo, 3), sig(hi, 3));
+        if hi >= 1.0 {
+            format!("near {}: {range}", self.pole)
+        } else if lo <= -1.0 {
+            format!("opposite {}: {range}", self.pole)
+        } else if self.z_min == 0.0 && lo == 0.0 {
+            format!("near the horizon: {range}")
+        } else {
+            format!("at {range}")
+        }
+    }
+
+    /// Sector `i_phi`: "phi in [0, 22.5) degrees".
+    fn sector_name(&self, i_phi: usize) -> String {
+        let step = 360.0 / self.n_phi as f64;
+        format!(
+            "phi in [{}, {}) degrees",
+            sig(i_phi as f64 * step, 4),
+            sig((i_phi + 1) as f64 * step, 4)
+        )
+    }
+}
+
+impl Cells for SphereBins {
+    /// The rings of equal cos theta, the sectors of equal azimuth, and the cells themselves.
+    fn regions(&self) -> Vec<Region> {
+        let mut out = Vec::with_capacity(self.n_z + self.n_phi + self.n_z * self.n_phi);
+        for i_z in 0..self.n_z {
+            out.push(Region {
+                cells: (0..self.n_phi)
+                    .map(|i_phi| i_z * self.n_phi + i_phi)
+                    .collect(),
+                name: self.ring_name(i_z),
+            });
+        }
+        for i_phi in 0..self.n_phi {
+            out.push(Region {
+                cells: (0..self.n_z).map(|i_z| i_z * self.n_phi + i_phi).collect(),
+                name: format!("at azimuth {}", self.sector_name(i_phi)),
+            });
+        }
+        out.extend((0..self.n_z * self.n_phi).map(|i| Region {
+            cells: vec![i],
+            name: self.cell_name(i),
+        }));
+        out
+    }
+
+    fn cell_name(&self, i: usize) -> String {
+        format!(
+            "{}, {}",
+            self.ring_name(i / self.n_phi),
+            self.sector_name(i % self.n_phi)
+        )
     }
 }
 
@@ -352,6 +666,93 @@ impl RngCore for ScriptedRng {
     }
 }
 
+/// An argument of a call to the learner's code, kept so that a panic report can name it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Arg {
+    Real(f64),
+    Vector(DVec3),
+    Count(usize),
+}
+
+impl fmt::Display for Arg {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Arg::Real(x) => f.write_str(&num(*x)),
+            Arg::Vector(v) => write!(f, "[{}, {}, {}]", num(v.x), num(v.y), num(v.z)),
+            Arg::Count(n) => write!(f, "{n}"),
+        }
+    }
+}
+
+impl From<f64> for Arg {
+    fn from(x: f64) -> Self {
+        Arg::Real(x)
+    }
+}
+
+impl From<DVec3> for Arg {
+    fn from(v: DVec3) -> Self {
+        Arg::Vector(v)
+    }
+}
+
+impl From<usize> for Arg {
+    fn from(n: usize) -> Self {
+        Arg::Count(n)
+    }
+}
+
+/// The most arguments a recorded call keeps.
+const MAX_ARGS: usize = 5;
+
+/// A call to the learner's code in progress: the function's name and its named arguments.
+#[derive(Clone, Copy)]
+struct Call {
+    function: &'static str,
+    args: [(&'static str, Arg); MAX_ARGS],
+    n_args: usize,
+}
+
+thread_local! {
+    static CALL: Cell<Option<Call>> = const { Cell::new(None) };
+}
+
+/// Calls `f`, which calls the learner's `function` with `args` (name, value), and records the call
+/// while it runs, so that a panic inside it is reported with the input that caused it
+/// ("while calling sample_linear(u = 0.5)"; see [`call_in_progress`]). Costs two stores of a
+/// thread-local: cheap enough for every sample of a chi-square test.
+pub fn calling<T>(
+    function: &'static str,
+    args: &[(&'static str, Arg)],
+    f: impl FnOnce() -> T,
+) -> T {
+    let mut call = Call {
+        function,
+        args: [("", Arg::Count(0)); MAX_ARGS],
+        n_args: args.len().min(MAX_ARGS),
+    };
+    call.args[..call.n_args].copy_from_slice(&args[..call.n_args]);
+    CALL.with(|c| c.set(Some(call)));
+    let out = f();
+    CALL.with(|c| c.set(None));
+    out
+}
+
+/// The recorded call in progress on this thread, as text ("sample_linear(u = 0.5)"), if any.
+pub fn call_in_progress() -> Option<String> {
+    let call = CALL.with(Cell::get)?;
+    let args: Vec<String> = call.args[..call.n_args]
+        .iter()
+        .map(|(name, value)| format!("{name} = {value}"))
+        .collect();
+    Some(format!("{}({})", call.function, args.join(", ")))
+}
+
+/// Forgets the recorded call (a panic skips the end of [`calling`]).
+pub fn forget_call() {
+    CALL.with(|c| c.set(None));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -382,25 +783,113 @@ mod tests {
             loaded[if r < 0.2 { 5 } else { rng.random_range(0..6) }] += 1;
         }
         let expected = vec![10_000.0; 6];
-        chi_square("fair die", &fair, &expected).unwrap();
-        assert!(chi_square("loaded die", &loaded, &expected).is_err());
+        let faces = Intervals::equal("the face", 0.5, 6.5, 6);
+        chi_square("fair die", &fair, &expected, &faces).unwrap();
+        let err = chi_square("loaded die", &loaded, &expected, &faces).unwrap_err();
+        // The message says where: face 6 too often, and one of the others too rarely.
+        assert!(
+            err.contains("too many at the face in [5.5, 6.5]: ")
+                && err.contains("too few at the face in ["),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn chi_square_says_which_ring_of_directions_has_too_few_and_too_many() {
+        // Uniform directions on the hemisphere tested against the cosine density: too few near the
+        // normal, too many near the horizon, each ring counted over its 16 sectors.
+        let bins = SphereBins {
+            n_phi: 16,
+            n_z: 10,
+            z_min: 0.0,
+            z_max: 1.0,
+            pole: "the normal",
+        };
+        let n = 100_000;
+        let mut rng = seeded(9);
+        let dirs = (0..n).map(|_| {
+            let d = uniform_direction(&mut rng);
+            DVec3::new(d.x, d.y, d.z.abs())
+        });
+        let observed = bins.histogram("uniform", dirs).unwrap();
+        let expected: Vec<f64> = (0..160)
+            .map(|c| {
+                let (lo, hi) = bins.z_range(c / 16);
+                n as f64 * (hi * hi - lo * lo) / 16.0
+            })
+            .collect();
+        let err = chi_square("uniform as cosine", &observed, &expected, &bins).unwrap_err();
+        assert!(
+            err.contains("\ntoo few near the normal: cos theta in [0.9, 1]: ")
+                && err.contains("19,000 expected"),
+            "{err}"
+        );
+        assert!(
+            err.contains("\ntoo many near the horizon: cos theta in [0, 0.1]: ")
+                && err.contains("1,000 expected"),
+            "{err}"
+        );
+        // A direction below the horizon is named as such.
+        let below = bins
+            .histogram("d", [DVec3::new(0.0, 0.6, -0.8)])
+            .unwrap_err();
+        assert!(below.contains("below the horizon"), "{below}");
+    }
+
+    #[test]
+    fn numbers_print_plainly_unless_very_small_or_large() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(0.25), "0.25");
+        assert_eq!(num(0.0625), "0.0625");
+        assert_eq!(num(-3.0), "-3");
+        assert_eq!(num(1e-9), "1e-9");
+        assert_eq!(num(2.5e20), "2.5e20");
+        assert_eq!(num(f64::NAN), "NaN");
+        assert_eq!(sig(0.00519, 3), "0.00519");
+        assert_eq!(sig(1.23456789, 6), "1.23457");
+        assert_eq!(sig(5.19e-12, 3), "5.19e-12");
+        assert_eq!(sig(0.9, 3), "0.9");
+        assert_eq!(sig(5e-12, 3), "5e-12");
+        assert_eq!(count(19_000), "19,000");
+        assert_eq!(count(999), "999");
+        assert_eq!(count(1_234_567), "1,234,567");
+        let err = close("f(1)", 0.25, 0.5, 1e-15).unwrap_err();
+        assert_eq!(err, "f(1): got 0.25, expected 0.5 (to a relative 1e-15)");
+        let err = close("f(0)", 1e-300, 0.0, 0.0).unwrap_err();
+        assert_eq!(err, "f(0): got 1e-300, expected exactly 0");
+    }
+
+    #[test]
+    fn a_recorded_call_is_named_while_it_runs_and_forgotten_after() {
+        let inside = calling(
+            "f",
+            &[("u", 0.5.into()), ("w", DVec3::Z.into())],
+            call_in_progress,
+        );
+        assert_eq!(inside.as_deref(), Some("f(u = 0.5, w = [0, 0, 1])"));
+        assert_eq!(call_in_progress(), None);
     }
 
     #[test]
     fn chi_square_fails_at_once_on_a_sample_outside_the_support() {
-        let err = chi_square("support", &[10, 10, 1], &[10.5, 10.5, 0.0]).unwrap_err();
-        assert!(err.contains("density is 0"), "{err}");
+        let cells = Intervals::equal("x", 0.0, 3.0, 3);
+        let err = chi_square("support", &[10, 10, 1], &[10.5, 10.5, 0.0], &cells).unwrap_err();
+        assert_eq!(
+            err,
+            "support: 1 samples fell where the density is 0 (x in [2, 3])"
+        );
     }
 
     #[test]
     fn chi_square_pools_small_cells() {
         // 40 cells of expected 0.5 pool into 4 cells of 5; all 20 samples in one of them is rejected.
         let expected = vec![0.5; 40];
+        let cells = Intervals::equal("x", 0.0, 1.0, 40);
         let mut observed = vec![0u64; 40];
         observed[0] = 20;
-        assert!(chi_square("pooled", &observed, &expected).is_err());
+        assert!(chi_square("pooled", &observed, &expected, &cells).is_err());
         let spread: Vec<u64> = (0..40).map(|i| u64::from(i % 2 == 0)).collect();
-        chi_square("pooled", &spread, &expected).unwrap();
+        chi_square("pooled", &spread, &expected, &cells).unwrap();
     }
 
     #[test]
@@ -410,6 +899,7 @@ mod tests {
             n_z: 5,
             z_min: -1.0,
             z_max: 1.0,
+            pole: "+z",
         };
         let e = bins.expected(1000, |_| 1.0 / (4.0 * PI), |_, _| true, 8);
         for x in &e {

@@ -1,7 +1,7 @@
 //! The program each exercise's test target runs (`harness = false`): it runs the exercise's checks
 //! one by one, catches a `todo!()` or any other panic of the learner's code, and prints one report.
 //!
-//! The report's first line is what `rtl exercises` reads:
+//! The report's first line is what the runner (`cargo exercises`, `rtl exercises`) reads:
 //!
 //! ```text
 //! ch02_estimate_pi: failing: 1/2 checks passed: estimate_pi with 1e5 points: estimate 0.785 is ...
@@ -55,7 +55,7 @@ pub enum State {
 }
 
 impl State {
-    /// The word `rtl exercises` reads: `done`, `failing`, `not started`.
+    /// The word the runner reads: `done`, `failing`, `not started`.
     pub fn word(self) -> &'static str {
         match self {
             State::Done => "done",
@@ -70,6 +70,7 @@ static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
 /// Runs one check, turning a panic into an [`Outcome`] instead of a harness's backtrace.
 pub fn run_check(check: &Check) -> Outcome {
     *LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    crate::check::forget_call();
     match panic::catch_unwind(AssertUnwindSafe(|| (check.run)())) {
         Ok(Ok(())) => Outcome::Pass,
         Ok(Err(why)) => Outcome::Fail(why),
@@ -87,7 +88,8 @@ pub fn run_check(check: &Check) -> Outcome {
     }
 }
 
-/// Records a panic's message and place (the learner's file and line) instead of printing it.
+/// Records a panic's message, its place (the learner's file and line) and, when the check recorded
+/// it (see [`crate::check::calling`]), the call and input that caused it, instead of printing it.
 fn quiet_panic_hook() {
     panic::set_hook(Box::new(|info| {
         let payload = info.payload();
@@ -96,15 +98,18 @@ fn quiet_panic_hook() {
             .cloned()
             .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
             .unwrap_or_else(|| "a panic".to_string());
+        let during = crate::check::call_in_progress()
+            .map(|call| format!(" in {call}"))
+            .unwrap_or_default();
         let text = match info.location() {
             Some(_) if msg.starts_with("not yet implemented") => msg,
             Some(l) => format!(
-                "your code panicked at {}:{}:{}: {msg}",
+                "your code panicked{during} at {}:{}:{}: {msg}",
                 l.file().replace("/tests/../", "/"),
                 l.line(),
                 l.column()
             ),
-            None => format!("your code panicked: {msg}"),
+            None => format!("your code panicked{during}: {msg}"),
         };
         *LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner()) = Some(text);
     }));
@@ -336,6 +341,18 @@ mod tests {
         let text = panics.render("z");
         assert!(text.contains("your code panicked at"), "{text}");
         assert!(text.contains("index out of bounds"), "{text}");
+        // A panic inside a recorded call names the input that caused it.
+        let with_input = Report::run(&[Check::new("p", || {
+            crate::check::calling("f", &[("u", 0.25.into())], || {
+                let v: Vec<u8> = Vec::new();
+                Err(format!("{}", v[v.len() + 3]))
+            })
+        })]);
+        let text = with_input.render("w");
+        assert!(
+            text.contains("your code panicked in f(u = 0.25) at "),
+            "{text}"
+        );
         // Back to the default hook, for the other tests.
         let _ = panic::take_hook();
     }

@@ -13,7 +13,7 @@
 //! - [`check`], the statistics the checks share;
 //! - [`harness`], the program each exercise's test target (`tests/chNN_*.rs`) runs.
 //!
-//! `rtl exercises list` (or the lighter `cargo exercises list`) shows every exercise's state;
+//! `cargo exercises list` (or `rtl exercises list`, the same) shows every exercise's state;
 //! `cargo test -p rtl-exercises --features solutions` checks the reference solutions in `solutions/`.
 
 pub mod check;

@@ -18,6 +18,6 @@ use rand::RngCore;
 use rtl_exercises::ch02_estimate_pi::*;
 
 rtl_exercises::exercise_main!("ch02_estimate_pi", e => {
-    "n = 0 gives None; an estimate is 4 k / n" => check_lattice(|n, rng: &mut dyn RngCore| e::estimate_pi(n, rng)),
+    "n = 0 gives None; an estimate is a count of points scaled by a constant" => check_lattice(|n, rng: &mut dyn RngCore| e::estimate_pi(n, rng)),
     "1e5 points: z-test against pi" => check_value(|n, rng: &mut dyn RngCore| e::estimate_pi(n, rng)),
 });

@@ -19,5 +19,5 @@ use rtl_exercises::ch08_onb::*;
 
 rtl_exercises::exercise_main!("ch08_onb", e => {
     "from_w: orthonormal and right-handed (axes, near -z, 1000 random w)" => check_basis(|w| { let b = e::Onb::from_w(w); Onb { u: b.u, v: b.v, w: b.w } }),
-    "transform: a.x u + a.y v + a.z w" => check_transform(|b: &Onb, a: DVec3| e::Onb { u: b.u, v: b.v, w: b.w }.transform(a)),
+    "transform: the axes and one more vector" => check_transform(|b: &Onb, a: DVec3| e::Onb { u: b.u, v: b.v, w: b.w }.transform(a)),
 });

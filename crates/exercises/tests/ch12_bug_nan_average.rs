@@ -17,6 +17,7 @@ mod stub;
 use rtl_exercises::ch12_bug_nan_average::*;
 
 rtl_exercises::exercise_main!("ch12_bug_nan_average", e => {
-    "one pixel with 3 NaN samples in 10^4 (z-test); empty pixels" => check_pixel(e::pixel_value),
+    "exact pixels: [1, NaN] is 1, several NaN or infinite samples, empty pixels" => check_exact(e::pixel_value),
+    "one pixel with 3 NaN samples in 10^4 (z-test)" => check_pixel(e::pixel_value),
     "400 pixels with NaN samples at a rate of 1/1000: none black" => check_image(e::pixel_value),
 });

@@ -3,13 +3,18 @@
 //! `cargo test --no-run -p rtl-exercises --test NAME ... --message-format=json` builds exactly the
 //! artifacts `cargo test -p rtl-exercises` would (the same profile), and names each test program and
 //! each compiler message's target. A target that does not compile is set aside and the others are
-//! built again, so that one broken exercise never stops another. Each test program is then run on
-//! its own, with a time limit.
+//! built again, so that one broken exercise never stops another. Building has no time limit (the
+//! first build compiles the dependencies, minutes on a slow machine). Then the test programs run
+//! under a time limit of their own ([`run_all`]), one after the other, except that one still running
+//! after [`PATIENCE`] is left to run to its limit beside the next: so several exercises that loop
+//! for ever cost one time limit together, not one each.
 
+use crate::Error;
 use std::collections::BTreeMap;
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// The workspace whose `crates/exercises` the runner works on.
@@ -21,7 +26,7 @@ pub struct Workspace {
 impl Workspace {
     /// `RTL_EXERCISES_ROOT` if set, else the nearest directory at or above the current one that holds
     /// `crates/exercises/info.toml`.
-    pub fn find() -> Result<Self, String> {
+    pub fn find() -> Result<Self, Error> {
         if let Some(root) = std::env::var_os("RTL_EXERCISES_ROOT") {
             let ws = Self {
                 root: PathBuf::from(root),
@@ -29,13 +34,14 @@ impl Workspace {
             return if ws.info().is_file() {
                 Ok(ws)
             } else {
-                Err(format!(
+                Err(Error::Failed(format!(
                     "RTL_EXERCISES_ROOT={}: no crates/exercises/info.toml there",
                     ws.root.display()
-                ))
+                )))
             };
         }
-        let cwd = std::env::current_dir().map_err(|e| format!("current directory: {e}"))?;
+        let cwd = std::env::current_dir()
+            .map_err(|e| Error::Failed(format!("current directory: {e}")))?;
         for dir in cwd.ancestors() {
             if dir.join("crates/exercises/info.toml").is_file() {
                 return Ok(Self {
@@ -43,10 +49,10 @@ impl Workspace {
                 });
             }
         }
-        Err(format!(
+        Err(Error::Failed(format!(
             "no crates/exercises/info.toml in {} or above it: run this inside the rtl workspace",
             cwd.display()
-        ))
+        )))
     }
 
     pub fn crate_dir(&self) -> PathBuf {
@@ -87,8 +93,16 @@ impl Workspace {
 pub struct Built {
     /// The test program, or `None` when the target does not compile.
     pub exe: Option<PathBuf>,
-    /// The compiler's errors and warnings for this target, as rendered for a terminal.
+    /// The compiler's errors and warnings for this target, as rendered for a terminal, with the
+    /// learner's file named by its own path (see [`plain_paths`]).
     pub diagnostics: String,
+}
+
+/// The compiler names the learner's file as the test target includes it,
+/// `crates/exercises/tests/../exercises/ch02_x.rs`; this names it as the learner knows it,
+/// `crates/exercises/exercises/ch02_x.rs`.
+pub fn plain_paths(rendered: &str) -> String {
+    rendered.replace("/tests/../", "/")
 }
 
 fn cargo() -> Command {
@@ -101,7 +115,7 @@ pub fn build(
     ws: &Workspace,
     names: &[String],
     progress: &mut dyn FnMut(&str),
-) -> Result<BTreeMap<String, Built>, String> {
+) -> Result<BTreeMap<String, Built>, Error> {
     let mut done: BTreeMap<String, Built> = BTreeMap::new();
     let mut pending: Vec<String> = names.to_vec();
     while !pending.is_empty() {
@@ -124,7 +138,7 @@ pub fn build(
         }
         let mut child = cmd
             .spawn()
-            .map_err(|e| format!("could not run cargo: {e}"))?;
+            .map_err(|e| Error::Failed(format!("could not run cargo: {e}")))?;
         let stderr = child.stderr.take().expect("piped");
         let err_thread = std::thread::spawn(move || {
             let mut lines = Vec::new();
@@ -155,25 +169,27 @@ pub fn build(
                 Some("compiler-artifact") if msg["fresh"] == false => progress(&target),
                 Some("compiler-message") => {
                     let level = msg["message"]["level"].as_str().unwrap_or("");
-                    let rendered = msg["message"]["rendered"].as_str().unwrap_or("");
+                    let rendered = plain_paths(msg["message"]["rendered"].as_str().unwrap_or(""));
                     if is_test {
                         if level == "error" && !failed.contains(&target) {
                             failed.push(target.clone());
                         }
-                        diags.entry(target).or_default().push_str(rendered);
+                        diags.entry(target).or_default().push_str(&rendered);
                     } else if level == "error" {
-                        lib_errors.push_str(rendered);
+                        lib_errors.push_str(&rendered);
                     }
                 }
                 _ => {}
             }
         }
-        let status = child.wait().map_err(|e| format!("cargo: {e}"))?;
+        let status = child
+            .wait()
+            .map_err(|e| Error::Failed(format!("cargo: {e}")))?;
         let stderr_lines = err_thread.join().unwrap_or_default();
         if !lib_errors.is_empty() {
-            return Err(format!(
+            return Err(Error::Failed(format!(
                 "the exercises' checkers (crates/exercises/src) do not compile:\n{lib_errors}"
-            ));
+            )));
         }
         let before = done.len();
         for n in &pending {
@@ -201,76 +217,185 @@ pub fn build(
                 .iter()
                 .filter(|l| l.starts_with("error"))
                 .collect();
-            return Err(format!(
+            return Err(Error::Failed(format!(
                 "cargo could not build {}: {}",
                 pending.join(", "),
                 tail.iter()
                     .map(|s| s.as_str())
                     .collect::<Vec<_>>()
                     .join("; ")
-            ));
+            )));
         }
     }
     Ok(done)
 }
 
 /// What a test program printed, or why it gave nothing.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Ran {
     /// Its standard output and whether it exited 0.
-    Output {
-        stdout: String,
-        passed: bool,
-    },
+    Output { stdout: String, passed: bool },
+    /// Still running at the time limit, and stopped.
     TimedOut(Duration),
     /// It died without a report (a stack overflow, an abort): its standard error.
     Crashed(String),
 }
 
-/// Runs the test program `exe` with a time limit.
-pub fn run(ws: &Workspace, exe: &Path, limit: Duration) -> Result<Ran, String> {
-    let mut child = Command::new(exe)
-        .current_dir(&ws.root)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("could not run {}: {e}", exe.display()))?;
-    let mut out = child.stdout.take().expect("piped");
-    let mut err = child.stderr.take().expect("piped");
-    let out_thread = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = out.read_to_string(&mut s);
-        s
-    });
-    let err_thread = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = err.read_to_string(&mut s);
-        s
-    });
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
-            break status;
-        }
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Ok(Ran::TimedOut(limit));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    let stdout = out_thread.join().unwrap_or_default();
-    let stderr = err_thread.join().unwrap_or_default();
-    if status.code().is_none() || stdout.trim().is_empty() {
-        return Ok(Ran::Crashed(if stderr.trim().is_empty() {
-            format!("exited with {status} and no report")
-        } else {
-            stderr.trim().to_string()
-        }));
+/// How long a test program runs alone before the next one starts beside it. Every honest check
+/// finishes well within it (the slowest exercise's checks take about 0.1 s here), so in the usual
+/// case the programs run one at a time, and only one that runs long shares the processor.
+pub const PATIENCE: Duration = Duration::from_secs(1);
+
+/// How often a long run is reported as still running.
+pub const NOTICE_EVERY: Duration = Duration::from_secs(2);
+
+/// A test program running, with the threads that read its output.
+struct Running {
+    index: usize,
+    child: Child,
+    started: Instant,
+    stdout: Option<JoinHandle<String>>,
+    stderr: Option<JoinHandle<String>>,
+}
+
+impl Running {
+    fn start(ws: &Workspace, index: usize, exe: &Path) -> Result<Self, Error> {
+        let mut child = Command::new(exe)
+            .current_dir(&ws.root)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| Error::Failed(format!("could not run {}: {e}", exe.display())))?;
+        let read = |mut from: Box<dyn Read + Send>| {
+            std::thread::spawn(move || {
+                let mut s = String::new();
+                let _ = from.read_to_string(&mut s);
+                s
+            })
+        };
+        let stdout = child.stdout.take().map(|o| read(Box::new(o)));
+        let stderr = child.stderr.take().map(|e| read(Box::new(e)));
+        Ok(Self {
+            index,
+            child,
+            started: Instant::now(),
+            stdout,
+            stderr,
+        })
     }
-    Ok(Ran::Output {
-        stdout,
-        passed: status.success(),
-    })
+
+    /// Its report, once it has exited with `status`.
+    fn finish(&mut self, status: ExitStatus) -> Ran {
+        let stdout = self
+            .stdout
+            .take()
+            .and_then(|t| t.join().ok())
+            .unwrap_or_default();
+        let stderr = self
+            .stderr
+            .take()
+            .and_then(|t| t.join().ok())
+            .unwrap_or_default();
+        if status.code().is_none() || stdout.trim().is_empty() {
+            return Ran::Crashed(if stderr.trim().is_empty() {
+                format!("exited with {status} and no report")
+            } else {
+                stderr.trim().to_string()
+            });
+        }
+        Ran::Output {
+            stdout,
+            passed: status.success(),
+        }
+    }
+
+    /// Stops it at the time limit.
+    fn stop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+        // The pipes close with the process: the readers end.
+        for t in [self.stdout.take(), self.stderr.take()]
+            .into_iter()
+            .flatten()
+        {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for Running {
+    /// A program left behind (the runner gave up with an error) does not outlive the runner.
+    fn drop(&mut self) {
+        if self.stdout.is_some() || self.stderr.is_some() {
+            self.stop();
+        }
+    }
+}
+
+/// Runs each test program of `programs` (name, executable) and returns what each gave, in order.
+///
+/// Each has `limit` to finish (then it is stopped: [`Ran::TimedOut`]). They start one after the
+/// other; one still running after [`PATIENCE`] keeps running to its own limit while the next
+/// starts, so `k` programs that loop for ever take about `limit + k PATIENCE`, not `k limit`.
+/// While a program has been running longer than [`NOTICE_EVERY`], `still_running` is told, every
+/// [`NOTICE_EVERY`], which ones and for how long the oldest has run.
+pub fn run_all(
+    ws: &Workspace,
+    programs: &[(String, PathBuf)],
+    limit: Duration,
+    still_running: &mut dyn FnMut(&[&str], Duration),
+) -> Result<Vec<Ran>, Error> {
+    let mut results: Vec<Option<Ran>> = vec![None; programs.len()];
+    let mut running: Vec<Running> = Vec::new();
+    let mut next = 0;
+    let mut last_notice: Option<Instant> = None;
+    loop {
+        let mut i = 0;
+        while i < running.len() {
+            let r = &mut running[i];
+            let exited = r
+                .child
+                .try_wait()
+                .map_err(|e| Error::Failed(format!("{}: {e}", programs[r.index].0)))?;
+            if let Some(status) = exited {
+                results[r.index] = Some(r.finish(status));
+                running.swap_remove(i);
+            } else if r.started.elapsed() > limit {
+                r.stop();
+                results[r.index] = Some(Ran::TimedOut(limit));
+                running.swap_remove(i);
+            } else {
+                i += 1;
+            }
+        }
+        if next < programs.len() && running.iter().all(|r| r.started.elapsed() >= PATIENCE) {
+            running.push(Running::start(ws, next, &programs[next].1)?);
+            next += 1;
+            continue;
+        }
+        if next == programs.len() && running.is_empty() {
+            break;
+        }
+        let long: Vec<&Running> = running
+            .iter()
+            .filter(|r| r.started.elapsed() >= NOTICE_EVERY)
+            .collect();
+        if !long.is_empty() && last_notice.is_none_or(|t| t.elapsed() >= NOTICE_EVERY) {
+            let mut names: Vec<&str> = long.iter().map(|r| programs[r.index].0.as_str()).collect();
+            names.sort_unstable();
+            let oldest = long
+                .iter()
+                .map(|r| r.started.elapsed())
+                .max()
+                .unwrap_or_default();
+            still_running(&names, oldest);
+            last_notice = Some(Instant::now());
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    Ok(results
+        .into_iter()
+        .map(|r| r.expect("every program ran"))
+        .collect())
 }

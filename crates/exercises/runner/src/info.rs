@@ -1,5 +1,5 @@
-//! `crates/exercises/info.toml`: every exercise, in the book's order, with its chapter, its kind and
-//! its hints.
+//! `crates/exercises/info.toml`: every exercise, in the book's order, with its chapter, the section
+//! of the book that explains it, its kind and its hints.
 
 use std::fmt;
 use std::path::Path;
@@ -18,10 +18,15 @@ pub enum Kind {
 pub struct Exercise {
     /// `chNN_name`: the file `exercises/<name>.rs` and the test target `<name>`.
     pub name: String,
-    /// Chapter and section of the book that explain it.
+    /// The page of the book whose Exercises section holds it: "N Title", e.g.
+    /// "12 Cleaning Up PDF Management".
     pub chapter: String,
+    /// The section of the book that explains it: "M Heading", e.g.
+    /// "9 A sphere light: the cone it subtends" (M may differ from N).
+    pub section: String,
     pub kind: Kind,
-    /// Hints, from a nudge to the last step; none gives the answer away.
+    /// Hints, from a nudge to the last step, which gives the formulas the stub leaves out; none is
+    /// a line of the reference solution.
     pub hints: Vec<String>,
 }
 
@@ -86,6 +91,19 @@ pub fn parse(text: &str) -> Result<Vec<Exercise>, InfoError> {
             )));
         }
         let chapter = text_field("chapter")?;
+        let section = text_field("section")?;
+        for (field, value) in [("chapter", &chapter), ("section", &section)] {
+            let numbered = value
+                .split_once(' ')
+                .is_some_and(|(n, rest)| n.parse::<u32>().is_ok() && !rest.trim().is_empty());
+            if !numbered {
+                return Err(InfoError(format!(
+                    "field `{}`: `{value}` is not of the form \"N Title\" (a chapter number, then \
+                     the heading)",
+                    at(field)
+                )));
+            }
+        }
         let kind = match text_field("kind")?.as_str() {
             "write" => Kind::Write,
             "bug" => Kind::Bug,
@@ -114,11 +132,40 @@ pub fn parse(text: &str) -> Result<Vec<Exercise>, InfoError> {
         out.push(Exercise {
             name,
             chapter,
+            section,
             kind,
             hints,
         });
     }
     Ok(out)
+}
+
+impl Exercise {
+    /// The chapter's number: the N of "N Title".
+    pub fn chapter_number(&self) -> &str {
+        self.chapter.split_once(' ').map_or("", |(n, _)| n)
+    }
+
+    /// The section that explains it, in words: chapter 9, section "A sphere light: the cone it
+    /// subtends".
+    pub fn section_words(&self) -> String {
+        match self.section.split_once(' ') {
+            Some((n, heading)) => format!("chapter {n}, section \"{heading}\""),
+            None => self.section.clone(),
+        }
+    }
+
+    /// Where the book explains it, for a heading: "2 A Simple Monte Carlo Program: Estimating π", or
+    /// "12 Cleaning Up PDF Management (explained in 9 A sphere light: the cone it subtends)" when
+    /// the section is in another chapter.
+    pub fn label(&self) -> String {
+        match self.section.split_once(' ') {
+            Some((n, heading)) if n == self.chapter_number() => {
+                format!("{}: {heading}", self.chapter)
+            }
+            _ => format!("{} (explained in {})", self.chapter, self.section),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -127,10 +174,20 @@ mod tests {
 
     #[test]
     fn parses_and_names_the_field_of_a_mistake() {
-        let ok = "[[exercise]]\nname = \"ch02_a\"\nchapter = \"2 X\"\nkind = \"bug\"\nhints = [\"a\", \"b\"]\n";
+        let ok = "[[exercise]]\nname = \"ch02_a\"\nchapter = \"2 X\"\nsection = \"2 Y\"\nkind = \"bug\"\nhints = [\"a\", \"b\"]\n";
         let e = parse(ok).unwrap();
         assert_eq!(e[0].kind, Kind::Bug);
         assert_eq!(e[0].hints, ["a", "b"]);
+        assert_eq!(e[0].label(), "2 X: Y");
+        assert_eq!(e[0].section_words(), "chapter 2, section \"Y\"");
+        let elsewhere = parse(&ok.replace("\"2 Y\"", "\"9 Z\"")).unwrap();
+        assert_eq!(elsewhere[0].label(), "2 X (explained in 9 Z)");
+        let no_number = ok.replace("\"2 Y\"", "\"Y\"");
+        let err = parse(&no_number).unwrap_err().0;
+        assert!(
+            err.contains("exercise[0].section") && err.contains("N Title"),
+            "{err}"
+        );
         let one_hint = ok.replace("[\"a\", \"b\"]", "[\"a\"]");
         let err = parse(&one_hint).unwrap_err().0;
         assert!(err.contains("exercise[0].hints"), "{err}");

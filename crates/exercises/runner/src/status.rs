@@ -1,6 +1,7 @@
 //! The state of one exercise, from its test program's report (see `rtl_exercises::harness`).
 
-use crate::cargo::{self, Built, Ran, Workspace};
+use crate::Error;
+use crate::cargo::{Ran, Workspace};
 use crate::info::{Exercise, Kind};
 use std::time::Duration;
 
@@ -29,21 +30,39 @@ pub enum Status {
     Crashed(String),
 }
 
-/// How long one exercise's checks may run (`RTL_EXERCISES_TIMEOUT` seconds, default 120).
-pub fn time_limit() -> Duration {
-    let secs = std::env::var("RTL_EXERCISES_TIMEOUT")
-        .ok()
-        .and_then(|s| s.parse::<u64>().ok())
-        .unwrap_or(120);
-    Duration::from_secs(secs)
+/// The default time limit of one exercise's checks: 10 s. Every honest check finishes well under
+/// a second in the test profile (the slowest exercise, with its stub checked too, takes about 0.1 s
+/// on this project's 2-core machine), so 10 s leaves a wide margin for a loaded machine, while a
+/// loop for ever in a learner's code is reported after 10 s rather than minutes.
+/// `RTL_EXERCISES_TIMEOUT` (seconds) changes it.
+pub const DEFAULT_TIME_LIMIT: Duration = Duration::from_secs(10);
+
+/// How long one exercise's checks may run: `RTL_EXERCISES_TIMEOUT` seconds (a positive number,
+/// e.g. 30 or 2.5), else [`DEFAULT_TIME_LIMIT`]. Building has no time limit.
+pub fn time_limit() -> Result<Duration, Error> {
+    parse_time_limit(std::env::var("RTL_EXERCISES_TIMEOUT").ok().as_deref())
 }
 
-/// Runs the built exercise `e` and reads its report.
-pub fn of(ws: &Workspace, e: &Exercise, built: &Built) -> Result<Status, String> {
-    let Some(exe) = &built.exe else {
-        return Ok(Status::DoesNotCompile(built.diagnostics.clone()));
+/// The time limit that `RTL_EXERCISES_TIMEOUT=value` sets (`None`: unset, the default).
+pub fn parse_time_limit(value: Option<&str>) -> Result<Duration, Error> {
+    let Some(value) = value else {
+        return Ok(DEFAULT_TIME_LIMIT);
     };
-    match cargo::run(ws, exe, time_limit())? {
+    match value.trim().parse::<f64>() {
+        Ok(secs) if secs > 0.0 && secs.is_finite() && secs < 1e9 => {
+            Ok(Duration::from_secs_f64(secs))
+        }
+        _ => Err(Error::Failed(format!(
+            "RTL_EXERCISES_TIMEOUT={value}: expected a number of seconds greater than 0, e.g. 30 \
+             (unset, the checks of an exercise may run {} s)",
+            DEFAULT_TIME_LIMIT.as_secs()
+        ))),
+    }
+}
+
+/// The state of `e` from what its test program gave.
+pub fn from_run(e: &Exercise, ran: Ran) -> Result<Status, Error> {
+    match ran {
         Ran::TimedOut(d) => Ok(Status::TimedOut(d)),
         Ran::Crashed(why) => Ok(Status::Crashed(why)),
         Ran::Output { stdout, .. } => parse(&e.name, &stdout),
@@ -51,10 +70,14 @@ pub fn of(ws: &Workspace, e: &Exercise, built: &Built) -> Result<Status, String>
 }
 
 /// Parses a report: `NAME: STATE: K/M checks passed[: WHY]`, then the checks' lines.
-pub fn parse(name: &str, report: &str) -> Result<Status, String> {
+pub fn parse(name: &str, report: &str) -> Result<Status, Error> {
     let (first, details) = report.split_once('\n').unwrap_or((report, ""));
     let details = details.to_string();
-    let bad = || format!("{name}: unreadable report from its test program: {first}");
+    let bad = || {
+        Error::Failed(format!(
+            "{name}: unreadable report from its test program: {first}"
+        ))
+    };
     let rest = first
         .strip_prefix(name)
         .and_then(|r| r.strip_prefix(": "))
@@ -80,6 +103,18 @@ pub fn parse(name: &str, report: &str) -> Result<Status, String> {
     })
 }
 
+/// Cuts `text` to at most `width` characters, with "..." where it was cut.
+pub fn cut(text: &str, width: usize) -> String {
+    if text.chars().count() <= width {
+        text.to_string()
+    } else {
+        text.chars()
+            .take(width.saturating_sub(3))
+            .collect::<String>()
+            + "..."
+    }
+}
+
 impl Status {
     pub fn is_done(&self) -> bool {
         matches!(self, Status::Done { .. })
@@ -95,43 +130,64 @@ impl Status {
         }
     }
 
-    /// The state in one line, for `list`.
-    pub fn one_line(&self) -> String {
+    /// The state in a few words, for `list`'s column: "done", "failing 1/3", "not started",
+    /// "does not compile", "timed out", "crashed".
+    pub fn word(&self) -> String {
         match self {
             Status::Done { .. } => "done".to_string(),
             Status::NotStarted { .. } => "not started".to_string(),
-            Status::Failing {
-                passed, total, why, ..
-            } => {
-                let mut why = why.clone();
-                if why.chars().count() > 110 {
-                    why = why.chars().take(107).collect::<String>() + "...";
-                }
-                format!("failing ({passed}/{total} checks): {why}")
-            }
-            Status::DoesNotCompile(diags) => {
-                let first = diags
+            Status::Failing { passed, total, .. } => format!("failing {passed}/{total}"),
+            Status::DoesNotCompile(_) => "does not compile".to_string(),
+            Status::TimedOut(_) => "timed out".to_string(),
+            Status::Crashed(_) => "crashed".to_string(),
+        }
+    }
+
+    /// Why it is not done, in one line (none when done or not started).
+    pub fn why(&self) -> Option<String> {
+        match self {
+            Status::Done { .. } | Status::NotStarted { .. } => None,
+            Status::Failing { why, .. } => Some(why.clone()),
+            Status::DoesNotCompile(diags) => Some(
+                diags
                     .lines()
                     .find(|l| l.starts_with("error"))
-                    .unwrap_or("error");
-                format!("does not compile: {first}")
+                    .unwrap_or("error")
+                    .to_string(),
+            ),
+            Status::TimedOut(d) => Some(format!(
+                "the checks did not finish in {}: does the code loop for ever?",
+                seconds(*d)
+            )),
+            Status::Crashed(why) => Some(why.lines().last().unwrap_or("no report").to_string()),
+        }
+    }
+
+    /// The state in one line: "failing (1/3 checks): WHY".
+    pub fn one_line(&self) -> String {
+        match self {
+            Status::Failing {
+                passed, total, why, ..
+            } => format!("failing ({passed}/{total} checks): {}", cut(why, 110)),
+            Status::DoesNotCompile(_) => {
+                format!("does not compile: {}", self.why().unwrap_or_default())
             }
-            Status::TimedOut(d) => format!("timed out after {} s", d.as_secs()),
-            Status::Crashed(why) => {
-                format!("crashed: {}", why.lines().last().unwrap_or("no report"))
-            }
+            Status::TimedOut(d) => format!("timed out after {}", seconds(*d)),
+            Status::Crashed(_) => format!("crashed: {}", self.why().unwrap_or_default()),
+            _ => self.word(),
         }
     }
 
     /// The full account for `check`: the state, the learner's function, what each check saw.
-    pub fn explain(&self, ws: &Workspace, e: &Exercise) -> String {
+    /// `cmd` is how the learner runs the runner ("cargo exercises" or "rtl exercises").
+    pub fn explain(&self, ws: &Workspace, e: &Exercise, cmd: &str) -> String {
         let file = ws.exercise_file(&e.name);
-        let mut out = format!("{} ({}): {}\n", e.name, e.chapter, self.one_line());
+        let mut out = format!("{} ({}): {}\n", e.name, e.label(), self.one_line());
         match self {
             Status::Done { details, .. } => {
                 out += details;
                 out += &format!(
-                    "\n{} passes. `rtl exercises solution {}` shows the reference solution, to compare.\n",
+                    "\n{} passes. `{cmd} solution {}` shows the reference solution, to compare.\n",
                     e.name, e.name
                 );
                 return out;
@@ -142,9 +198,9 @@ impl Status {
             }
             Status::TimedOut(d) => {
                 out += &format!(
-                    "\nthe checks did not finish in {} s: does your code loop for ever? \
-                     (RTL_EXERCISES_TIMEOUT=secs sets the limit)\n",
-                    d.as_secs()
+                    "\nthe checks did not finish in {}: does your code loop for ever? \
+                     (RTL_EXERCISES_TIMEOUT=SECONDS sets the limit)\n",
+                    seconds(*d)
                 );
             }
             Status::Crashed(why) => out += &format!("\nthe checks' program died:\n{why}\n"),
@@ -161,10 +217,22 @@ impl Status {
             "stuck"
         };
         out += &format!(
-            "\n{what}? `rtl exercises hint {}` (one level at a time: --level 2, ...)\n",
+            "\nthe book explains it in {}; {what}? `{cmd} hint {}` (one level at a time: \
+             --level 2, ...)\n",
+            e.section_words(),
             e.name
         );
         out
+    }
+}
+
+/// A duration in seconds as a reader would write it: "10 s", "2.5 s".
+pub fn seconds(d: Duration) -> String {
+    let s = d.as_secs_f64();
+    if s.fract() == 0.0 {
+        format!("{s} s")
+    } else {
+        format!("{s:.1} s")
     }
 }
 
@@ -216,6 +284,7 @@ mod tests {
             "{}",
             f.one_line()
         );
+        assert_eq!(f.word(), "failing 1/2");
         assert!(
             parse("ch02_x", "ch02_x: done: 2/2 checks passed\n")
                 .unwrap()
@@ -229,5 +298,23 @@ mod tests {
         );
         assert!(parse("ch02_x", "thread main panicked").is_err());
         assert!(parse("ch02_x", "ch02_y: done: 2/2 checks passed").is_err());
+    }
+
+    #[test]
+    fn the_time_limit_is_10_s_unless_set_and_a_bad_value_is_named() {
+        assert_eq!(parse_time_limit(None).unwrap(), Duration::from_secs(10));
+        assert_eq!(
+            parse_time_limit(Some("2.5")).unwrap(),
+            Duration::from_millis(2500)
+        );
+        for bad in ["abc", "0", "-3", "", "inf", "NaN"] {
+            let err = parse_time_limit(Some(bad)).unwrap_err().to_string();
+            assert!(
+                err.starts_with(&format!("RTL_EXERCISES_TIMEOUT={bad}: expected a number")),
+                "{err}"
+            );
+        }
+        assert_eq!(seconds(Duration::from_secs(10)), "10 s");
+        assert_eq!(seconds(Duration::from_millis(2500)), "2.5 s");
     }
 }

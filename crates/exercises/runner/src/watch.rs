@@ -1,11 +1,16 @@
-//! `watch`: checks the current exercise whenever its file is saved, redraws the screen, and moves on
-//! to the next exercise when it passes. Keys: `h` shows the next hint, `q` quits (on a terminal the
-//! keys act at once; from a pipe, one per line).
+//! `watch [NAME]`: checks the current exercise (the first not done, or NAME) whenever its file is
+//! saved, redraws the screen, and moves on to the next exercise when it passes. Keys: `h` shows the
+//! next hint, `q` quits (on a terminal the keys act at once; from a pipe, one per line).
+//!
+//! A save is never lost: the file's stamp is read *before* each check, and a save made while the
+//! check ran (the stamp differs after it) checks again at once ([`check_until_unchanged`]). While a
+//! check runs, a line "checking NAME ..." says so; the result replaces it.
 
-use crate::Context;
 use crate::info::Exercise;
 use crate::status::Status;
-use std::io::{IsTerminal, Read, Write};
+use crate::{Context, Error, say, sayln};
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::io::{IsTerminal, Read};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
@@ -65,13 +70,69 @@ fn keys() -> Receiver<u8> {
     rx
 }
 
-/// What identifies a save: modification time and length.
-fn stamp(path: &Path) -> Option<(SystemTime, u64)> {
-    let m = std::fs::metadata(path).ok()?;
-    Some((m.modified().ok()?, m.len()))
+/// What identifies a save: modification time, length, and a hash of the contents (so that two saves
+/// within the file system's time resolution are still told apart).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Stamp(Option<(SystemTime, u64, u64)>);
+
+/// The stamp of `path` now (`Stamp(None)` if it cannot be read).
+pub fn stamp(path: &Path) -> Stamp {
+    let read = || {
+        let m = std::fs::metadata(path).ok()?;
+        let mut h = DefaultHasher::new();
+        std::fs::read(path).ok()?.hash(&mut h);
+        Some((m.modified().ok()?, m.len(), h.finish()))
+    };
+    Stamp(read())
 }
 
-fn redraw(ctx: &Context, e: &Exercise, s: &Status, done: usize, banner: &str, hint: usize) {
+/// Runs `check` until the file did not change while it ran: reads `stamp` *before* the check and
+/// again after it; if they differ (the learner saved during the check), checks again at once.
+/// Returns the last result and the stamp it is for: the next save is a change from that stamp, so
+/// none is lost. `check` is given the round, 0 for the first check, 1 for the first re-check, ...
+pub fn check_until_unchanged<S: PartialEq, T, E>(
+    mut stamp: impl FnMut() -> S,
+    mut check: impl FnMut(usize) -> Result<T, E>,
+) -> Result<(T, S), E> {
+    let mut round = 0;
+    loop {
+        let before = stamp();
+        let result = check(round)?;
+        if stamp() == before {
+            return Ok((result, before));
+        }
+        round += 1;
+    }
+}
+
+/// Checks `e` as [`check_until_unchanged`] does, saying "checking NAME ..." while it runs.
+fn check_now(ctx: &Context, e: &Exercise) -> Result<(Status, Stamp), Error> {
+    let file = ctx.ws.exercise_file(&e.name);
+    check_until_unchanged(
+        || stamp(&file),
+        |round| {
+            if round == 0 {
+                sayln!("\nchecking {} ...", e.name)?;
+            } else {
+                sayln!(
+                    "{} changed during the check: checking {} again ...",
+                    ctx.ws.show(&file),
+                    e.name
+                )?;
+            }
+            Ok(ctx.statuses(&[e])?.remove(0))
+        },
+    )
+}
+
+fn redraw(
+    ctx: &Context,
+    e: &Exercise,
+    s: &Status,
+    done: usize,
+    banner: &str,
+    hint: usize,
+) -> Result<(), Error> {
     let mut out = String::new();
     if std::io::stdout().is_terminal() {
         out += "\x1b[2J\x1b[H";
@@ -83,12 +144,13 @@ fn redraw(ctx: &Context, e: &Exercise, s: &Status, done: usize, banner: &str, hi
         out += "\n\n";
     }
     out += &format!(
-        "rtl exercises watch: {done}/{} done; checking {} on every save of {}\n\n",
+        "{} watch: {done}/{} done; checking {} on every save of {}\n\n",
+        ctx.cmd(),
         ctx.exercises.len(),
         e.name,
         ctx.ws.show(&ctx.ws.exercise_file(&e.name))
     );
-    out += &s.explain(&ctx.ws, e);
+    out += &s.explain(&ctx.ws, e, ctx.cmd());
     if hint > 0 {
         out += &format!(
             "\nhint {hint} of {}:\n{}\n",
@@ -97,26 +159,38 @@ fn redraw(ctx: &Context, e: &Exercise, s: &Status, done: usize, banner: &str, hi
         );
     }
     out += "\n[h] hint   [q] quit\n";
-    let mut stdout = std::io::stdout().lock();
-    let _ = stdout.write_all(out.as_bytes());
-    let _ = stdout.flush();
+    say!("{out}")
 }
 
-/// Runs watch mode until `q` (or until every exercise is done).
-pub fn watch(ctx: &Context) -> Result<i32, String> {
+/// Runs watch mode on `start` (or the first exercise not done) until `q`, or until every exercise
+/// is done.
+pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
     let all: Vec<&Exercise> = ctx.exercises.iter().collect();
+    let file = |e: &Exercise| ctx.ws.exercise_file(&e.name);
+    sayln!("checking every exercise, to see where you are ...")?;
+    // The stamps before the check: a save during it is seen as a change below.
+    let stamps: Vec<Stamp> = all.iter().map(|e| stamp(&file(e))).collect();
     let mut statuses = ctx.statuses(&all)?;
-    let Some(mut current) = statuses.iter().position(|s| !s.is_done()) else {
-        println!("every exercise is done: well done!");
-        return Ok(0);
+    let mut current = match start {
+        Some(name) => all
+            .iter()
+            .position(|e| e.name == name)
+            .ok_or_else(|| Error::Failed(format!("no exercise `{name}`")))?,
+        None => match statuses.iter().position(|s| !s.is_done()) {
+            Some(i) => i,
+            None => {
+                sayln!("every exercise is done: well done!")?;
+                return Ok(0);
+            }
+        },
     };
     let _raw = KeysAtOnce::start();
     let mut keys = Some(keys());
     let mut banner = String::new();
     let mut status = statuses[current].clone();
+    let mut checked = stamps[current];
     loop {
         let e = all[current];
-        let file = ctx.ws.exercise_file(&e.name);
         let done = statuses.iter().filter(|s| s.is_done()).count();
         if status.is_done() {
             let next = (1..all.len())
@@ -126,26 +200,27 @@ pub fn watch(ctx: &Context) -> Result<i32, String> {
                 Some(j) => {
                     banner = format!(
                         "{} passes! On to {} ({}).",
-                        e.name, all[j].name, all[j].chapter
+                        e.name,
+                        all[j].name,
+                        all[j].label()
                     );
                     current = j;
-                    status = ctx.statuses(&[all[j]])?.remove(0);
+                    (status, checked) = check_now(ctx, all[j])?;
                     statuses[j] = status.clone();
                     continue;
                 }
                 None => {
-                    redraw(ctx, e, &status, done, "", 0);
-                    println!(
+                    redraw(ctx, e, &status, done, "", 0)?;
+                    sayln!(
                         "\n{} passes, and every exercise is done: well done!",
                         e.name
-                    );
+                    )?;
                     return Ok(0);
                 }
             }
         }
         let mut hint = 0;
-        redraw(ctx, e, &status, done, &banner, hint);
-        let before = stamp(&file);
+        redraw(ctx, e, &status, done, &banner, hint)?;
         loop {
             let key = match &keys {
                 Some(rx) => match rx.recv_timeout(Duration::from_millis(200)) {
@@ -163,21 +238,73 @@ pub fn watch(ctx: &Context) -> Result<i32, String> {
             };
             match key {
                 Some(b'q' | b'Q') => {
-                    println!();
+                    sayln!()?;
                     return Ok(0);
                 }
                 Some(b'h' | b'H') => {
                     hint = hint % e.hints.len() + 1;
-                    redraw(ctx, e, &status, done, &banner, hint);
+                    redraw(ctx, e, &status, done, &banner, hint)?;
                 }
                 _ => {}
             }
-            if stamp(&file) != before {
+            if stamp(&file(e)) != checked {
                 break;
             }
         }
-        banner = format!("{} saved: checked again.", ctx.ws.show(&file));
-        status = ctx.statuses(&[e])?.remove(0);
+        banner = format!("{} saved: checked again.", ctx.ws.show(&file(e)));
+        (status, checked) = check_now(ctx, e)?;
         statuses[current] = status.clone();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    #[test]
+    fn a_save_during_the_check_is_checked_again_at_once() {
+        // The file's stamp is a counter; the first check "saves" (bumps it) while it runs.
+        let saves = Cell::new(0);
+        let checks = Cell::new(0);
+        let (result, stamp) = check_until_unchanged(
+            || saves.get(),
+            |round| {
+                checks.set(checks.get() + 1);
+                if round == 0 {
+                    saves.set(saves.get() + 1);
+                }
+                Ok::<_, ()>(format!("check of save {}", saves.get()))
+            },
+        )
+        .unwrap();
+        assert_eq!(checks.get(), 2, "checked again after the save");
+        assert_eq!(result, "check of save 1");
+        // The stamp returned is the one the last check saw: the next save differs from it.
+        assert_eq!(stamp, 1);
+        // Without a save during it, one check.
+        checks.set(0);
+        let (_, stamp) = check_until_unchanged(
+            || saves.get(),
+            |_| {
+                checks.set(checks.get() + 1);
+                Ok::<_, ()>(())
+            },
+        )
+        .unwrap();
+        assert_eq!((checks.get(), stamp), (1, 1));
+    }
+
+    #[test]
+    fn stamps_tell_two_saves_of_the_same_length_apart() {
+        let dir = std::env::temp_dir().join(format!("rtl-watch-stamp-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let f = dir.join("x.rs");
+        std::fs::write(&f, "fn a() {}\n").unwrap();
+        let first = stamp(&f);
+        std::fs::write(&f, "fn b() {}\n").unwrap();
+        assert_ne!(stamp(&f), first);
+        assert_eq!(stamp(&dir.join("missing.rs")), Stamp(None));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

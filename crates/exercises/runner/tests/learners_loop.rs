@@ -69,6 +69,7 @@ fn runner(ws: &Path) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_exercises"));
     c.current_dir(ws)
         .env_remove("RTL_EXERCISES_ROOT")
+        .env_remove("RTL_EXERCISES_TIMEOUT")
         .env("CARGO_TARGET_DIR", target())
         .env("CARGO_NET_OFFLINE", "true");
     c
@@ -108,12 +109,43 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
         .unwrap()
         .count();
 
-    // Untouched stubs: nothing done, every exercise listed, the first one next.
+    // Untouched stubs: nothing done, every exercise listed, the first one next, in the book's order,
+    // every row within 100 columns.
     let (code, out) = run(&ws, &["list"]);
     assert_eq!(code, 0, "{out}");
-    assert!(out.contains(&format!("0/{total} done (")), "{out}");
+    assert!(
+        out.contains(&format!("0/{total} exercises done; ")),
+        "{out}"
+    );
     assert!(out.contains("next: ch02_estimate_pi"), "{out}");
-    assert!(out.contains("[bug]"), "{out}");
+    assert!(
+        out.contains("`cargo exercises check ch02_estimate_pi`"),
+        "{out}"
+    );
+    assert!(!out.contains("rtl exercises"), "{out}");
+    assert!(out.contains("the bug museum"), "{out}");
+    let row = |name: &str| out.find(&format!("  {name}  ")).unwrap();
+    assert!(
+        row("ch03_importance_x_sq") < row("ch03_inverse_x_sq"),
+        "{out}"
+    );
+    assert!(out.contains("3 Importance sampling"), "{out}");
+    for line in out.lines() {
+        assert!(line.chars().count() <= 100, "{line}");
+    }
+    // `list | head -3`: a closed standard output ends it quietly.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let closed = runner(&ws)
+        .arg("list")
+        .stdin(Stdio::null())
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&closed.stderr);
+    assert_eq!(closed.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
     let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
     assert_eq!(code, 1, "{out}");
     assert!(
@@ -124,7 +156,7 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     // A wrong implementation: the learner's function and what the statistics saw.
     edit(&ws, "ch03_inverse_x_sq", |t| {
         t.replacen(
-            "let _ = u;\n    todo!(\"ch03 sample_linear: invert the CDF x^2/4 of the density x/2 on [0,2]\")",
+            "let _ = u;\n    todo!(\"ch03 sample_linear: a sample of the density x/2 on [0, 2], by inverse transform\")",
             "2.0 * u",
             1,
         )
@@ -138,7 +170,27 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     );
     assert!(out.contains("FAIL  sample_linear"), "{out}");
     assert!(
+        out.contains("sample_linear(u = P(0.5) = 0.0625): got 0.125, expected 0.5"),
+        "{out}"
+    );
+    assert!(
+        out.contains("`cargo exercises hint ch03_inverse_x_sq`"),
+        "{out}"
+    );
+    assert!(
         !out.contains("unwrap") && !out.contains("panicked at"),
+        "{out}"
+    );
+
+    // Two exercises at once: both reported, exit 1 while one fails.
+    let (code, out) = run(&ws, &["check", "ch03_inverse_x_sq", "ch02_estimate_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains(
+            "ch03_inverse_x_sq (3 Inverse Transform Sampling: Choosing our samples): failing"
+        ) && out.contains(
+            "ch02_estimate_pi (2 A Simple Monte Carlo Program: Estimating π): not started"
+        ),
         "{out}"
     );
 
@@ -148,7 +200,7 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     assert_eq!(code, 0, "{out}");
     assert!(out.contains("ch02_estimate_pi passes"), "{out}");
     let (_, out) = run(&ws, &["list"]);
-    assert!(out.contains(&format!("1/{total} done")), "{out}");
+    assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
     assert!(out.contains("next: ch02_jittered_pi"), "{out}");
 
     // A compile error in one exercise stops no other from being checked or listed.
@@ -164,7 +216,11 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (code, out) = run(&ws, &["list"]);
     assert_eq!(code, 0, "{out}");
     assert!(out.contains("does not compile"), "{out}");
-    assert!(out.contains(&format!("1/{total} done")), "{out}");
+    assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
+    assert!(
+        out.contains("not counting the checks of ch02_jittered_pi (does not compile)"),
+        "the total says what it leaves out: {out}"
+    );
     assert!(
         out.contains("ch12_bug_cone_cos_theta_max"),
         "the exercises after it are listed: {out}"
@@ -172,8 +228,13 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (code, out) = run(&ws, &["check", "ch02_jittered_pi"]);
     assert_eq!(code, 1, "{out}");
     assert!(
-        out.contains("does not compile") && out.contains("ch02_jittered_pi.rs"),
+        out.contains("does not compile")
+            && out.contains("crates/exercises/exercises/ch02_jittered_pi.rs:"),
         "{out}"
+    );
+    assert!(
+        !out.contains("tests/../"),
+        "the learner's path, plainly: {out}"
     );
 
     // reset restores the stub and keeps the learner's version.
@@ -207,6 +268,63 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (code, out) = run(&ws, &["solution", "ch02_estimate_pi"]);
     assert_eq!(code, 0, "{out}");
     assert!(out.contains("4.0 * inside as f64"), "{out}");
+}
+
+#[test]
+#[ignore = "drives cargo on a copy of the exercises (a minute the first time); .ci/run runs it"]
+fn loops_for_ever_are_stopped_at_the_limit_and_cost_it_once() {
+    let ws = workspace("timeout-ws");
+    // Two exercises whose code loops for ever.
+    for name in ["ch02_estimate_pi", "ch03_inverse_x_sq"] {
+        edit(&ws, name, |t| {
+            t.replacen(
+                "todo!(",
+                "loop { std::hint::black_box(0); }\n    #[allow(unreachable_code)]\n    todo!(",
+                1,
+            )
+        });
+    }
+    // Warm the build, so that the times below measure the runs.
+    run(&ws, &["list"]);
+    let limit = 4;
+    let started = Instant::now();
+    let out = runner(&ws)
+        .args(["check", "ch02_estimate_pi"])
+        .env("RTL_EXERCISES_TIMEOUT", limit.to_string())
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let took = started.elapsed();
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.contains("timed out after 4 s"), "{text}");
+    assert!(
+        text.contains("still running: ch02_estimate_pi ("),
+        "said while it ran: {text}"
+    );
+    assert!(
+        took < Duration::from_secs(limit + 10),
+        "took {took:?}: {text}"
+    );
+    // list: both loops together cost about one limit, not two.
+    let started = Instant::now();
+    let out = runner(&ws)
+        .arg("list")
+        .env("RTL_EXERCISES_TIMEOUT", limit.to_string())
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let took = started.elapsed();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(text.matches("  timed out  ").count(), 2, "{text}");
+    assert!(
+        took < Duration::from_secs(2 * limit),
+        "took {took:?}, two limits or more: {text}"
+    );
 }
 
 /// Reads a child's output into a shared buffer; waits for text to appear in it.
@@ -277,10 +395,12 @@ fn watch_rechecks_on_save_moves_on_when_it_passes_and_obeys_h_and_q() {
     let mut keys = child.stdin.take().unwrap();
     let screen = Screen::start(child.stdout.take().unwrap());
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let at = screen.wait_for("checking ch02_estimate_pi on every save", 0, 120);
+        let at = screen.wait_for("cargo exercises watch: 0/", 0, 120);
+        let at = screen.wait_for("checking ch02_estimate_pi on every save", at, 120);
         let at = screen.wait_for("[h] hint   [q] quit", at, 60);
-        // A save re-runs the check and redraws (clearing the screen).
+        // A save re-runs the check, saying so while it runs, and redraws (clearing the screen).
         edit(&ws, "ch02_estimate_pi", |t| t + "// saved\n");
+        let at = screen.wait_for("checking ch02_estimate_pi ...", at, 120);
         let at = screen.wait_for("saved: checked again", at, 120);
         let at = screen.wait_for("\x1b[2J", at.saturating_sub(400), 5);
         let at = screen.wait_for("not started", at, 60);
@@ -312,4 +432,40 @@ fn watch_rechecks_on_save_moves_on_when_it_passes_and_obeys_h_and_q() {
     if let Err(e) = result {
         std::panic::resume_unwind(e);
     }
+}
+
+#[test]
+#[ignore = "drives cargo on a copy of the exercises (a minute the first time); .ci/run runs it"]
+fn watch_name_starts_at_that_exercise_and_a_closed_stdout_ends_watch() {
+    let ws = workspace("watch-name-ws");
+    run(&ws, &["list"]);
+    let mut child = runner(&ws)
+        .args(["watch", "ch03_inverse_x_sq"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let screen = Screen::start(child.stdout.take().unwrap());
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        screen.wait_for("checking ch03_inverse_x_sq on every save", 0, 120);
+    }));
+    let _ = child.kill();
+    let _ = child.wait();
+    if let Err(e) = result {
+        std::panic::resume_unwind(e);
+    }
+    // Standard output closed: watch ends quietly, without a panic.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = runner(&ws)
+        .arg("watch")
+        .stdin(Stdio::piped())
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
 }

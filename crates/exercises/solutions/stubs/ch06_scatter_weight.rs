@@ -1,28 +1,35 @@
-//! # Chapter 6, "Playing with Importance Sampling": one bounce of `ray_color`
+//! # Chapter 6, Playing with Importance Sampling, "The strategies": one bounce of `ray_color`
 //!
-//! In the book's `ray_color`, a surface hit returns its emission plus the scattered light weighted by
-//! the Monte Carlo ratio of the scattering density to the density the direction was drawn with:
+//! **Read first:** the introduction of chapter 5 (`book/src/ch05-light-scattering.md`), which
+//! writes the light leaving a surface as an integral and its Monte Carlo estimate from one
+//! direction, and the section "The strategies" of chapter 6
+//! (`book/src/ch06-playing-with-importance-sampling.md`), which says when a sample carries no
+//! scattered light.
 //!
-//! L = L_e + A * s(d) * L_i(d) / p(d)
+//! In the book's `ray_color`, a surface hit returns its emission `emitted` plus the one-sample Monte
+//! Carlo estimate of the light it scatters towards the viewer: the incoming radiance `incoming`
+//! along one direction d, drawn with the density `pdf_value` = p(d) (w.r.t. solid angle), weighted by
+//! the albedo `attenuation` and the scattering density `scattering_pdf` = s(d).
 //!
-//! with albedo (attenuation) A, scattering pdf s, incoming radiance L_i along the sampled direction d,
-//! and sampling pdf p.
-//!
-//! **Task.** Write [`scatter_contribution`]. It must stay finite whatever the densities: when p(d) is
-//! 0, negative or not finite, or s(d) is negative or not finite, or the weighted product is not finite,
-//! the sample carries no scattered light and the result is the emission only. (A direction with p = 0
-//! cannot have been sampled honestly; dividing by it is how NaNs and fireflies get into images.)
+//! **Task.** Write [`scatter_contribution`]: that sum. It must stay finite whatever the densities:
+//! when p(d) is 0, negative or not finite, or s(d) is negative or not finite, or the estimate of the
+//! scattered light is not finite, the sample carries no scattered light and the result is the
+//! emission only. (A direction with p = 0 cannot have been sampled honestly; dividing by it is how
+//! NaNs and fireflies get into images.) s(d) = 0 is a valid sample: it scatters nothing.
 //!
 //! The check: exact values with dyadic inputs, every degenerate density, and a white-furnace test: a
-//! Lambertian surface (s = cos/pi) of albedo 0.75 under uniform incoming radiance 1, with directions
-//! drawn uniformly on the hemisphere (p = 1/(2 pi)), must return 0.75 on average (z-test, 1e5 samples).
+//! Lambertian surface of albedo 0.75 under uniform incoming radiance 1, with directions drawn
+//! uniformly on the hemisphere, must return 0.75 on average (z-test, 1e5 samples).
 //!
-//! Check your code with `rtl exercises check ch06_scatter_weight`; `rtl exercises hint ch06_scatter_weight` gives a hint.
+//! Check your code with `cargo exercises check ch06_scatter_weight` (or
+//! `rtl exercises check ch06_scatter_weight`, the same); `cargo exercises hint ch06_scatter_weight`
+//! gives a hint.
 
 use glam::DVec3;
 
 // ANCHOR: exercise
-/// L_e + A s L_i / p, or `emitted` alone when the densities make the ratio meaningless or infinite.
+/// The emission plus the one-sample estimate of the scattered light, or `emitted` alone when the
+/// densities make that estimate meaningless or infinite.
 pub fn scatter_contribution(
     emitted: DVec3,
     attenuation: DVec3,
@@ -32,7 +39,7 @@ pub fn scatter_contribution(
 ) -> DVec3 {
     let _ = (emitted, attenuation, scattering_pdf, pdf_value, incoming);
     todo!(
-        "ch06 scatter_contribution: emitted + attenuation * s * incoming / p, emitted only if p is 0 or bad"
+        "ch06 scatter_contribution: emission plus the scattered light's estimate, or emission alone"
     )
 }
 // ANCHOR_END: exercise

@@ -1,24 +1,23 @@
-//! # Chapter 8, "Orthonormal Bases": a right-handed basis around a unit vector
+//! # Chapter 8, Orthonormal Bases, "Building a basis from one vector": a right-handed basis around a unit vector
+//!
+//! **Read first:** the sections "Building a basis from one vector" and "The cases that break bases"
+//! of chapter 8 (`book/src/ch08-orthonormal-bases.md`): the branchless construction of Duff et al.,
+//! "Building an Orthonormal Basis, Revisited" (JCGT 2017), and why the book's `build_from_w` and
+//! Frisvad's earlier formulas fail.
 //!
 //! **Task.** Write [`Onb::from_w`]: given a unit vector w, find unit u and v such that (u, v, w) is
-//! orthonormal and right-handed, u x v = w; and [`Onb::transform`], which maps local coordinates
-//! (a, b, c) to the world vector a u + b v + c w (a direction sampled around +z becomes one around w).
+//! orthonormal and right-handed, u x v = w (not -w: the book's `build_from_w` gets this sign wrong),
+//! keeping `w` exactly as given. It must hold for every unit w: the axes +-x, +-y, +-z, w.z = -0.0,
+//! and vectors within 1e-8 of -z, where a formula that divides by 1 + w.z breaks down. And write
+//! [`Onb::transform`], which maps local coordinates (a, b, c) to the world vector with those
+//! coordinates along (u, v, w) (a direction sampled around +z becomes one around w).
 //!
-//! Use the branchless construction of Duff et al., "Building an Orthonormal Basis, Revisited"
-//! (JCGT 2017): with s = sign(w.z) (+1 for w.z = +-0 as well) and a = -1 / (s + w.z),
-//! b = w.x w.y a:
+//! The check: w = +-x, +-y, +-z, Duff et al.'s single-precision case near -z and two more, and 1000
+//! random unit vectors: u, v of unit length and orthogonal to each other and to w (to 1e-12),
+//! u x v = w, `w` kept as given; and [`Onb::transform`] of the axes and of one other vector.
 //!
-//! u = (1 + s w.x^2 a, s b, -s w.x),  v = (b, s + w.y^2 a, -w.y).
-//!
-//! It is exact at the poles and stable near them; Frisvad's earlier version (a = -1 / (1 + w.z))
-//! divides by ~0 near w = -z. Note that the book's `build_from_w` (v = w x a, u = w x v) gives a
-//! left-handed basis.
-//!
-//! The check: w = +-x, +-y, +-z, the f32 case of Duff et al. near -z, and 1000 random unit vectors:
-//! u, v of unit length and orthogonal to each other and to w (to 1e-12), u x v = w, `w` kept as given;
-//! and [`Onb::transform`] of the axes gives u, v, w.
-//!
-//! Check your code with `rtl exercises check ch08_onb`; `rtl exercises hint ch08_onb` gives a hint.
+//! Check your code with `cargo exercises check ch08_onb` (or `rtl exercises check ch08_onb`, the
+//! same); `cargo exercises hint ch08_onb` gives a hint.
 
 use glam::DVec3;
 
@@ -32,16 +31,17 @@ pub struct Onb {
 
 // ANCHOR: exercise
 impl Onb {
-    /// The right-handed basis with third axis `w` (a unit vector), by Duff et al. (2017).
+    /// The right-handed orthonormal basis with third axis `w` (a unit vector), without a branch
+    /// that fails near -z.
     pub fn from_w(w: DVec3) -> Onb {
         let _ = w;
-        todo!("ch08 Onb::from_w: Duff et al.'s branchless basis, u x v = w")
+        todo!("ch08 Onb::from_w: a right-handed orthonormal basis around w, u x v = w")
     }
 
-    /// The world vector with local coordinates `a`: a.x u + a.y v + a.z w.
+    /// The world vector whose coordinates along (u, v, w) are `a`.
     pub fn transform(&self, a: DVec3) -> DVec3 {
         let _ = a;
-        todo!("ch08 Onb::transform: a.x u + a.y v + a.z w")
+        todo!("ch08 Onb::transform: local coordinates to a world vector")
     }
 }
 // ANCHOR_END: exercise

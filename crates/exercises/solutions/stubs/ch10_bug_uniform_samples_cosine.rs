@@ -1,4 +1,8 @@
-//! # Bug museum, chapter 10: find and fix the bug
+//! # Bug museum, chapter 10, Mixture Densities, "The Pdf trait": find and fix the bug
+//!
+//! **Read first:** the section "The `Pdf` trait" of chapter 10
+//! (`book/src/ch10-mixture-densities.md`), and "Uniform over the hemisphere" of chapter 7
+//! (`book/src/ch07-generating-random-directions.md`).
 //!
 //! Someone wanted a uniform-hemisphere density to compare with the cosine one, copied `CosinePdf` and
 //! changed its value to 1/(2 pi). The images it gives are smooth, clean, and too bright.
@@ -6,8 +10,9 @@
 //! **Task.** Find the bug in [`HemispherePdf`] and fix it: `generate` must draw directions with the
 //! density that `value` states, uniform on the hemisphere z >= 0.
 //!
-//! Check your code with `rtl exercises check ch10_bug_uniform_samples_cosine`; `rtl exercises hint
-//! ch10_bug_uniform_samples_cosine` gives a hint.
+//! Check your code with `cargo exercises check ch10_bug_uniform_samples_cosine` (or
+//! `rtl exercises check ch10_bug_uniform_samples_cosine`, the same);
+//! `cargo exercises hint ch10_bug_uniform_samples_cosine` gives a hint.
 
 use glam::DVec3;
 use rand::{Rng, RngCore};

@@ -1,29 +1,31 @@
-//! # Chapter 10, "Mixture Densities": a mixture pdf whose value is what it generates
+//! # Chapter 10, Mixture Densities, "MixturePdf": a mixture pdf whose value is what it generates
+//!
+//! **Read first:** the sections "The `Pdf` trait" and "`MixturePdf`" of chapter 10
+//! (`book/src/ch10-mixture-densities.md`).
 //!
 //! A [`Pdf`] over directions has two halves that must agree: `generate` draws a direction, `value`
-//! says with what density (w.r.t. solid angle). The mixture of densities a and b with weight w,
+//! says with what density (w.r.t. solid angle) such directions come.
 //!
-//! p(d) = w a(d) + (1 - w) b(d),
+//! **Task.** Implement [`Pdf`] for [`MixturePdf`]: `generate` chooses part a with probability
+//! `weight_a` (else part b) and returns that part's direction; `value` returns the density of the
+//! directions `generate` draws, whichever part drew them. Weights of exactly 0 and 1 must work: the
+//! part of weight 0 is then never sampled.
 //!
-//! is sampled by choosing a with probability w (else b) and returning that part's direction.
+//! The check: `value` at 1000 random directions (to rounding), for weights 0, 0.3 and 1; and, for
+//! the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
+//! cosine-plus-light mixture), a chi-square test of 1e5 generated directions in 16 x 25
+//! (phi, cos theta) cells against `n` times the integral of the mixture's own `value` over each
+//! cell: whatever `generate` samples, `value` must be its density.
 //!
-//! **Task.** Implement [`Pdf`] for [`MixturePdf`]: `value` returns the weighted sum, `generate` picks
-//! a part with probability `weight_a` and delegates to it. Weights of exactly 0 or 1 must work (the
-//! unchosen part is then never sampled).
-//!
-//! The check: `value` equals w a + (1 - w) b at 1000 random directions (to rounding), for weights 0,
-//! 0.3, 1; and, for the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
-//! cosine-plus-light mixture), a chi-square test of 1e5 generated directions in 16 x 25 (phi, z) cells
-//! against `n` times the integral of the mixture's own `value` over each cell: whatever `generate`
-//! samples, `value` must be its density.
-//!
-//! Check your code with `rtl exercises check ch10_mixture_pdf`; `rtl exercises hint ch10_mixture_pdf` gives a hint.
+//! Check your code with `cargo exercises check ch10_mixture_pdf` (or
+//! `rtl exercises check ch10_mixture_pdf`, the same); `cargo exercises hint ch10_mixture_pdf` gives
+//! a hint.
 
 use glam::DVec3;
 use rand::RngCore;
 use rtl_exercises::ch10_mixture_pdf::Pdf;
 
-/// The mixture `weight_a` a + (1 - `weight_a`) b of two densities, `weight_a` in [0, 1].
+/// The mixture of two densities that samples a with probability `weight_a` (in [0, 1]), else b.
 #[derive(Clone, Copy, Debug)]
 pub struct MixturePdf<A, B> {
     pub a: A,
@@ -35,12 +37,12 @@ pub struct MixturePdf<A, B> {
 impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
     fn value(&self, direction: DVec3) -> f64 {
         let _ = direction;
-        todo!("ch10 MixturePdf::value: w a(d) + (1 - w) b(d)")
+        todo!("ch10 MixturePdf::value: the density of the directions generate draws")
     }
 
     fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
         let _ = rng;
-        todo!("ch10 MixturePdf::generate: a's direction with probability w, else b's")
+        todo!("ch10 MixturePdf::generate: a's direction with probability weight_a, else b's")
     }
 }
 // ANCHOR_END: exercise

@@ -1,4 +1,7 @@
-//! # Bug museum, chapter 12: find and fix the bug
+//! # Bug museum, chapter 12, after chapter 9, Sampling Lights Directly, "A sphere light: the cone it subtends": find and fix the bug
+//!
+//! **Read first:** the section "A sphere light: the cone it subtends" of chapter 9
+//! (`book/src/ch09-sampling-lights-directly.md`).
 //!
 //! A sphere light sampled through this function comes out too dim, and more so the closer the light
 //! is; far away it is almost right.
@@ -7,8 +10,9 @@
 //! encloses the sphere (radius `radius`, centre at `distance`), with density
 //! 1 / (2 pi (1 - cos theta_max)). Find the bug in [`cos_theta_max`] and fix it.
 //!
-//! Check your code with `rtl exercises check ch12_bug_cone_cos_theta_max`; `rtl exercises hint
-//! ch12_bug_cone_cos_theta_max` gives a hint.
+//! Check your code with `cargo exercises check ch12_bug_cone_cos_theta_max` (or
+//! `rtl exercises check ch12_bug_cone_cos_theta_max`, the same);
+//! `cargo exercises hint ch12_bug_cone_cos_theta_max` gives a hint.
 
 // ANCHOR: exercise
 /// The cosine of the half-angle of the cone that encloses the sphere of `radius` whose centre is

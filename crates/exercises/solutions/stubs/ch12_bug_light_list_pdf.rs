@@ -1,4 +1,7 @@
-//! # Bug museum, chapter 12: find and fix the bug
+//! # Bug museum, chapter 12, after chapter 9, Sampling Lights Directly, "Several lights": find and fix the bug
+//!
+//! **Read first:** the section "Several lights" of chapter 9
+//! (`book/src/ch09-sampling-lights-directly.md`).
 //!
 //! With two lights in the scene, the book's readers put them in a list and sampled the list: and the
 //! image came out black. Sampling either light alone works.
@@ -7,8 +10,9 @@
 //! that uses it gets no light, and fix it. The trait [`Light`] (given, in `rtl_exercises`) is like
 //! the book's `hittable`: it has a default `pdf_value`.
 //!
-//! Check your code with `rtl exercises check ch12_bug_light_list_pdf`; `rtl exercises hint
-//! ch12_bug_light_list_pdf` gives a hint.
+//! Check your code with `cargo exercises check ch12_bug_light_list_pdf` (or
+//! `rtl exercises check ch12_bug_light_list_pdf`, the same);
+//! `cargo exercises hint ch12_bug_light_list_pdf` gives a hint.
 
 use glam::DVec3;
 use rand::{Rng, RngCore};

@@ -1,0 +1,71 @@
+//! The time limit of the checks, on stand-in test programs (shell scripts): no cargo, a few seconds.
+//! A program that loops for ever is stopped at the limit; several of them cost one limit together,
+//! not one each; and a long run is reported while it runs.
+#![cfg(unix)]
+
+use rtl_exercises_runner::cargo::{self, PATIENCE, Ran, Workspace};
+use std::os::unix::fs::PermissionsExt;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// A shell script `name` in a directory of this test, executable.
+fn script(dir: &Path, name: &str, body: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+#[test]
+fn loops_cost_one_time_limit_together_and_a_long_run_is_reported() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("time-limits");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let ws = Workspace { root: dir.clone() };
+    // `exec` so that stopping the script stops the sleep (no grandchild keeps the pipes open).
+    let forever = script(&dir, "forever", "exec sleep 600");
+    let honest = script(&dir, "honest", "echo 'ch02_x: done: 1/1 checks passed'");
+    let dies = script(&dir, "dies", "echo 'stack overflow' >&2; exit 3");
+    let programs: Vec<(String, PathBuf)> = vec![
+        ("ch02_a".into(), forever.clone()),
+        ("ch02_b".into(), honest),
+        ("ch02_c".into(), forever.clone()),
+        ("ch02_d".into(), forever),
+        ("ch02_e".into(), dies),
+    ];
+    let limit = Duration::from_secs(4);
+    let mut notices: Vec<(Vec<String>, Duration)> = Vec::new();
+    let start = Instant::now();
+    let ran = cargo::run_all(&ws, &programs, limit, &mut |names, elapsed| {
+        notices.push((names.iter().map(|s| s.to_string()).collect(), elapsed));
+    })
+    .unwrap();
+    let took = start.elapsed();
+    assert_eq!(ran[0], Ran::TimedOut(limit));
+    assert!(
+        matches!(&ran[1], Ran::Output { passed: true, stdout } if stdout.starts_with("ch02_x: done")),
+        "{:?}",
+        ran[1]
+    );
+    assert_eq!(ran[2], Ran::TimedOut(limit));
+    assert_eq!(ran[3], Ran::TimedOut(limit));
+    assert_eq!(ran[4], Ran::Crashed("stack overflow".into()));
+    // One after the other the three loops would take 12 s; side by side, one limit and a
+    // little patience each: about 4 + 3 s.
+    let bound = limit + PATIENCE * 4 + Duration::from_secs(1);
+    assert!(took < bound, "took {took:?}, more than {bound:?}");
+    // While they ran, the runner said so, naming them.
+    assert!(
+        notices
+            .iter()
+            .any(|(names, _)| names.contains(&"ch02_a".to_string())),
+        "{notices:?}"
+    );
+    assert!(
+        notices
+            .iter()
+            .all(|(_, elapsed)| *elapsed >= cargo::NOTICE_EVERY),
+        "{notices:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
