@@ -6,6 +6,7 @@
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{TcpListener, TcpStream};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -137,6 +138,14 @@ impl Lab {
     }
 }
 
+/// The text after `"key":` in a JSON text, to the next `,` or `}` (enough for these flat answers).
+fn field<'a>(json: &'a str, key: &str) -> &'a str {
+    let pat = format!("\"{key}\":");
+    let at = json.find(&pat).unwrap_or_else(|| panic!("{key} in {json}")) + pat.len();
+    let rest = &json[at..];
+    &rest[..rest.find([',', '}']).unwrap_or(rest.len())]
+}
+
 /// The number after `"key":` in a JSON text (enough for these flat answers).
 fn number(json: &str, key: &str) -> f64 {
     let pat = format!("\"{key}\":");
@@ -176,6 +185,17 @@ fn the_page_comes_from_the_binary() {
     assert!(chapter.text().contains("A Simple Monte Carlo Program"));
     assert_eq!(lab.get("/book/ch99-none.html").status, 404);
     assert_eq!(lab.get("/?x=1").status, 400);
+    // The book's pages link relatively: /book is /book/.
+    let r = lab.get("/book");
+    assert_eq!(r.status, 308, "{}", r.text());
+    assert!(r.headers.contains("\r\nLocation: /book/"), "{}", r.headers);
+    // The page asks for what the server takes: the mixture weight's step makes the book's 0.5 a
+    // valid value, and no field has a fixed width in pixels that a phone cannot show.
+    assert!(html.contains(r#"id="c-weight" type="number" min="0.01" max="0.99" step="0.01""#));
+    assert!(html.contains(r#"id="mc-max" type="number" min="4" max="20""#));
+    assert!(html.contains(r#"role="tablist""#) && html.contains(r#"aria-selected="true""#));
+    let css = lab.get("/lab.css").text();
+    assert!(!css.contains("width: 380px") && !css.contains("width: 600px"));
 }
 
 #[test]
@@ -562,6 +582,14 @@ fn the_render_restarts_on_a_change_and_stops_when_nobody_watches() {
     let stopped = spp_of();
     std::thread::sleep(Duration::from_millis(1000));
     assert_eq!(spp_of(), stopped, "the render went on with nobody watching");
+    // Alone on the cores now: a Monte Carlo answer says so; while the render runs, it says that
+    // the cores were shared (its times are slower).
+    let mc = "/api/mc/run?integral=x_sq&estimator=uniform&log2_n=6";
+    let r = lab.get(mc);
+    assert!(r.text().contains("\"shared_cores\":false"), "{}", r.text());
+    lab.get("/api/render/state");
+    let r = lab.get(mc);
+    assert!(r.text().contains("\"shared_cores\":true"), "{}", r.text());
 }
 
 #[test]
@@ -623,3 +651,393 @@ fn binding_beyond_loopback_warns() {
     assert!(line.expect("a URL").contains("http://127.0.0.1:"));
     assert!(err.contains("warning") && err.contains("0.0.0.0"), "{err}");
 }
+
+/// The state of the render (watching: the render goes on).
+fn state(lab: &Lab) -> String {
+    let r = lab.get("/api/render/state");
+    assert_eq!(r.status, 200, "{}", r.text());
+    r.text()
+}
+
+/// The `"settings":{...}` object of a state.
+fn settings_of(state: &str) -> &str {
+    let at = state.find("\"settings\":").expect("settings");
+    &state[at..at + state[at..].find('}').unwrap()]
+}
+
+/// The points `(seconds, spp, rmse)` of the curve labelled `label` in a state, if there is one.
+fn curve(state: &str, label: &str) -> Option<Vec<(f64, u64, f64)>> {
+    let curves = &state[state.find("\"curves\":").expect("curves")..];
+    let curves = &curves[..curves.find("\"floors\":").expect("floors after curves")];
+    let at = curves.find(&format!("\"label\":\"{label}\""))?;
+    let rest = &curves[at..];
+    let points = &rest[rest.find("\"points\":[").unwrap() + 10..];
+    let points = &points[..points.find("]]").map_or(0, |e| e + 1)];
+    Some(
+        points
+            .split("],[")
+            .filter(|p| !p.is_empty())
+            .map(|p| {
+                let v: Vec<&str> = p.trim_matches(['[', ']']).split(',').collect();
+                (
+                    v[0].parse().unwrap(),
+                    v[1].parse().unwrap(),
+                    v[2].parse().unwrap(),
+                )
+            })
+            .collect(),
+    )
+}
+
+/// Poll the state (watching) until `what` holds, for at most a minute.
+fn wait_for(lab: &Lab, what: &str, ok: impl Fn(&str) -> bool) -> String {
+    let start = Instant::now();
+    loop {
+        let s = state(lab);
+        if ok(&s) {
+            return s;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "waited a minute for {what}: {s}"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn a_refused_setting_blocks_no_other_and_names_its_parameter() {
+    let lab = start("refused", &[]);
+    // Refused: a 400 that names the parameter (the page marks that field) ...
+    let r = lab.request(
+        "POST",
+        "/api/render/settings?strategy=mixture&mixture_weight=1",
+    );
+    assert_eq!(r.status, 400, "{}", r.text());
+    assert!(
+        r.text().contains("\"parameter\":\"mixture_weight\""),
+        "{}",
+        r.text()
+    );
+    // ... and nothing of that request is taken (not even its valid strategy).
+    let s = state(&lab);
+    assert_eq!(field(settings_of(&s), "strategy"), "\"mis\"", "{s}");
+    // Each parameter alone: one field's change is one parameter, and the others stay as they are
+    // (another tab's strategy is not undone by this tab's seed).
+    for (query, key, value) in [
+        ("strategy=light", "strategy", "\"light\""),
+        ("seed=5", "seed", "5"),
+        ("max_depth=7", "max_depth", "7"),
+    ] {
+        let r = lab.request("POST", &format!("/api/render/settings?{query}"));
+        assert_eq!(r.status, 200, "{query}: {}", r.text());
+        assert_eq!(field(settings_of(&r.text()), key), value, "{}", r.text());
+    }
+    let s = state(&lab);
+    let settings = settings_of(&s);
+    assert_eq!(field(settings, "strategy"), "\"light\"", "{s}");
+    assert_eq!(field(settings, "seed"), "5", "{s}");
+    assert_eq!(field(settings, "max_depth"), "7", "{s}");
+    for (query, parameter) in [
+        ("width=100000", "width"),
+        ("seed=-1", "seed"),
+        ("rr=maybe", "rr"),
+        ("strategy=best", "strategy"),
+    ] {
+        let r = lab.request("POST", &format!("/api/render/settings?{query}"));
+        assert_eq!(r.status, 400, "{query}");
+        assert!(
+            r.text().contains(&format!("\"parameter\":\"{parameter}\"")),
+            "{query}: {}",
+            r.text()
+        );
+    }
+    assert_eq!(field(settings_of(&state(&lab)), "width"), "16");
+    // The same settings again change nothing (no restart), nor does a weight that only `mixture`
+    // uses.
+    let g = number(
+        &lab.request("POST", "/api/render/settings?seed=6").text(),
+        "generation",
+    );
+    for same in ["seed=6", "mixture_weight=0.3"] {
+        let r = lab.request("POST", &format!("/api/render/settings?{same}"));
+        assert_eq!(number(&r.text(), "generation"), g, "{same}: {}", r.text());
+    }
+}
+
+#[test]
+fn every_setting_keeps_its_curve_and_clear_clears_them_all() {
+    let lab = start("curves", &[]);
+    let cosine = "cosine seed 1 16px";
+    let r = lab.request("POST", "/api/render/settings?strategy=cosine");
+    assert_eq!(r.status, 200, "{}", r.text());
+    let s = wait_for(&lab, "a cosine curve of 3 points", |s| {
+        curve(s, cosine).is_some_and(|c| c.len() >= 3)
+    });
+    let before = curve(&s, cosine).unwrap();
+    // Another setting, long enough for its curve; then cosine again: its render continues where it
+    // stopped, its curve with it (the old points kept, new ones after them).
+    lab.request("POST", "/api/render/settings?strategy=uniform");
+    wait_for(&lab, "a uniform curve", |s| {
+        curve(s, "uniform seed 1 16px").is_some_and(|c| c.len() >= 2)
+    });
+    let g = number(
+        &lab.request("POST", "/api/render/settings?strategy=cosine")
+            .text(),
+        "generation",
+    );
+    let s = wait_for(&lab, "a frame of cosine again", |s| {
+        let frame = &s[s.find("\"frame\"").unwrap()..];
+        number(frame, "generation") == g
+    });
+    let frame = &s[s.find("\"frame\"").unwrap()..];
+    assert_eq!(field(frame, "resumed"), "true", "{s}");
+    assert!(
+        number(frame, "spp") > before.last().unwrap().1 as f64,
+        "{s}"
+    );
+    let s = wait_for(&lab, "the cosine curve to go on", |s| {
+        curve(s, cosine).is_some_and(|c| c.len() > before.len())
+    });
+    let after = curve(&s, cosine).unwrap();
+    assert_eq!(after[..before.len()], before[..], "the old points are kept");
+    assert!(after.windows(2).all(|w| w[0].0 < w[1].0 && w[0].1 < w[1].1));
+    assert!(curve(&s, "uniform seed 1 16px").is_some());
+    // Clear: every curve, the running render's too, which starts again from its first sample.
+    let r = lab.request("POST", "/api/render/clear");
+    assert_eq!(r.status, 200);
+    let g = number(&r.text(), "generation");
+    let s = wait_for(&lab, "a curve after the clear", |s| {
+        let frame = &s[s.find("\"frame\"").unwrap()..];
+        number(frame, "generation") == g && curve(s, cosine).is_some()
+    });
+    assert!(curve(&s, "uniform seed 1 16px").is_none(), "{s}");
+    let fresh = curve(&s, cosine).unwrap();
+    assert!(
+        fresh[0].1 <= 2,
+        "the curve starts again from the start: {fresh:?}"
+    );
+}
+
+#[test]
+fn the_reference_noise_floor_is_measured_by_a_twin_of_the_reference() {
+    // On cosine, the bench measures the reference's noise itself: a render like the reference
+    // under seed 998, to the reference's 16 spp (a twin of it: MSE = 2 variances).
+    let lab = start("floor", &[]);
+    lab.request("POST", "/api/render/settings?strategy=cosine");
+    let s = wait_for(&lab, "a floor", |s| s.contains("\"measured_spp\":"));
+    assert_eq!(number(&s, "reference_spp"), 16.0);
+    let floors = &s[s.find("\"floors\":").unwrap()..];
+    assert_eq!(number(floors, "measured_spp"), 16.0, "{floors}");
+    assert_eq!(number(floors, "width"), 16.0, "{floors}");
+    assert!(
+        field(floors, "measured_by").contains("mis+rr+lds seed 998 16px"),
+        "{floors}"
+    );
+    let floor = number(floors, "rmse");
+    assert!(floor > 0.0 && floor.is_finite(), "{floors}");
+    assert!(s.contains("a 16-spp render with mis (seed 999)"), "{s}");
+    // A render like the reference stops a pass at the reference's spp, where it is its twin.
+    lab.request("POST", "/api/render/settings?strategy=mis&seed=3");
+    let s = wait_for(&lab, "the mis curve past 16 spp", |s| {
+        curve(s, "mis+rr+lds seed 3 16px").is_some_and(|c| c.last().unwrap().1 > 16)
+    });
+    let points = curve(&s, "mis+rr+lds seed 3 16px").unwrap();
+    assert!(points.iter().any(|p| p.1 == 16), "{points:?}");
+}
+
+/// The page in headless Chromium, offline (every other host unreachable): what a first-time reader
+/// found broken stays fixed. Driven by playwright-core, from `book/check/node_modules` (the book's
+/// check) or `target/lab-browser/node_modules` (`crates/cli/tests/browser/run.sh`); skipped, saying
+/// so, where Chromium, Node.js or playwright-core is missing. About 5 s.
+#[test]
+fn the_page_works_in_a_browser() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let modules = ["book/check/node_modules", "target/lab-browser/node_modules"]
+        .iter()
+        .map(|d| root.join(d))
+        .find(|d| d.join("playwright-core").is_dir());
+    let node = Command::new("node")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    let (true, true, Some(modules)) = (Path::new("/usr/bin/chromium").exists(), node, modules)
+    else {
+        eprintln!(
+            "skipped: no Chromium (/usr/bin/chromium), Node.js or playwright-core \
+             (crates/cli/tests/browser/run.sh installs them)"
+        );
+        return;
+    };
+    let lab = start("browser", &[]);
+    let dir = temp_dir("browser-check");
+    let script = dir.0.join("check.cjs");
+    std::fs::write(&script, BROWSER_CHECK).unwrap();
+    let mut child = Command::new("node")
+        .arg(&script)
+        .arg(format!("http://127.0.0.1:{}/", lab.port))
+        .env("NODE_PATH", &modules)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("node runs");
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if start.elapsed() > Duration::from_secs(300) {
+            let _ = child.kill();
+            panic!("the browser check took more than 5 minutes");
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let (mut out, mut err) = (String::new(), String::new());
+    child
+        .stdout
+        .take()
+        .unwrap()
+        .read_to_string(&mut out)
+        .unwrap();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    eprintln!("{out}");
+    assert!(status.success(), "the browser check failed:\n{out}\n{err}");
+}
+
+/// The browser check's script (`node check.cjs URL`, playwright-core on `NODE_PATH`).
+const BROWSER_CHECK: &str = r##"// The lab's page in headless Chromium, offline: what a first-time reader found broken stays fixed.
+// usage: node check.cjs URL   (playwright-core on NODE_PATH; Chromium at /usr/bin/chromium)
+"use strict";
+const { chromium } = require("playwright-core");
+const url = process.argv[2];
+const fails = [];
+const check = (ok, what) => { console.log(`${ok ? "ok  " : "FAIL"} ${what}`); if (!ok) fails.push(what); };
+(async () => {
+  const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", headless: true,
+    args: ["--no-sandbox", "--disable-gpu", "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1"] });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+  page.setDefaultTimeout(30000);
+  const errors = [], outside = [];
+  page.on("pageerror", (e) => errors.push(String(e)));
+  page.on("request", (r) => {
+    const u = new URL(r.url());
+    if (!(u.protocol === "data:" || u.protocol === "blob:" || u.hostname === "127.0.0.1")) outside.push(r.url());
+  });
+  const status = () => page.textContent("#c-status");
+  const wait = (f, arg) => page.waitForFunction(f, arg);
+
+  // The bench named in the address opens, and switching benches names it there.
+  await page.goto(url + "#cornell");
+  await wait(() => window.labReady === true);
+  // From the book's settings, whatever the server was left with.
+  await page.evaluate(() => fetch("/api/render/settings?strategy=mis&mixture_weight=0.5&seed=1&max_depth=50", { method: "POST" }));
+  check(await page.getAttribute("#tab-cornell", "aria-selected") === "true", "#cornell opens the Cornell bench (aria-selected)");
+  await page.click("#tab-sampling");
+  check(page.url().endsWith("#sampling"), `switching benches updates the address (${page.url()})`);
+  await page.click("#tab-cornell");
+  await wait(() => / spp in /.test(document.querySelector("#c-status").textContent));
+
+  // A refused value stays, marked, and blocks no other change.
+  await page.selectOption("#c-strategy", "mixture");
+  await wait(() => /^mixture seed/.test(document.querySelector("#c-status").textContent));
+  check(await page.evaluate(() => document.querySelector("#c-weight").validity.valid), "the book's weight 0.5 is valid in its box");
+  await page.fill("#c-weight", "1");
+  await page.press("#c-weight", "Tab");
+  await wait(() => document.querySelector("#c-weight").getAttribute("aria-invalid") === "true");
+  await page.fill("#c-seed", "4");
+  await page.press("#c-seed", "Tab");
+  await wait(() => /^mixture seed 4 /.test(document.querySelector("#c-status").textContent));
+  const weight = await page.evaluate(() => ({ value: document.querySelector("#c-weight").value,
+    invalid: document.querySelector("#c-weight").getAttribute("aria-invalid"),
+    message: (document.getElementById("c-weight-msg") || {}).textContent || "" }));
+  check(weight.value === "1" && weight.invalid === "true" && /goes on with 0\.5/.test(weight.message),
+    `a refused weight stays, marked, saying what the render uses (${JSON.stringify(weight)})`);
+  check(/seed 4/.test(await status()), "a seed changed after a refused weight is taken");
+
+  // Another tab's change: the controls follow the server.
+  await page.evaluate(() => fetch("/api/render/settings?strategy=light", { method: "POST" }));
+  await wait(() => document.querySelector("#c-strategy").value === "light");
+  const w = await page.evaluate(() => ({ disabled: document.querySelector("#c-weight").disabled,
+    invalid: document.querySelector("#c-weight").getAttribute("aria-invalid"), value: document.querySelector("#c-weight").value }));
+  check(w.disabled && !w.invalid && w.value === "0.5", `another tab's strategy shows here; the unused weight is not refused (${JSON.stringify(w)})`);
+
+  // Fixed colours, a legend outside the plot.
+  await wait(() => [...document.querySelectorAll("#c-curves .curve")].some((c) => c.dataset.label.startsWith("light")));
+  const look = await page.evaluate(() => {
+    const light = [...document.querySelectorAll("#c-curves .curve")].find((c) => c.dataset.label.startsWith("light"));
+    const svg = document.querySelector("#c-curves").getBoundingClientRect();
+    const legend = document.querySelector("#c-curves-legend").getBoundingClientRect();
+    return { colour: light.getAttribute("stroke"), below: legend.top >= svg.bottom - 1, items: document.querySelectorAll("#c-curves-legend .item").length };
+  });
+  check(look.colour === "#009E73" && look.below && look.items >= 2, `light is bluish green, the legend under the plot (${JSON.stringify(look)})`);
+
+  // Clear clears every curve, and the running render starts again.
+  await page.click("#c-clear");
+  const cleared = await page.evaluate(async () => {
+    for (let i = 0; i < 200; i++) {
+      const s = await (await fetch("/api/render/state")).json();
+      if (s.curves.length === 1 && s.curves[0].points.length) return s.curves.map((c) => [c.label, c.points[0][1]]);
+      await new Promise((ok) => setTimeout(ok, 100));
+    }
+    return null;
+  });
+  check(cleared && cleared[0][0].startsWith("light") && cleared[0][1] <= 2, `Clear leaves only the running render's new curve (${JSON.stringify(cleared)})`);
+
+  // The server gone: a banner, the live parts grey, and back by itself.
+  await page.route("**/api/**", (r) => r.abort());
+  await page.waitForSelector("#offline:not([hidden])");
+  check(await page.evaluate(() => document.body.classList.contains("offline")), "no answer: the banner shows and the page is greyed");
+  await page.click("#c-clear");
+  await page.unroute("**/api/**");
+  await page.waitForSelector("#offline[hidden]", { state: "attached", timeout: 15000 });
+  const before = await status();
+  await wait((b) => document.querySelector("#c-status").textContent !== b, before);
+  check(!(await page.evaluate(() => document.body.classList.contains("offline"))), "the server back: the page goes on by itself");
+
+  // Sampling: the real limits on the boxes; a refused run marks the old results stale.
+  await page.click("#tab-sampling");
+  await page.click("#s-run");
+  await wait(() => /samples/.test(document.querySelector("#s-status").textContent));
+  await page.selectOption("#s-method", "numeric");
+  check(await page.getAttribute("#s-samples", "max") === "200000", "numerical inversion: the samples box says 200000 at most");
+  await page.fill("#s-samples", "2000000");
+  await page.click("#s-run");
+  const stale = await page.evaluate(() => ({ fig: document.querySelector("#s-figure").classList.contains("stale"),
+    invalid: document.querySelector("#s-samples").getAttribute("aria-invalid") }));
+  check(stale.fig && stale.invalid === "true", `too many samples: marked, and the last results marked stale (${JSON.stringify(stale)})`);
+  const bars = await page.evaluate(() => {
+    const line = document.querySelector("#s-hist .expected");
+    return line ? line.getAttribute("d").split("L").length : 0;
+  });
+  check(bars >= 2 * 80, `the expected count is drawn per histogram bin (${bars} points)`);
+
+  // Monte Carlo: Clear during a run stops it and leaves the plots empty.
+  await page.click("#tab-mc");
+  await page.fill("#mc-max", "16");
+  await page.click("#mc-run");
+  await wait(() => document.querySelectorAll("#mc-vs-n .curve").length === 1);
+  await page.click("#mc-clear");
+  await wait(() => !document.querySelector("#mc-run").disabled);
+  const mc = await page.evaluate(() => ({ curves: document.querySelectorAll("#mc-vs-n .curve").length,
+    status: document.querySelector("#mc-status").textContent }));
+  check(mc.curves === 0 && /stopped/.test(mc.status), `Clear stops a run (${JSON.stringify(mc)})`);
+
+  // A phone: no bench scrolls sideways.
+  await page.setViewportSize({ width: 390, height: 844 });
+  for (const b of ["mc", "sampling", "cornell"]) {
+    await page.click(`#tab-${b}`);
+    const w = await page.evaluate(() => document.documentElement.scrollWidth);
+    check(w <= 390, `${b} at 390 px: no sideways scrolling (${w})`);
+  }
+  check(errors.length === 0, `no uncaught error${errors.length ? ": " + errors.join(" | ") : ""}`);
+  check(outside.length === 0, `nothing from another host${outside.length ? ": " + outside.join(" ") : ""}`);
+  await browser.close();
+  console.log(fails.length ? `${fails.length} check(s) failed` : "all checks hold");
+  process.exit(fails.length ? 1 : 0);
+})().catch((e) => { console.error(e); process.exit(1); });
+"##;

@@ -9,12 +9,30 @@
 //! map (log10 from -4 to 3), and a point `(seconds, RMSE)` of the curve of the current settings,
 //! against the reference of `rtl study render` at that width (cached in its directory, or rendered
 //! once in the background and cached there).
+//!
+//! Every setting keeps its curve: a render left for other settings is kept (up to [`SAVED_BYTES`]
+//! of them, the least recently left forgotten first) and continues where it stopped when its
+//! settings come back, its curve with it. One no longer kept is rendered again from its first
+//! sample, which gives the same images (sample `k` of a pixel depends only on the seed, the pixel and
+//! `k`): its curve waits until the new render passes the curve's end, then goes on from there.
+//!
+//! The reference is a render too (`mis`, some 1024 spp): its own noise is where every curve
+//! flattens, whatever the strategy: the reference's noise floor ([`Floor`]). The bench measures it
+//! with a render of the reference's own strategy under another seed: at the reference's spp that
+//! render is the reference's twin, and its mean squared error against the reference is twice the
+//! reference's variance (the two are independent and alike); at `k` spp before that, with the
+//! render's variance falling at least as 1/k (as 1/k for independent samples, faster for
+//! low-discrepancy ones), the reference's variance is at most `MSE k / (spp + k)`. The page's own
+//! render gives it when it is that strategy at that width (its passes stop at the reference's spp
+//! on the way); otherwise a short render of the bench's ([`NOISE_SPP`], seed 998) does.
 
 use super::glue::{self, Settings};
 use crate::study::render::{errors, heat, reference_until};
 use rtl_mc::RunningStats;
 use rtl_render::Color;
+use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::output::{Transfer, to_rgb8};
+use rtl_render::render::Accumulator;
 use rtl_render::scene::Scene;
 use serde::Serialize;
 use std::collections::HashMap;
@@ -33,11 +51,22 @@ pub const MAX_CURVES: usize = 16;
 const MAX_POINTS: usize = 400;
 /// Widths the page may ask for.
 pub const WIDTHS: (usize, usize) = (16, 600);
+/// The memory kept for renders left for other settings (about 100 bytes a pixel: 5 of 600 x 600,
+/// 50 of 200 x 200).
+pub const SAVED_BYTES: usize = 192 << 20;
+/// The most samples per pixel of the bench's own measurement of the reference's noise (when the
+/// page does not render the reference's strategy at that width), and the most time it takes.
+pub const NOISE_SPP: u64 = 64;
+pub const NOISE_TIME: Duration = Duration::from_secs(5);
+/// The seed of the references of `rtl study render`: a render with it is the reference itself.
+const REFERENCE_SEED: u64 = 999;
 
 /// A curve of RMSE against seconds for one setting tried.
 #[derive(Clone, Debug, Serialize)]
 pub struct Curve {
     pub label: String,
+    /// The strategy's name (`uniform` ... `mis`): the page's colour of the curve.
+    pub strategy: &'static str,
     pub width: usize,
     /// `(seconds of rendering, spp, RMSE)`.
     pub points: Vec<(f64, u64, f64)>,
@@ -54,6 +83,8 @@ pub struct Frame {
     pub seconds: f64,
     pub rays_per_second: f64,
     pub rmse: Option<f64>,
+    /// This frame continues a render of these settings left earlier (not a fresh one).
+    pub resumed: bool,
     pub image_png: Arc<Vec<u8>>,
     pub variance_png: Arc<Vec<u8>>,
 }
@@ -62,8 +93,52 @@ pub struct Frame {
 #[derive(Clone)]
 pub enum Reference {
     Rendering,
-    Ready(Arc<Vec<Color>>),
+    /// The image and its samples per pixel.
+    Ready(Arc<Vec<Color>>, u64),
     Failed(String),
+}
+
+/// The reference's own noise at a width: the RMSE a render would show against it if the render
+/// were exact.
+#[derive(Clone, Debug, Serialize)]
+pub struct Floor {
+    pub width: usize,
+    /// Samples per pixel of the reference.
+    pub reference_spp: u64,
+    /// The square root of the reference's variance, averaged over pixels and channels.
+    pub rmse: f64,
+    /// Measured at this many samples per pixel (the reference's: a measurement; fewer: at most
+    /// about this) ...
+    pub measured_spp: u64,
+    /// ... of this render (a label).
+    pub measured_by: String,
+}
+
+/// The reference's variance at a width (mean over pixels and channels), and how it was measured.
+#[derive(Clone, Debug)]
+struct Noise {
+    variance: f64,
+    spp: u64,
+    by: String,
+}
+
+/// A render left for other settings, to be continued.
+struct Progress {
+    acc: Accumulator,
+    moments: Vec<RunningStats>,
+    seconds: f64,
+    rays: u64,
+    /// The size of the next pass.
+    next: u64,
+    /// How its points go onto its curve.
+    join: Join,
+}
+
+impl Progress {
+    fn bytes(&self) -> usize {
+        self.acc.sum.len()
+            * (std::mem::size_of::<Color>() + 16 + std::mem::size_of::<RunningStats>())
+    }
 }
 
 /// What the worker, the watchdog and the request handlers share.
@@ -76,6 +151,13 @@ pub struct Bench {
     last_seen_ms: AtomicU64,
     pub frame: Mutex<Frame>,
     pub curves: Mutex<Vec<Curve>>,
+    /// Bumped by every clear: a render running through one is not kept for later.
+    clears: AtomicU64,
+    /// Renders left for other settings, by their label (what tells settings of different images
+    /// apart), the most recently left last.
+    saved: Mutex<Vec<(String, Progress)>>,
+    /// The reference's variance, per width.
+    noise: Mutex<HashMap<usize, Noise>>,
     references: Mutex<HashMap<usize, Reference>>,
     /// A reference is being rendered (one at a time: the others are asked for again later).
     reference_busy: AtomicBool,
@@ -98,7 +180,6 @@ fn readable(x: f64) -> String {
 
 /// A label of the settings, for a curve's legend.
 pub fn label(s: &Settings) -> String {
-    use rtl_render::integrator::Strategy;
     let name = match s.strategy {
         Strategy::Mis(o) => {
             let mut l = String::from("mis");
@@ -129,6 +210,22 @@ pub fn label(s: &Settings) -> String {
     format!("{name} seed {} {}px{depth}", s.seed, s.width)
 }
 
+/// Whether `s` renders as the references of `rtl study render` do (`mis` with its default extras at
+/// the book's depth, as `study::render::reference_until`), under another seed: a render
+/// independent of the reference and alike.
+fn renders_like_the_reference(s: &Settings) -> bool {
+    s.strategy == Strategy::Mis(MisOptions::default())
+        && s.max_depth == glue::BOOK_DEPTH
+        && s.seed != REFERENCE_SEED
+}
+
+/// The reference's variance from the mean squared error `mse` against it of a render like it (and
+/// independent of it) at `k` spp, for a reference of `spp`: the render's variance at `k`, at least
+/// the reference's times `spp / k`, plus the reference's.
+fn reference_variance(mse: f64, k: u64, spp: u64) -> f64 {
+    mse * k as f64 / (spp + k) as f64
+}
+
 /// The spp of the best reference cached in `dir` at `width` (`rtl study render`'s file names).
 fn cached_reference_spp(dir: &Path, width: usize) -> Option<u64> {
     let prefix = format!("render-reference-{}-{width}-", glue::SCENE);
@@ -153,6 +250,9 @@ impl Bench {
             last_seen_ms: AtomicU64::new(NEVER),
             frame: Mutex::new(Frame::default()),
             curves: Mutex::new(Vec::new()),
+            clears: AtomicU64::new(0),
+            saved: Mutex::new(Vec::new()),
+            noise: Mutex::new(HashMap::new()),
             references: Mutex::new(HashMap::new()),
             reference_busy: AtomicBool::new(false),
             reference_dir,
@@ -168,10 +268,17 @@ impl Bench {
         self.generation.load(Ordering::SeqCst)
     }
 
-    /// New settings: the render restarts at once (even with the same settings: a fresh curve).
+    /// New settings: the render switches to them at once (continuing their render if one was left
+    /// earlier). Settings that render the same image (the same label: the mixture weight with
+    /// another strategy, say) are kept for later but change nothing now.
     pub fn set(&self, s: Settings) -> u64 {
-        *self.settings.lock().unwrap() = s;
         self.touch();
+        let mut current = self.settings.lock().unwrap();
+        let same = label(&current) == label(&s);
+        *current = s;
+        if same {
+            return self.generation();
+        }
         self.generation.fetch_add(1, Ordering::SeqCst) + 1
     }
 
@@ -186,13 +293,138 @@ impl Bench {
         last == NEVER || self.now_ms().saturating_sub(last) > IDLE_AFTER.as_millis() as u64
     }
 
+    /// Whether the bench is using the cores: the render (its page watching) or a reference.
+    pub fn is_busy(&self) -> bool {
+        !self.is_idle() || self.reference_busy.load(Ordering::SeqCst)
+    }
+
     fn now_ms(&self) -> u64 {
         self.epoch.elapsed().as_millis() as u64
     }
 
-    /// Forget every curve; the running render's curve starts again with its next pass.
-    pub fn clear_curves(&self) {
+    /// Forget every curve and every render left for later, and start the current render again from
+    /// its first sample: a clean slate.
+    pub fn clear_curves(&self) -> u64 {
+        self.clears.fetch_add(1, Ordering::SeqCst);
+        self.saved.lock().unwrap().clear();
         self.curves.lock().unwrap().clear();
+        self.touch();
+        self.generation.fetch_add(1, Ordering::SeqCst) + 1
+    }
+
+    /// Keep `p`, the render of `s` left for other settings, forgetting the least recently left ones
+    /// beyond [`SAVED_BYTES`]; not if the curves were cleared since `clears` (the render began).
+    fn save(&self, s: Settings, p: Progress, clears: u64) {
+        let mut saved = self.saved.lock().unwrap();
+        if p.acc.samples == 0 || self.clears.load(Ordering::SeqCst) != clears {
+            return;
+        }
+        let key = label(&s);
+        saved.retain(|(k, _)| *k != key);
+        saved.push((key, p));
+        while saved.len() > 1 && saved.iter().map(|(_, p)| p.bytes()).sum::<usize>() > SAVED_BYTES {
+            saved.remove(0);
+        }
+    }
+
+    /// The render of `s` left earlier, if it is kept.
+    fn take_saved(&self, s: &Settings) -> Option<Progress> {
+        let mut saved = self.saved.lock().unwrap();
+        let key = label(s);
+        let i = saved.iter().position(|(k, _)| *k == key)?;
+        Some(saved.remove(i).1)
+    }
+
+    /// A measurement of the reference's variance at `width` by a render of `spp`: kept if it has
+    /// more samples than the one before.
+    fn record_noise(&self, width: usize, variance: f64, spp: u64, by: String) {
+        let mut noise = self.noise.lock().unwrap();
+        if noise.get(&width).is_none_or(|n| n.spp < spp) {
+            noise.insert(width, Noise { variance, spp, by });
+        }
+    }
+
+    /// The reference's noise floor at every width that has a reference and a measurement.
+    pub fn floors(&self) -> Vec<Floor> {
+        let noise = self.noise.lock().unwrap();
+        let refs = self.references.lock().unwrap();
+        let mut floors: Vec<Floor> = refs
+            .iter()
+            .filter_map(|(&width, r)| {
+                let Reference::Ready(_, spp) = r else {
+                    return None;
+                };
+                let n = noise.get(&width)?;
+                Some(Floor {
+                    width,
+                    reference_spp: *spp,
+                    rmse: n.variance.sqrt(),
+                    measured_spp: n.spp,
+                    measured_by: n.by.clone(),
+                })
+            })
+            .collect();
+        floors.sort_by_key(|f| f.width);
+        floors
+    }
+
+    /// The samples per pixel of the reference at `width`: the one in use, or the one that will be.
+    pub fn reference_spp(&self, width: usize) -> u64 {
+        match self.references.lock().unwrap().get(&width) {
+            Some(Reference::Ready(_, spp)) => *spp,
+            _ => cached_reference_spp(&self.reference_dir, width).unwrap_or(self.reference_spp),
+        }
+    }
+
+    /// Add a point of the render of `s` to its curve; `join` is the render's way onto a curve kept
+    /// from before.
+    fn add_point(&self, s: &Settings, point: (f64, u64, f64), join: &mut Join) {
+        let label = label(s);
+        let mut curves = self.curves.lock().unwrap();
+        let i = match curves.iter().position(|c| c.label == label) {
+            Some(i) => i,
+            None => {
+                if curves.len() >= MAX_CURVES {
+                    curves.remove(0);
+                }
+                curves.push(Curve {
+                    label,
+                    strategy: s.strategy.name(),
+                    width: s.width,
+                    points: Vec::new(),
+                });
+                curves.len() - 1
+            }
+        };
+        let c = &mut curves[i];
+        let (seconds, spp, rmse) = point;
+        let last = c.points.last().copied();
+        let offset = match (join.offset, last) {
+            (_, None) => *join.offset.get_or_insert(0.0),
+            // The curve goes on only past its end (a render again from the first sample repeats
+            // the images of the curve's points), later in time by as much as it has already taken.
+            (None, Some((t, k, _))) => {
+                if spp <= k {
+                    (join.base, join.base_spp) = (seconds, spp);
+                    return;
+                }
+                // When this render passed the curve's end, at the pace of its last pass.
+                let f = (k - join.base_spp) as f64 / (spp - join.base_spp) as f64;
+                let passed = join.base + (seconds - join.base) * f;
+                *join.offset.get_or_insert(t - passed)
+            }
+            (Some(o), Some((_, k, _))) => {
+                if spp <= k {
+                    return;
+                }
+                o
+            }
+        };
+        if c.points.len() >= MAX_POINTS {
+            let kept: Vec<_> = c.points.iter().copied().step_by(2).collect();
+            c.points = kept;
+        }
+        c.points.push((seconds + offset, spp, rmse));
     }
 
     /// The state of the reference at `width`, starting its render if there is none and no other
@@ -211,34 +443,89 @@ impl Bench {
         std::thread::spawn(move || {
             let dir = &me.reference_dir;
             let spp = cached_reference_spp(dir, width).unwrap_or(me.reference_spp);
+            // Stopped when nobody watches: the page closed, or went to another bench.
+            let stop = || me.is_idle();
             // A pool of its own: in the render's pool its long passes would hold up the frames
             // (rayon runs one injected job after another); beside it, the two share the cores.
-            let result = rayon::ThreadPoolBuilder::new()
+            let pool = rayon::ThreadPoolBuilder::new()
                 .thread_name(|i| format!("reference-{i}"))
                 .build()
-                .map_err(anyhow::Error::from)
+                .map_err(anyhow::Error::from);
+            let result = pool
+                .as_ref()
+                .map_err(|e| anyhow::anyhow!("{e:#}"))
                 .and_then(|pool| {
                     std::fs::create_dir_all(dir)?;
-                    // Stopped when nobody watches: the page closed, or went to another bench.
-                    let stop = || me.is_idle();
                     pool.install(|| reference_until(dir, glue::SCENE, &scene, width, spp, &stop))
                 });
-            let mut refs = me.references.lock().unwrap();
-            match result {
-                Ok(Some(img)) => {
-                    refs.insert(width, Reference::Ready(Arc::new(img)));
+            let mut ready = None;
+            {
+                let mut refs = me.references.lock().unwrap();
+                match result {
+                    Ok(Some(img)) => {
+                        let img = Arc::new(img);
+                        ready = Some(Arc::clone(&img));
+                        refs.insert(width, Reference::Ready(img, spp));
+                    }
+                    // Asked for again (from the start) when the page is back.
+                    Ok(None) => {
+                        refs.remove(&width);
+                    }
+                    Err(e) => {
+                        refs.insert(width, Reference::Failed(format!("{e:#}")));
+                    }
                 }
-                // Asked for again (from the start) when the page is back.
-                Ok(None) => {
-                    refs.remove(&width);
-                }
-                Err(e) => {
-                    refs.insert(width, Reference::Failed(format!("{e:#}")));
-                }
+            }
+            // The reference's noise: measured here unless it is known or the render will measure
+            // it (it renders like the reference at this width, and has not passed its spp).
+            let measured = me.noise.lock().unwrap().contains_key(&width);
+            let current = me.settings();
+            let by_render = current.width == width
+                && renders_like_the_reference(&current)
+                && me.frame.lock().unwrap().spp < spp;
+            if let (Some(reference), false, false, Ok(pool)) = (ready, measured, by_render, &pool) {
+                pool.install(|| me.measure_noise(&scene, width, &reference, spp, &stop));
             }
             me.reference_busy.store(false, Ordering::SeqCst);
         });
         Reference::Rendering
+    }
+
+    /// Render the reference's strategy at `width` under seed 998 (the reference's is 999, the
+    /// page's 1), for up to [`NOISE_SPP`] samples or [`NOISE_TIME`], and record the reference's
+    /// variance its error gives.
+    fn measure_noise(
+        &self,
+        scene: &Scene,
+        width: usize,
+        reference: &[Color],
+        spp: u64,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) {
+        let s = Settings {
+            width,
+            strategy: Strategy::Mis(MisOptions::default()),
+            seed: 998,
+            max_depth: glue::BOOK_DEPTH,
+            mixture_weight: rtl_render::render::BOOK_MIXTURE_WEIGHT,
+        };
+        let r = glue::renderer(scene, &s);
+        let mut acc = r.accumulator();
+        let mut moments = vec![RunningStats::new(); acc.sum.len()];
+        let start = Instant::now();
+        let most = NOISE_SPP.min(spp);
+        while acc.samples < most && start.elapsed() < NOISE_TIME {
+            let (k0, k1) = (acc.samples, (acc.samples + 8).min(most));
+            if glue::pass(&r, &mut acc, &mut moments, k0, k1, stop).is_none() {
+                return;
+            }
+        }
+        let img = acc.image();
+        if acc.samples > 0 && img.len() == reference.len() {
+            let rmse = errors(&img, reference).0;
+            let v = reference_variance(rmse * rmse, acc.samples, spp);
+            self.record_noise(width, v, acc.samples, label(&s));
+        }
     }
 
     /// A description of the reference at `width` for the page.
@@ -253,15 +540,24 @@ impl Bench {
                 cached_reference_spp(&self.reference_dir, width).unwrap_or(self.reference_spp),
                 self.reference_dir.display()
             ),
-            Some(Reference::Ready(_)) => format!(
-                "{}/render-reference-{}-{width}-{}.pfm (rtl study render's)",
+            Some(Reference::Ready(_, spp)) => format!(
+                "a {spp}-spp render with mis (seed 999), {}/render-reference-{}-{width}-{spp}.pfm (rtl study render's)",
                 self.reference_dir.display(),
                 glue::SCENE,
-                cached_reference_spp(&self.reference_dir, width).unwrap_or(self.reference_spp)
             ),
             Some(Reference::Failed(e)) => format!("no reference: {e}"),
         }
     }
+}
+
+/// How a render's points go onto its curve: `offset` is added to its seconds, once known (0 on a
+/// curve of its own; at its first point past the end of a curve kept from an earlier render of the
+/// same settings, what makes it follow that curve in time); `base` and `base_spp` are its seconds
+/// and spp at its last point before that end.
+struct Join {
+    offset: Option<f64>,
+    base: f64,
+    base_spp: u64,
 }
 
 fn png(width: usize, height: usize, rgb: Vec<u8>) -> Vec<u8> {
@@ -297,81 +593,80 @@ pub fn worker(bench: Arc<Bench>, scene: Arc<Scene>) {
     }
 }
 
+/// Render `s` (continuing its render left earlier, if kept) until the settings change; then keep
+/// it for later.
 fn render_generation(bench: &Arc<Bench>, scene: &Arc<Scene>, generation: u64, s: Settings) {
+    let clears = bench.clears.load(Ordering::SeqCst);
     let r = glue::renderer(scene, &s);
     let (w, h) = (r.camera.width, r.camera.height);
-    let mut acc = r.accumulator();
-    let mut moments = vec![RunningStats::new(); w * h];
-    let mut backup = (acc.clone(), moments.clone());
+    let mut p = bench.take_saved(&s).unwrap_or_else(|| Progress {
+        acc: r.accumulator(),
+        moments: vec![RunningStats::new(); w * h],
+        seconds: 0.0,
+        rays: 0,
+        next: 1,
+        join: Join {
+            offset: None,
+            base: 0.0,
+            base_spp: 0,
+        },
+    });
+    let resumed = p.acc.samples > 0;
+    let mut backup = (p.acc.clone(), p.moments.clone());
     let stop = || bench.generation() != generation || bench.is_idle();
-    let label = label(&s);
-    let mut seconds = 0.0;
-    let mut rays = 0u64;
-    let mut n = 1u64;
-    let mut curve_started = false;
-    while !stop() {
-        let (k0, k1) = (acc.samples, acc.samples + n);
-        backup.0.clone_from(&acc);
-        backup.1.clone_from(&moments);
+    let by = label(&s);
+    // Like the reference: a pass ends at the reference's spp, where the render is its twin.
+    let twin_at = renders_like_the_reference(&s).then(|| bench.reference_spp(w));
+    loop {
+        if bench.generation() != generation {
+            break;
+        }
+        if bench.is_idle() {
+            // Wait for the page, then carry on with this render.
+            std::thread::sleep(Duration::from_millis(50));
+            continue;
+        }
+        let (k0, mut k1) = (p.acc.samples, p.acc.samples + p.next);
+        if let Some(spp) = twin_at.filter(|&spp| k0 < spp) {
+            k1 = k1.min(spp);
+        }
+        backup.0.clone_from(&p.acc);
+        backup.1.clone_from(&p.moments);
         let t0 = Instant::now();
-        let Some(stats) = glue::pass(&r, &mut acc, &mut moments, k0, k1, &stop) else {
-            // Stopped half-way: keep the whole passes only (the page may come back).
-            std::mem::swap(&mut acc, &mut backup.0);
-            std::mem::swap(&mut moments, &mut backup.1);
-            if bench.generation() != generation {
-                return;
-            }
-            // Idle: wait for the page, then carry on with this render.
-            while bench.is_idle() {
-                std::thread::sleep(Duration::from_millis(50));
-            }
+        let Some(stats) = glue::pass(&r, &mut p.acc, &mut p.moments, k0, k1, &stop) else {
+            // Stopped half-way: keep the whole passes only.
+            std::mem::swap(&mut p.acc, &mut backup.0);
+            std::mem::swap(&mut p.moments, &mut backup.1);
             continue;
         };
-        // Finished just as the settings changed: a pass of the old render, shown to nobody.
-        if bench.generation() != generation {
-            return;
-        }
         let t = t0.elapsed().as_secs_f64();
-        seconds += t;
-        rays += stats.rays;
-        let img = acc.image();
+        p.seconds += t;
+        p.rays += stats.rays;
+        // The next pass: about PASS_TIME long, at most twice the last.
+        let per_spp = t / (k1 - k0) as f64;
+        let fit = (PASS_TIME.as_secs_f64() / per_spp.max(1e-12)).floor() as u64;
+        p.next = fit.clamp(1, p.next.saturating_mul(2));
+        // Finished just as the settings changed: a pass kept for later, shown to nobody.
+        if bench.generation() != generation {
+            break;
+        }
+        let img = p.acc.image();
         let rmse = match bench.reference(scene, w) {
-            Reference::Ready(reference) if reference.len() == img.len() => {
-                Some(errors(&img, &reference).0)
+            Reference::Ready(reference, spp) if reference.len() == img.len() => {
+                let rmse = errors(&img, &reference).0;
+                if twin_at.is_some() && p.acc.samples <= spp {
+                    let v = reference_variance(rmse * rmse, p.acc.samples, spp);
+                    bench.record_noise(w, v, p.acc.samples, by.clone());
+                }
+                Some(rmse)
             }
             _ => None,
         };
         if let Some(rmse) = rmse {
-            let mut curves = bench.curves.lock().unwrap();
-            // A fresh render of a setting tried before replaces its curve.
-            if !curve_started {
-                curves.retain(|c| c.label != label);
-                curve_started = true;
-            }
-            // Not there at the start, or cleared by the page since: the curve (re)starts here.
-            let i = match curves.iter().position(|c| c.label == label) {
-                Some(i) => i,
-                None => {
-                    if curves.len() >= MAX_CURVES {
-                        curves.remove(0);
-                    }
-                    curves.push(Curve {
-                        label: label.clone(),
-                        width: w,
-                        points: Vec::new(),
-                    });
-                    curves.len() - 1
-                }
-            };
-            let c = &mut curves[i];
-            if c.points.len() >= MAX_POINTS {
-                let kept: Vec<_> = c.points.iter().copied().step_by(2).collect();
-                c.points = kept;
-            }
-            c.points.push((seconds, acc.samples, rmse));
+            bench.add_point(&s, (p.seconds, p.acc.samples, rmse), &mut p.join);
         }
         let image_png = png(w, h, to_rgb8(&img, Transfer::Gamma2));
-        let variance_png = png(w, h, variance_rgb(&moments));
+        let variance_png = png(w, h, variance_rgb(&p.moments));
         {
             let mut f = bench.frame.lock().unwrap();
             *f = Frame {
@@ -379,19 +674,17 @@ fn render_generation(bench: &Arc<Bench>, scene: &Arc<Scene>, generation: u64, s:
                 generation,
                 width: w,
                 height: h,
-                spp: acc.samples,
-                seconds,
-                rays_per_second: rays as f64 / seconds.max(1e-9),
+                spp: p.acc.samples,
+                seconds: p.seconds,
+                rays_per_second: p.rays as f64 / p.seconds.max(1e-9),
                 rmse,
+                resumed,
                 image_png: Arc::new(image_png),
                 variance_png: Arc::new(variance_png),
             };
         }
-        // The next pass: about PASS_TIME long, at most twice the last.
-        let per_spp = t / (k1 - k0) as f64;
-        let fit = (PASS_TIME.as_secs_f64() / per_spp.max(1e-12)).floor() as u64;
-        n = fit.clamp(1, n.saturating_mul(2));
     }
+    bench.save(s, p, clears);
 }
 
 #[cfg(test)]
@@ -489,6 +782,7 @@ mod tests {
         };
         let g = bench.set(s);
         assert!(wait_for(&|f| f.generation == g && f.spp >= 2));
+        assert!(wait_for(&|f| f.generation == g && f.rmse.is_some()));
         let g2 = bench.set(Settings {
             strategy: Strategy::Uniform,
             ..s
@@ -503,24 +797,30 @@ mod tests {
                 .iter()
                 .any(|c| c.label == label(&bench.settings()))
         );
-        // Cleared while it runs: the running render's curve comes back alone, from later passes.
-        let spp_at_clear = bench.frame.lock().unwrap().spp;
-        bench.clear_curves();
-        let back = |curves: &Vec<Curve>| {
-            curves.len() == 1
-                && curves[0].label == label(&bench.settings())
-                && curves[0].points.iter().all(|p| p.1 > spp_at_clear)
-        };
-        let start = Instant::now();
-        while !back(&bench.curves.lock().unwrap()) {
-            assert!(
-                start.elapsed() < Duration::from_secs(60),
-                "the curve did not come back after a clear: {:?}",
-                bench.curves.lock().unwrap()
-            );
-            bench.touch();
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        // Back to cosine: its render continues where it stopped, and so does its curve.
+        let cosine_spp = bench
+            .curves
+            .lock()
+            .unwrap()
+            .iter()
+            .find(|c| c.label == label(&s))
+            .map(|c| c.points.last().unwrap().1);
+        let g3 = bench.set(s);
+        assert!(wait_for(&|f| f.generation == g3));
+        let f = bench.frame.lock().unwrap();
+        assert!(f.resumed && f.spp > cosine_spp.unwrap_or(2), "{}", f.spp);
+        drop(f);
+        // The same settings again change nothing.
+        assert_eq!(bench.set(s), g3);
+        // Cleared while it runs: every curve goes, and the render starts again from its first sample.
+        let g4 = bench.clear_curves();
+        assert!(g4 > g3);
+        assert!(wait_for(&|f| f.generation == g4 && f.rmse.is_some()));
+        let curves = bench.curves.lock().unwrap().clone();
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert_eq!(curves[0].label, label(&s));
+        assert!(!bench.frame.lock().unwrap().resumed);
+        assert!(curves[0].points[0].1 <= 2, "{curves:?}");
         // Nobody asks: the passes stop.
         bench.last_seen_ms.store(NEVER, Ordering::SeqCst);
         std::thread::sleep(Duration::from_millis(300));
@@ -528,6 +828,71 @@ mod tests {
         std::thread::sleep(Duration::from_millis(500));
         assert_eq!(bench.frame.lock().unwrap().spp, spp);
         let _ = std::fs::remove_dir_all(dir);
+    }
+
+    /// A curve is continued, never replaced: a render again from the first sample adds nothing until
+    /// it passes the curve's end, then follows it in time.
+    #[test]
+    fn a_curve_kept_from_before_is_joined_past_its_end() {
+        let s = Settings {
+            width: 16,
+            strategy: Strategy::Light,
+            seed: 1,
+            max_depth: 50,
+            mixture_weight: 0.5,
+        };
+        let bench = Bench::new(s, std::env::temp_dir(), 16);
+        let fresh = || Join {
+            offset: None,
+            base: 0.0,
+            base_spp: 0,
+        };
+        let mut first = fresh();
+        for (t, k) in [(0.1, 1), (0.3, 4), (1.0, 16)] {
+            bench.add_point(&s, (t, k, 1.0 / k as f64), &mut first);
+        }
+        // Rendered again: 1, 4 and 8 spp (skipped: the curve has them, or has passed them), then 32
+        // spp at 1.5 s of its own. From 8 spp at 0.8 s to 32 at 1.5 s, it passed the curve's end (16
+        // spp) at 0.8 + 0.7 / 3: its later points go 1.0 - that later than its own seconds.
+        let mut again = fresh();
+        for (t, k) in [(0.05, 1), (0.2, 4), (0.8, 8), (1.5, 32), (2.0, 64)] {
+            bench.add_point(&s, (t, k, 1.0 / k as f64), &mut again);
+        }
+        let curves = bench.curves.lock().unwrap();
+        assert_eq!(curves.len(), 1);
+        let spp: Vec<u64> = curves[0].points.iter().map(|p| p.1).collect();
+        assert_eq!(spp, [1, 4, 16, 32, 64]);
+        let t: Vec<f64> = curves[0].points.iter().map(|p| p.0).collect();
+        let shift = 1.0 - (0.8 + 0.7 / 3.0);
+        assert!((t[3] - (1.5 + shift)).abs() < 1e-12, "{t:?}");
+        assert!((t[4] - (2.0 + shift)).abs() < 1e-12, "{t:?}");
+        assert_eq!(curves[0].strategy, "light");
+    }
+
+    /// A render like the reference at the reference's spp is its twin: MSE = 2 variances; before,
+    /// its variance is (for 1/k) spp / k times the reference's.
+    #[test]
+    fn the_reference_variance_from_a_render_like_it() {
+        let v = 1e-5;
+        assert!((reference_variance(2.0 * v, 1024, 1024) - v).abs() < 1e-18);
+        let k = 64;
+        let mse = v * 1024.0 / k as f64 + v;
+        assert!((reference_variance(mse, k, 1024) - v).abs() < 1e-18);
+        let s = Settings {
+            width: 64,
+            strategy: Strategy::default(),
+            seed: 1,
+            max_depth: glue::BOOK_DEPTH,
+            mixture_weight: 0.2,
+        };
+        assert!(renders_like_the_reference(&s));
+        assert!(!renders_like_the_reference(&Settings { seed: 999, ..s }));
+        assert!(!renders_like_the_reference(&Settings { max_depth: 5, ..s }));
+        let no_rr = glue::strategy("mis", false, true, false).unwrap();
+        assert!(!renders_like_the_reference(&Settings {
+            strategy: no_rr,
+            ..s
+        }));
     }
 
     #[test]

@@ -172,6 +172,13 @@ mod tests {
         assert!(pass(&r, &mut acc, &mut m, 0, 1, &|| true).is_none());
     }
 
+    /// The references of `rtl study render` are rendered at the scene's depth: the book's, which the
+    /// bench takes for theirs.
+    #[test]
+    fn the_scene_has_the_books_depth() {
+        assert_eq!(scene().unwrap().max_depth, BOOK_DEPTH);
+    }
+
     #[test]
     fn strategies_by_name() {
         assert!(strategy("nope", true, true, false).is_err());

@@ -7,7 +7,7 @@
 //! first of those 30 estimates with its Student-t 95% interval: every number is what
 //! `rtl study mc` computes for the same N.
 
-use super::params::{BadRequest, Query, bad};
+use super::params::{BadRequest, Query, bad, bad_param};
 use crate::study::mc::{Case, Rng64, cases, measure, seed};
 use rand::SeedableRng;
 use serde_json::{Value, json};
@@ -49,10 +49,13 @@ pub fn run(query: &str) -> Result<Value, BadRequest> {
     let log2_n = q.number("log2_n", 10, LOG2_N.0, LOG2_N.1)?;
     let all = cases();
     if !all.iter().any(|c| c.slug == slug) {
-        return Err(bad(format!(
-            "`integral={slug}`: expected one of {}",
-            slugs(&all).join(", ")
-        )));
+        return Err(bad_param(
+            "integral",
+            format!(
+                "`integral={slug}`: expected one of {}",
+                slugs(&all).join(", ")
+            ),
+        ));
     }
     let Some(index) = all
         .iter()
@@ -63,10 +66,10 @@ pub fn run(query: &str) -> Result<Value, BadRequest> {
             .filter(|c| c.slug == slug)
             .map(|c| c.estimator)
             .collect();
-        return Err(bad(format!(
-            "`estimator={estimator}`: {slug} has {}",
-            names.join(", ")
-        )));
+        return Err(bad_param(
+            "estimator",
+            format!("`estimator={estimator}`: {slug} has {}", names.join(", ")),
+        ));
     };
     let case = &all[index];
     let row = measure(index, case, log2_n).map_err(|e| bad(format!("{e:#}")))?;

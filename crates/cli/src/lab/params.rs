@@ -4,14 +4,29 @@
 use std::fmt::Display;
 use std::str::FromStr;
 
-/// A refused request: the message goes back to the page with status 400.
+/// A refused request: the message goes back to the page with status 400, with the name of the
+/// parameter it refuses when there is one (the page marks that field).
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct BadRequest(pub String);
+#[error("{message}")]
+pub struct BadRequest {
+    pub message: String,
+    pub parameter: Option<String>,
+}
 
 /// Shorthand for a refusal.
 pub fn bad(msg: impl Into<String>) -> BadRequest {
-    BadRequest(msg.into())
+    BadRequest {
+        message: msg.into(),
+        parameter: None,
+    }
+}
+
+/// A refusal of the parameter `name`.
+pub fn bad_param(name: &str, msg: impl Into<String>) -> BadRequest {
+    BadRequest {
+        message: msg.into(),
+        parameter: Some(name.to_string()),
+    }
 }
 
 /// The longest query string the lab reads.
@@ -63,13 +78,16 @@ impl Query {
             let (name, value) = part.split_once('=').unwrap_or((part, ""));
             let (name, value) = (decode(name)?, decode(value)?);
             if !known.contains(&name.as_str()) {
-                return Err(bad(format!(
-                    "unknown parameter `{name}`; this request takes: {}",
-                    known.join(", ")
-                )));
+                return Err(bad_param(
+                    &name,
+                    format!(
+                        "unknown parameter `{name}`; this request takes: {}",
+                        known.join(", ")
+                    ),
+                ));
             }
             if pairs.iter().any(|(n, _)| *n == name) {
-                return Err(bad(format!("parameter `{name}` given twice")));
+                return Err(bad_param(&name, format!("parameter `{name}` given twice")));
             }
             pairs.push((name, value));
         }
@@ -94,9 +112,10 @@ impl Query {
         match v.trim().parse::<T>() {
             // `!(x >= lo && x <= hi)` also refuses NaN.
             Ok(x) if x >= lo && x <= hi => Ok(x),
-            _ => Err(bad(format!(
-                "`{name}={v}`: expected a number from {lo} to {hi}"
-            ))),
+            _ => Err(bad_param(
+                name,
+                format!("`{name}={v}`: expected a number from {lo} to {hi}"),
+            )),
         }
     }
 
@@ -111,10 +130,10 @@ impl Query {
             return Ok(default);
         };
         choices.iter().copied().find(|c| *c == v).ok_or_else(|| {
-            bad(format!(
-                "`{name}={v}`: expected one of {}",
-                choices.join(", ")
-            ))
+            bad_param(
+                name,
+                format!("`{name}={v}`: expected one of {}", choices.join(", ")),
+            )
         })
     }
 
@@ -124,14 +143,14 @@ impl Query {
             None => Ok(default),
             Some("1" | "true" | "on") => Ok(true),
             Some("0" | "false" | "off") => Ok(false),
-            Some(v) => Err(bad(format!("`{name}={v}`: expected 1 or 0"))),
+            Some(v) => Err(bad_param(name, format!("`{name}={v}`: expected 1 or 0"))),
         }
     }
 
     /// A string that must be present.
     pub fn required(&self, name: &str) -> Result<&str, BadRequest> {
         self.get(name)
-            .ok_or_else(|| bad(format!("missing parameter `{name}`")))
+            .ok_or_else(|| bad_param(name, format!("missing parameter `{name}`")))
     }
 }
 
@@ -149,7 +168,8 @@ mod tests {
         assert_eq!(q.number("n", 0u64, 1, 100).unwrap(), 16);
         assert_eq!(q.required("name").unwrap(), "importance p = x/2");
         assert!(q.flag("on", false).unwrap());
-        assert!(q.number("n", 0u64, 17, 100).is_err());
+        let refused = q.number("n", 0u64, 17, 100).unwrap_err();
+        assert_eq!(refused.parameter.as_deref(), Some("n"));
         assert!(Query::parse("x=1", &["n"]).is_err());
         assert!(Query::parse("n=1&n=2", &["n"]).is_err());
         assert!(Query::parse("n=%zz", &["n"]).is_err());

@@ -15,7 +15,7 @@
 //! edition), binned in `(φ, cos θ)` cells of equal solid angle, against the expected counts of
 //! `rtl_pdf::chi2` (adaptive quadrature of the density), and its chi-square p-value.
 
-use super::params::{BadRequest, Query, bad};
+use super::params::{BadRequest, Query, bad, bad_param};
 use crate::study::sampling::{Reference, time_per_sample};
 use glam::{DVec2, DVec3};
 use rand::{Rng, SeedableRng};
@@ -149,14 +149,20 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
     let bins = q.number("bins", 64usize, HISTOGRAM_BINS.0, HISTOGRAM_BINS.1)?;
     let seed = q.number("seed", 1u64, 0, u64::MAX)?;
     if method == "numeric" && samples > NUMERIC_SAMPLES {
-        return Err(bad(format!(
-            "`samples={samples}`: numerical inversion takes at most {NUMERIC_SAMPLES} samples"
-        )));
+        return Err(bad_param(
+            "samples",
+            format!(
+                "`samples={samples}`: numerical inversion takes at most {NUMERIC_SAMPLES} samples"
+            ),
+        ));
     }
     if method == "analytic" && !has_analytic {
-        return Err(bad(format!(
-            "`method=analytic`: {name} has no inverse on paper; the densities that have one: linear, quadratic"
-        )));
+        return Err(bad_param(
+            "method",
+            format!(
+                "`method=analytic`: {name} has no inverse on paper; the densities that have one: linear, quadratic"
+            ),
+        ));
     }
 
     let (a, b) = target.domain();
@@ -170,7 +176,7 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
     let table = matches!(method, "binary_search" | "guide_table" | "alias")
         .then(|| TabulatedCdf::from_density(density, a, b, n))
         .transpose()
-        .map_err(|e| bad(format!("table of {n} bins: {e}")))?;
+        .map_err(|e| bad_param("n", format!("table of {n} bins: {e}")))?;
     let sampler: Box<dyn Fn(f64) -> Sample> = match method {
         "analytic" => Box::new(|u| Sample {
             x: target.quantile(u),
@@ -193,7 +199,7 @@ pub fn run_line(query: &str) -> Result<Value, BadRequest> {
         _ => {
             let inv = NumericInverse::with_density(move |x| target.cdf(x), density, a, b)
                 .and_then(|i| i.with_tolerance(tolerance))
-                .map_err(|e| bad(format!("numerical inversion: {e}")))?;
+                .map_err(|e| bad_param("tolerance", format!("numerical inversion: {e}")))?;
             Box::new(move |u| {
                 let x = numeric_x(&inv, u);
                 Sample {

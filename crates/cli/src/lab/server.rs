@@ -7,7 +7,7 @@
 use super::cornell::{self, Bench};
 use super::glue::{self, Settings};
 use super::http::{self, Refusal, Request, Response};
-use super::params::{BadRequest, Query, bad};
+use super::params::{BadRequest, Query, bad, bad_param};
 use super::{mc, sampling};
 use rtl_render::render::check_mixture_weight;
 use serde_json::{Value, json};
@@ -57,13 +57,22 @@ pub struct App {
 }
 
 impl App {
-    /// `run` in the Monte Carlo and sampling benches' turn (the others wait).
+    /// `run` in the Monte Carlo and sampling benches' turn (the others wait). The answer says
+    /// whether the Cornell bench was using the cores meanwhile (`shared_cores`: its render goes on
+    /// for [`cornell::IDLE_AFTER`] after its page stops asking, and a reference to its end), when
+    /// the times measured are slower than alone.
     fn one_at_a_time(
         &self,
         run: impl FnOnce() -> Result<Value, BadRequest>,
     ) -> Result<Answer, BadRequest> {
         let _turn = self.compute.lock().unwrap_or_else(|e| e.into_inner());
-        run().map(Answer::Json)
+        let busy = self.bench.is_busy();
+        let mut v = run()?;
+        let shared = busy || self.bench.is_busy();
+        if let Some(o) = v.as_object_mut() {
+            o.insert("shared_cores".into(), json!(shared));
+        }
+        Ok(Answer::Json(v))
     }
 
     pub fn new(bench: Arc<Bench>, hosts: Vec<String>, book_dir: PathBuf) -> App {
@@ -170,6 +179,14 @@ fn error(status: u16, message: &str) -> Response {
     json_response(status, &json!({ "error": message }))
 }
 
+/// A 400 that names the parameter it refuses (the page marks that field).
+fn refusal(e: &BadRequest) -> Response {
+    match &e.parameter {
+        Some(p) => json_response(400, &json!({ "error": e.message, "parameter": p })),
+        None => error(400, &e.message),
+    }
+}
+
 /// An answer before it is sent.
 enum Answer {
     Json(Value),
@@ -178,6 +195,10 @@ enum Answer {
     /// scripts and styles, so no Content-Security-Policy of ours.
     Book(u16, &'static str, Vec<u8>),
     Error(u16, String),
+    /// A 400 of a parameter refused.
+    Refused(BadRequest),
+    /// 308 to the path given (the same with a slash at the end, say).
+    Redirect(String),
     /// 405: the path is there for the methods in `allow` (the `Allow` header).
     WrongMethod {
         allow: &'static str,
@@ -187,7 +208,7 @@ enum Answer {
 
 impl From<BadRequest> for Answer {
     fn from(e: BadRequest) -> Answer {
-        Answer::Error(400, e.0)
+        Answer::Refused(e)
     }
 }
 
@@ -220,6 +241,12 @@ fn handle(app: &App, request: &Request) -> Response {
             body,
         },
         Answer::Error(status, msg) => error(status, &msg),
+        Answer::Refused(e) => refusal(&e),
+        Answer::Redirect(to) => {
+            let mut r = error(308, &format!("moved to {to}"));
+            r.headers.push(("Location", to));
+            r
+        }
         Answer::WrongMethod { allow, message } => {
             let mut r = error(405, &message);
             r.headers.push(("Allow", allow.into()));
@@ -256,6 +283,13 @@ fn route(app: &App, method: &str, path: &str, query: &str) -> Answer {
         }
         return Answer::Bytes(t, body.to_vec());
     }
+    // The book's pages link to each other relatively: its index must be /book/, not /book.
+    if path == "/book" {
+        if !get {
+            return wrong("GET, HEAD");
+        }
+        return Answer::Redirect("/book/".into());
+    }
     if let Some(rest) = path.strip_prefix("/book/") {
         if !get {
             return wrong("GET, HEAD");
@@ -274,8 +308,8 @@ fn route(app: &App, method: &str, path: &str, query: &str) -> Answer {
         "/api/render/image" => render_image,
         "/api/render/clear" => |app, q| {
             no_query(q).map(|()| {
-                app.bench.clear_curves();
-                Answer::Json(json!({ "cleared": true }))
+                let generation = app.bench.clear_curves();
+                Answer::Json(json!({ "cleared": true, "generation": generation }))
             })
         },
         p => return Answer::Error(404, format!("no page {p}")),
@@ -343,8 +377,8 @@ fn set_render(app: &App, query: &str) -> Result<Value, BadRequest> {
     )
     .map_err(bad)?;
     let w = q.number("mixture_weight", d.mixture_weight, 0.0, 1.0)?;
-    let mixture_weight =
-        check_mixture_weight(w).map_err(|e| bad(format!("`mixture_weight={w}`: {e}")))?;
+    let mixture_weight = check_mixture_weight(w)
+        .map_err(|e| bad_param("mixture_weight", format!("`mixture_weight={w}`: {e}")))?;
     let s = Settings {
         width,
         strategy,
@@ -373,8 +407,11 @@ fn render_state(app: &App, query: &str) -> Result<Value, BadRequest> {
         "frame": {
             "id": f.id, "generation": f.generation, "width": f.width, "height": f.height,
             "spp": f.spp, "seconds": f.seconds, "rays_per_second": f.rays_per_second, "rmse": f.rmse,
+            "resumed": f.resumed,
         },
         "reference": app.bench.reference_note(s.width),
+        "reference_spp": app.bench.reference_spp(s.width),
+        "floors": app.bench.floors(),
         "curves": curves,
     }))
 }

@@ -4,29 +4,163 @@
 
 const $ = (id) => document.getElementById(id);
 const SVG = "http://www.w3.org/2000/svg";
-const COLORS = ["#b8451f", "#1f6fb8", "#2e8b57", "#8e44ad", "#c98a00", "#008b8b", "#d0407a",
-  "#5a5a5a", "#7a9a01", "#3b4cc0", "#a0522d", "#e67e22", "#16a085", "#9b59b6", "#34495e", "#c0392b"];
+// Okabe & Ito's colour-blind-safe palette, always in this order; past its end, dashes tell lines apart.
+const PALETTE = ["#D55E00", "#0072B2", "#009E73", "#E69F00", "#CC79A7", "#56B4E9", "#000000"];
+const DASHES = ["", "7 4", "2 3", "9 3 2 3", "4 2 1 2 1 2", "12 4"];
+// The colour map of the heat maps, the server's (`rtl study render`'s): dark blue (low) to
+// yellow-white (high).
+const HEAT = [[0, [0.05, 0.03, 0.25]], [0.35, [0.2, 0.3, 0.7]], [0.6, [0.1, 0.7, 0.5]],
+  [0.85, [0.9, 0.85, 0.2]], [1, [1.0, 1.0, 0.9]]];
 
+// ---------------------------------------------------------------- the server, and when it is gone
+class Offline extends Error {}
+const GONE = "stopped: the lab server is not answering";
+
+const net = { offline: false, wait: 500, timer: null, tick: null, next: 0, onBack: [] };
+
+// A JSON request. A refusal (4xx, 5xx) throws an Error with the server's message and the parameter it
+// names; no answer at all throws Offline (and the banner says so until the server is back).
 async function api(path, opts) {
-  const r = await fetch(path, opts);
-  const body = await r.json();
-  if (!r.ok) throw new Error(body.error || ("HTTP " + r.status));
+  let r;
+  try {
+    r = await fetch(path, opts);
+  } catch (e) {
+    wentOffline();
+    throw new Offline("the lab server is not answering");
+  }
+  cameBack();
+  let body = null;
+  try { body = await r.json(); } catch (e) { body = null; }
+  if (!r.ok) {
+    const err = new Error((body && body.error) || ("HTTP " + r.status));
+    err.parameter = body && body.parameter;
+    err.status = r.status;
+    throw err;
+  }
   return body;
 }
 
-function el(name, attrs, parent) {
-  const e = document.createElementNS(SVG, name);
-  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
-  if (parent) parent.appendChild(e);
-  return e;
+function wentOffline() {
+  if (net.offline) return;
+  net.offline = true;
+  net.wait = 500;
+  document.body.classList.add("offline");
+  $("offline").hidden = false;
+  scheduleProbe();
 }
 
-function showError(box, e) {
+function cameBack() {
+  if (!net.offline) return;
+  net.offline = false;
+  clearTimeout(net.timer);
+  clearInterval(net.tick);
+  document.body.classList.remove("offline");
+  $("offline").hidden = true;
+  // A server started again counts its generations from 1.
+  cornell.minGeneration = 0;
+  if ($("c-error").textContent === GONE) $("c-error").textContent = "";
+  for (const f of net.onBack) f();
+}
+
+// Ask again after a wait that doubles up to 8 s, counting down on the banner.
+function scheduleProbe() {
+  clearTimeout(net.timer);
+  clearInterval(net.tick);
+  net.next = Date.now() + net.wait;
+  const show = () => {
+    const s = Math.max(0, Math.ceil((net.next - Date.now()) / 1000));
+    $("offline-retry").textContent = `Trying again in ${s} s.`;
+  };
+  show();
+  net.tick = setInterval(show, 500);
+  net.timer = setTimeout(probe, net.wait);
+  net.wait = Math.min(8000, net.wait * 2);
+}
+
+async function probe() {
+  clearTimeout(net.timer);
+  $("offline-retry").textContent = "Trying ...";
+  try {
+    const r = await fetch("/api/render/state?peek=1");
+    if (r.ok || r.status < 500) { cameBack(); return; }
+  } catch (e) { /* still gone */ }
+  if (net.offline) scheduleProbe();
+}
+
+// What a handler's error becomes: a message in `box` (nothing more when the server is gone: the
+// banner says it).
+function report(box, e) {
+  if (e instanceof Offline) {
+    if (box) box.textContent = GONE;
+    return;
+  }
+  if (!box) { console.warn(e); return; }
   box.textContent = "";
   const span = document.createElement("span");
   span.className = "error";
   span.textContent = e.message;
   box.appendChild(span);
+}
+
+// An event handler that never throws.
+const guarded = (f, box) => async (...args) => {
+  try { await f(...args); } catch (e) { report(typeof box === "function" ? box() : box, e); }
+};
+
+// ---------------------------------------------------------------- fields and their messages
+// The message next to a field (made on first use; the field points at it for screen readers).
+function fieldMsg(input) {
+  let m = $(input.id + "-msg");
+  if (!m) {
+    m = document.createElement("span");
+    m.id = input.id + "-msg";
+    m.className = "field-msg";
+    m.setAttribute("aria-live", "polite");
+    const label = input.closest("label") || input;
+    label.after(m);
+    input.setAttribute("aria-describedby", m.id);
+  }
+  return m;
+}
+
+function markInvalid(input, message) {
+  input.setAttribute("aria-invalid", "true");
+  fieldMsg(input).textContent = message;
+}
+
+function markValid(input) {
+  if (input.getAttribute("aria-invalid")) input.removeAttribute("aria-invalid");
+  const m = $(input.id + "-msg");
+  if (m) m.textContent = "";
+}
+
+// Why a number field's value is refused, or null: its min, max and (unless data-any-step) whole numbers.
+function numberProblem(input) {
+  const v = input.validity;
+  const range = input.max !== "" ? `from ${input.min} to ${input.max}` : `at least ${input.min}`;
+  if (v.badInput || v.valueMissing || input.value.trim() === "") return `a number ${range}, please`;
+  if (v.rangeUnderflow || v.rangeOverflow) return `${input.value} is out of range: ${range}`;
+  if (v.stepMismatch && !input.dataset.anyStep) return `a whole number ${range}, please`;
+  return null;
+}
+
+// Check the visible number fields of `inputs`; mark the bad ones. True when all are good.
+function checkFields(inputs) {
+  let ok = true;
+  for (const i of inputs) {
+    if (i.disabled || i.closest("label").style.display === "none") { markValid(i); continue; }
+    const p = numberProblem(i);
+    if (p) { markInvalid(i, p); ok = false; } else markValid(i);
+  }
+  return ok;
+}
+
+// ---------------------------------------------------------------- drawing
+function el(name, attrs, parent) {
+  const e = document.createElementNS(SVG, name);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+  if (parent) parent.appendChild(e);
+  return e;
 }
 
 function fmt(x, digits = 3) {
@@ -52,9 +186,13 @@ function loglogSlope(points) {
 // A chart: axes (log or linear), grid and labels; returns a mapping from data to the SVG.
 function chart(svg, opts) {
   while (svg.firstChild) svg.removeChild(svg.firstChild);
+  // As wide as drawn (text at its size on a phone as on a desktop), as high as the page says.
   const vb = svg.viewBox.baseVal;
-  const W = vb.width, H = vb.height;
-  const m = { l: 56, r: 10, t: 10, b: 36 };
+  if (!svg.dataset.width) svg.dataset.width = vb.width;
+  const W = Math.round(Math.max(300, svg.clientWidth || Number(svg.dataset.width))), H = vb.height;
+  if (W !== vb.width) svg.setAttribute("viewBox", `0 0 ${W} ${H}`);
+  // Room on the right for the last tick's label, centred on the axis's end.
+  const m = { l: 56, r: 22, t: 10, b: 36 };
   const tr = (log) => log ? Math.log10 : (v) => v;
   const fx = tr(opts.logx), fy = tr(opts.logy);
   let [x0, x1] = opts.x.map(fx), [y0, y1] = opts.y.map(fy);
@@ -64,22 +202,25 @@ function chart(svg, opts) {
   if (opts.logy) { y0 = Math.floor(y0); y1 = Math.ceil(y1); }
   const X = (v) => m.l + (fx(v) - x0) / (x1 - x0) * (W - m.l - m.r);
   const Y = (v) => H - m.b - (fy(v) - y0) / (y1 - y0) * (H - m.t - m.b);
+  // Ticks [value, label]: powers of ten on a log axis; 1, 2 or 5 times one on a linear axis, with
+  // as many decimals as the step needs (thousands as k: 50k).
   const ticks = (a, b, log) => {
-    if (log) { const t = []; const step = Math.max(1, Math.ceil((b - a) / 8)); for (let k = a; k <= b; k += step) t.push(k); return t; }
+    if (log) { const t = []; const step = Math.max(1, Math.ceil((b - a) / 8)); for (let k = a; k <= b; k += step) t.push([k, "1e" + k]); return t; }
     const span = b - a, raw = span / 5, mag = Math.pow(10, Math.floor(Math.log10(raw)));
     const step = [1, 2, 5, 10].map((s) => s * mag).find((s) => span / s <= 6);
-    const t = []; for (let v = Math.ceil(a / step) * step; v <= b + 1e-12 * span; v += step) t.push(v); return t;
+    const digits = Math.max(0, Math.ceil(-Math.log10(step) - 1e-9));
+    const label = (v) => Math.abs(v) >= 1e4 && step >= 1000 ? `${+(v / 1000).toFixed(Math.max(0, digits - 3))}k` : v.toFixed(digits);
+    const t = []; for (let v = Math.ceil(a / step) * step; v <= b + 1e-12 * span; v += step) t.push([v, label(Math.abs(v) < 1e-12 * span ? 0 : v)]); return t;
   };
-  const label = (v, log) => log ? ("1e" + v) : fmt(v, 3);
-  for (const t of ticks(x0, x1, opts.logx)) {
+  for (const [t, text] of ticks(x0, x1, opts.logx)) {
     const x = m.l + (t - x0) / (x1 - x0) * (W - m.l - m.r);
     el("line", { x1: x, x2: x, y1: m.t, y2: H - m.b, class: "grid" }, svg);
-    el("text", { x, y: H - m.b + 14, "text-anchor": "middle" }, svg).textContent = label(t, opts.logx);
+    el("text", { x, y: H - m.b + 14, "text-anchor": "middle" }, svg).textContent = text;
   }
-  for (const t of ticks(y0, y1, opts.logy)) {
+  for (const [t, text] of ticks(y0, y1, opts.logy)) {
     const y = H - m.b - (t - y0) / (y1 - y0) * (H - m.t - m.b);
     el("line", { x1: m.l, x2: W - m.r, y1: y, y2: y, class: "grid" }, svg);
-    el("text", { x: m.l - 4, y: y + 4, "text-anchor": "end" }, svg).textContent = label(t, opts.logy);
+    el("text", { x: m.l - 4, y: y + 4, "text-anchor": "end" }, svg).textContent = text;
   }
   el("rect", { x: m.l, y: m.t, width: W - m.l - m.r, height: H - m.t - m.b, class: "axis" }, svg);
   el("text", { x: (m.l + W - m.r) / 2, y: H - 4, "text-anchor": "middle" }, svg).textContent = opts.xlabel || "";
@@ -94,16 +235,24 @@ function polyline(svg, c, points, attrs) {
   return el("path", Object.assign({ d }, attrs), svg);
 }
 
-// A legend in a corner: "tr" (top right) or "bl" (bottom left, where falling curves seldom are).
-function legend(svg, c, entries, corner = "tr") {
-  const width = 26 + 6.2 * Math.max(0, ...entries.map((e) => e[0].length));
-  const x = corner === "tr" ? c.W - c.m.r - width : c.m.l + 8;
-  const top = corner === "tr" ? c.m.t + 12 : c.H - c.m.b - 8 - 14 * (entries.length - 1);
-  entries.forEach(([text, color], i) => {
-    const y = top + 14 * i;
-    el("line", { x1: x, x2: x + 18, y1: y - 4, y2: y - 4, stroke: color, "stroke-width": 2 }, svg);
-    el("text", { x: x + 22, y }, svg).textContent = text;
-  });
+// A legend under a plot, outside its axes (it never covers a curve): entries {text, color, dash,
+// kind: "line" | "bar" | "dots", wide}.
+function legend(box, entries) {
+  box.textContent = "";
+  for (const e of entries) {
+    const item = document.createElement("span");
+    item.className = "item" + (e.wide ? " wide" : "");
+    const key = document.createElementNS(SVG, "svg");
+    key.setAttribute("viewBox", "0 0 28 10");
+    key.setAttribute("aria-hidden", "true");
+    if (e.kind === "bar") el("rect", { x: 4, y: 1, width: 20, height: 8, fill: e.color }, key);
+    else if (e.kind === "none") key.setAttribute("width", "0");
+    else el("line", { x1: 1, x2: 27, y1: 5, y2: 5, stroke: e.color, "stroke-width": e.kind === "dots" ? 1.5 : 2.4,
+      "stroke-dasharray": e.dash || "", "stroke-linecap": e.kind === "dots" ? "round" : "butt" }, key);
+    item.appendChild(key);
+    item.appendChild(document.createTextNode(e.text));
+    box.appendChild(item);
+  }
 }
 
 function extent(values, log) {
@@ -112,38 +261,105 @@ function extent(values, log) {
   return [Math.min(...v), Math.max(...v)];
 }
 
-// A log-log chart of curves [{label, color, points: [[x, y]]}], each with its fitted slope.
-function loglogCurves(svg, curves, xlabel, ylabel, withSlope) {
+// A log-log chart of curves [{label, color, dash, points: [[x, y]]}], each with its fitted slope in
+// the legend; `floors` are horizontal lines [{y, text, legend}] kept inside the y range.
+function loglogCurves(svg, legendBox, curves, xlabel, ylabel, withSlope, floors = []) {
   const xs = curves.flatMap((s) => s.points.map((p) => p[0]));
-  const ys = curves.flatMap((s) => s.points.map((p) => p[1]));
+  const ys = curves.flatMap((s) => s.points.map((p) => p[1])).concat(floors.map((f) => f.y));
   const c = chart(svg, { logx: true, logy: true, x: extent(xs, true), y: extent(ys, true), xlabel, ylabel });
+  for (const f of floors) {
+    el("line", { x1: c.m.l, x2: c.W - c.m.r, y1: c.Y(f.y), y2: c.Y(f.y), class: "floor" }, svg);
+    el("text", { x: c.m.l + 4, y: c.Y(f.y) - 3, class: "floor-label" }, svg).textContent = f.text;
+  }
   for (const s of curves) {
     const p = s.points.filter(([x, y]) => x > 0 && y > 0);
     if (!p.length) continue;
-    const path = polyline(svg, c, p, { class: "curve", stroke: s.color });
+    const path = polyline(svg, c, p, { class: "curve", stroke: s.color, "stroke-dasharray": s.dash || "" });
     path.dataset.label = s.label;
     for (const [x, y] of p.length < 40 ? p : []) el("circle", { cx: c.X(x), cy: c.Y(y), r: 2, fill: s.color }, svg);
   }
-  legend(svg, c, curves.map((s) => {
-    const k = withSlope ? loglogSlope(s.points) : null;
-    return [s.label + (k === null ? "" : `  (slope ${k.toFixed(2)})`), s.color];
-  }), "bl");
+  legend(legendBox, curves.map((s) => {
+    const k = withSlope ? loglogSlope(s.fit || s.points) : null;
+    return { text: s.label + (k === null ? "" : `  (slope ${k.toFixed(2)})`), color: s.color, dash: s.dash };
+  }).concat(floors.map((f) => ({ text: f.legend, color: "#555", dash: "1 3", kind: "dots", wide: true }))));
   return c;
 }
 
+function heatRgb(t) {
+  t = Math.max(0, Math.min(1, t));
+  for (let i = 1; i < HEAT.length; i++) {
+    const [t0, a] = HEAT[i - 1], [t1, b] = HEAT[i];
+    if (t <= t1) {
+      const f = (t - t0) / (t1 - t0);
+      return `rgb(${a.map((v, k) => Math.round(255 * (v + f * (b[k] - v)))).join(",")})`;
+    }
+  }
+  return "rgb(255,255,230)";
+}
+
+// A colour key: the heat colours from left to right, ticks [[t in 0..1, label]] and a title.
+function heatKey(svg, ticks, title) {
+  while (svg.firstChild) svg.removeChild(svg.firstChild);
+  const W = svg.viewBox.baseVal.width, x0 = 8, x1 = W - 8, n = 64;
+  for (let i = 0; i < n; i++) {
+    el("rect", { x: x0 + (x1 - x0) * i / n, y: 16, width: (x1 - x0) / n + 0.5, height: 10, fill: heatRgb((i + 0.5) / n) }, svg);
+  }
+  el("rect", { x: x0, y: 16, width: x1 - x0, height: 10, class: "axis" }, svg);
+  el("text", { x: x0, y: 11 }, svg).textContent = title;
+  for (const [t, label] of ticks) {
+    const x = x0 + (x1 - x0) * t;
+    el("line", { x1: x, x2: x, y1: 26, y2: 30, class: "axis" }, svg);
+    el("text", { x, y: 41, "text-anchor": t === 0 ? "start" : t === 1 ? "end" : "middle" }, svg).textContent = label;
+  }
+}
+
 // ---------------------------------------------------------------- the benches: switching
+const BENCHES = ["mc", "sampling", "cornell"];
 let activeBench = "mc";
+
 function show(bench) {
+  if (!BENCHES.includes(bench)) bench = "mc";
   activeBench = bench;
-  for (const b of document.querySelectorAll("nav button")) b.classList.toggle("on", b.dataset.bench === bench);
+  for (const b of document.querySelectorAll("nav [role=tab]")) {
+    const on = b.dataset.bench === bench;
+    b.classList.toggle("on", on);
+    b.setAttribute("aria-selected", on ? "true" : "false");
+    b.tabIndex = on ? 0 : -1;
+  }
   for (const s of document.querySelectorAll(".bench")) s.classList.toggle("on", s.id === "bench-" + bench);
+  // The bench in the address: a reload or a link opens it again.
+  if (location.hash !== "#" + bench) history.replaceState(null, "", "#" + bench);
   if (bench === "cornell") pollRender();
 }
 
+function tabsInit() {
+  const tabs = [...document.querySelectorAll("nav [role=tab]")];
+  for (const b of tabs) {
+    b.onclick = () => show(b.dataset.bench);
+    // Arrow keys move along the tabs, as in every tab list.
+    b.onkeydown = (e) => {
+      const i = tabs.indexOf(b);
+      const j = e.key === "ArrowRight" ? (i + 1) % tabs.length : e.key === "ArrowLeft" ? (i + tabs.length - 1) % tabs.length
+        : e.key === "Home" ? 0 : e.key === "End" ? tabs.length - 1 : -1;
+      if (j < 0) return;
+      e.preventDefault();
+      tabs[j].focus();
+      show(tabs[j].dataset.bench);
+    };
+  }
+  window.addEventListener("hashchange", () => show(location.hash.slice(1)));
+}
+
 // ---------------------------------------------------------------- Monte Carlo
-const mc = { list: null, runs: [], current: null, busy: false };
+const mc = { list: null, runs: [], current: null, busy: false, cancel: false };
 
 function mcIntegral() { return mc.list.integrals.find((i) => i.slug === $("mc-integral").value); }
+
+// A fixed colour per estimator: its place in its integral's list.
+function mcColor(slug, estimator) {
+  const i = mc.list.integrals.find((x) => x.slug === slug).estimators.indexOf(estimator);
+  return PALETTE[Math.max(0, i) % PALETTE.length];
+}
 
 function mcFillEstimators() {
   const sel = $("mc-estimator");
@@ -169,59 +385,86 @@ function mcDraw() {
   if (banded.length) {
     const top = banded.map((p) => [p.n, p.hi]), bottom = banded.map((p) => [p.n, p.lo]).reverse();
     const d = top.concat(bottom).map(([x, y], i) => (i ? "L" : "M") + c.X(x).toFixed(1) + "," + c.Y(y).toFixed(1)).join("") + "Z";
-    el("path", { d, class: "band" }, svg).dataset.points = String(banded.length);
+    el("path", { d, class: "band", fill: cur.color, "fill-opacity": 0.2 }, svg).dataset.points = String(banded.length);
   }
   el("line", { x1: c.m.l, x2: c.W - c.m.r, y1: c.Y(integral.exact), y2: c.Y(integral.exact), class: "exact" }, svg);
   if (pts.length) polyline(svg, c, pts.map((p) => [p.n, p.estimate]), { class: "curve", stroke: cur.color });
-  legend(svg, c, [[`exact ${fmt(integral.exact, 6)}`, "#222"]].concat(cur ? [[cur.estimator + ", 95% band", cur.color]] : []));
+  legend($("mc-trace-legend"), [{ text: `exact ${fmt(integral.exact, 6)}`, color: "#222", dash: "4 3" }]
+    .concat(cur ? [{ text: cur.estimator + ", first run", color: cur.color },
+      { text: "its 95% band", color: cur.color + "55", kind: "bar" }] : []));
   // RMS error against N and against time
   const curves = (key) => runs.map((r) => ({ label: r.estimator, color: r.color,
     points: r.points.map((p) => [key(p), p.rms_error]) }));
-  loglogCurves($("mc-vs-n"), curves((p) => p.n), "samples N", "RMS error", true);
-  loglogCurves($("mc-vs-t"), curves((p) => p.seconds_per_estimate), "seconds per estimate", "RMS error", true);
+  loglogCurves($("mc-vs-n"), $("mc-vs-n-legend"), curves((p) => p.n), "samples N", "RMS error", true);
+  loglogCurves($("mc-vs-t"), $("mc-vs-t-legend"), curves((p) => p.seconds_per_estimate), "seconds per estimate", "RMS error", true);
   const body = $("mc-table").tBodies[0];
   body.innerHTML = "";
-  for (const p of pts.slice(-8)) {
+  $("mc-table-caption").textContent = cur ? `${cur.estimator}: the first of the 30 runs at every N` : "the first of the 30 runs at every N";
+  for (const p of pts) {
     const row = body.insertRow();
     for (const v of [p.n, fmt(p.estimate, 7), p.lo === null ? "n/a" : `${fmt(p.lo, 6)} .. ${fmt(p.hi, 6)}`,
       fmt(p.rms_error), fmt(p.mean_std_error), fmt(p.ns_per_sample)]) row.insertCell().textContent = v;
   }
 }
 
+const SHARED = "timed while the Cornell box was rendering too (it goes on for 3 s after its bench is left, " +
+  "and a reference to its end): the times are slower than alone";
+
 async function mcRun() {
   if (mc.busy) return;
+  if (!checkFields([$("mc-max")])) { $("mc-status").textContent = ""; return; }
   const integral = mcIntegral(), estimator = $("mc-estimator").value;
-  const max = Math.max(4, Math.min(20, parseInt($("mc-max").value, 10) || 16));
+  const max = parseInt($("mc-max").value, 10);
   mc.busy = true;
+  mc.cancel = false;
   $("mc-run").disabled = true;
   mc.runs = mc.runs.filter((r) => !(r.slug === integral.slug && r.estimator === estimator));
-  const run = { slug: integral.slug, estimator, color: COLORS[mc.runs.length % COLORS.length], points: [] };
+  const run = { slug: integral.slug, estimator, color: mcColor(integral.slug, estimator), points: [] };
   mc.runs.push(run);
   mc.current = run;
+  let shared = false;
   try {
     for (let k = 4; k <= max; k++) {
       $("mc-status").textContent = `N = 2^${k} ...`;
       const q = new URLSearchParams({ integral: integral.slug, estimator, log2_n: k });
-      run.points.push(await api("/api/mc/run?" + q));
+      const p = await api("/api/mc/run?" + q);
+      if (mc.cancel) break;
+      shared = shared || p.shared_cores;
+      run.points.push(p);
       mcDraw();
     }
-    $("mc-status").textContent = `done: ${integral.integral}, ${estimator}, N up to 2^${max}`;
+    $("mc-status").textContent = mc.cancel ? "stopped: the plots were cleared"
+      : `done: ${integral.integral}, ${estimator}, N up to 2^${max}` + (shared ? `; ${SHARED}` : "");
   } catch (e) {
-    showError($("mc-status"), e);
+    report($("mc-status"), e);
   } finally {
     mc.busy = false;
+    mc.cancel = false;
     $("mc-run").disabled = false;
   }
 }
 
+// Clear the plots; a run under way stops (its next answer is thrown away).
+function mcClear() {
+  mc.runs = [];
+  mc.current = null;
+  if (mc.busy) { mc.cancel = true; $("mc-status").textContent = "stopping ..."; }
+  mcDraw();
+}
+
 async function mcInit() {
-  mc.list = await api("/api/mc/list");
+  if (mc.list) return;
+  const list = await api("/api/mc/list");
+  mc.list = list;
   const sel = $("mc-integral");
   for (const i of mc.list.integrals) sel.add(new Option(`${i.integral} = ${fmt(i.exact, 6)}`, i.slug));
   sel.onchange = mcFillEstimators;
+  const [lo, hi] = list.log2_n;
+  $("mc-max").min = lo; $("mc-max").max = hi;
+  $("mc-max").oninput = () => checkFields([$("mc-max")]);
   mcFillEstimators();
   $("mc-run").onclick = mcRun;
-  $("mc-clear").onclick = () => { mc.runs = []; mc.current = null; mcDraw(); };
+  $("mc-clear").onclick = mcClear;
 }
 
 // ---------------------------------------------------------------- sampling
@@ -236,203 +479,430 @@ function sFillMethods() {
   sShowFields();
 }
 
+// The fields of the method, and the server's limits on them (numerical inversion takes fewer samples).
 function sShowFields() {
-  const m = $("s-method").value;
+  const m = $("s-method").value, caps = samplingList.caps;
   $("s-n").parentElement.style.display = ["binary_search", "guide_table", "alias"].includes(m) ? "" : "none";
   $("s-tol").parentElement.style.display = m === "numeric" ? "" : "none";
+  const samples = $("s-samples");
+  samples.max = m === "numeric" ? caps.numeric_samples : caps.samples[1];
+  samples.title = m === "numeric" ? `numerical inversion: at most ${caps.numeric_samples} samples (it is slow)` : "";
+  sInputsChanged();
+}
+
+// The results shown are no longer those of the settings: say so.
+function markStale(figure, box, why) {
+  if (!box.firstChild) return;
+  figure.classList.add("stale");
+  let note = box.querySelector(".stale-note");
+  if (!note) { note = document.createElement("div"); note.className = "stale-note"; box.prepend(note); }
+  note.textContent = why;
+}
+
+function unmarkStale(figure, box) {
+  figure.classList.remove("stale");
+  const note = box.querySelector(".stale-note");
+  if (note) note.remove();
+}
+
+function sInputsChanged() {
+  checkFields([$("s-n"), $("s-samples"), $("s-bins")]);
+  markStale($("s-figure"), $("s-numbers"), "These are the results of the last run, not of the settings above: press Sample.");
 }
 
 function numbers(box, rows) {
-  box.innerHTML = rows.map(([k, v]) => `<div><b>${k}</b> ${v}</div>`).join("");
+  box.textContent = "";
+  for (const [k, v] of rows) {
+    const d = document.createElement("div"), b = document.createElement("b");
+    b.textContent = k;
+    d.append(b, " " + v);
+    box.appendChild(d);
+  }
 }
 
 async function sRun() {
+  if (!checkFields([$("s-n"), $("s-samples"), $("s-bins")])) {
+    $("s-status").textContent = "";
+    markStale($("s-figure"), $("s-numbers"), "Not run: a field above is refused. These are the results of the last run.");
+    return;
+  }
   const q = new URLSearchParams({ density: $("s-density").value, method: $("s-method").value,
     samples: $("s-samples").value, bins: $("s-bins").value });
   if ($("s-n").parentElement.style.display !== "none") q.set("n", $("s-n").value);
   if ($("s-tol").parentElement.style.display !== "none") q.set("tolerance", $("s-tol").value);
   $("s-status").textContent = "sampling ...";
+  $("s-run").disabled = true;
   try {
     const r = await api("/api/sampling/line?" + q);
     const [a, b] = r.domain, nb = r.bins.length, w = (b - a) / nb;
-    const dens = r.bins.map((c) => c / (r.samples * w));
-    const ymax = Math.max(...dens, ...r.curve.map((p) => p[1]));
+    // Counts per bin, the bars' and the line's: the line is N times the density's integral over each
+    // bin (from the exact CDF), the count the bar should have.
+    const ymax = Math.max(...r.bins, ...r.expected, 1);
     const svg = $("s-hist");
-    const c = chart(svg, { logx: false, logy: false, x: [a, b], y: [0, 1.08 * ymax], xlabel: "x", ylabel: "density" });
-    dens.forEach((v, i) => {
+    const c = chart(svg, { logx: false, logy: false, x: [a, b], y: [0, 1.08 * ymax], xlabel: "x", ylabel: "samples per bin" });
+    r.bins.forEach((v, i) => {
       const x0 = c.X(a + i * w), x1 = c.X(a + (i + 1) * w);
       el("rect", { x: x0, y: c.Y(v), width: Math.max(0.5, x1 - x0 - 0.5), height: Math.max(0, c.Y(0) - c.Y(v)), class: "bar" }, svg);
     });
-    polyline(svg, c, r.curve, { class: "density" });
-    legend(svg, c, [["samples / (N bin width)", "#9fb7d0"], ["the density", "#b8451f"]]);
+    const steps = r.expected.flatMap((e, i) => [[a + i * w, e], [a + (i + 1) * w, e]]);
+    polyline(svg, c, steps, { class: "density expected" });
+    legend($("s-hist-legend"), [{ text: "samples in each bin", color: "#8fb3d6", kind: "bar" },
+      { text: `expected count of each bin: N × the density's integral over it (N = ${r.samples}, bin width ${fmt(w)})`, color: "#d55e00" }]);
+    const method = r.method.replace("_", " ") + (r.n ? `, a table of ${r.n} bins` : "") + (r.tolerance ? `, tolerance ${r.tolerance}` : "");
+    $("s-run-info").textContent = `${$("s-density").selectedOptions[0].textContent}; ${method}; ${r.samples} samples in ${nb} bins`;
     numbers($("s-numbers"), [
-      ["method", r.method.replace("_", " ") + (r.n ? `, ${r.n} bins` : "") + (r.tolerance ? `, tol ${r.tolerance}` : "")],
+      ["method", method],
       ["max u-error", fmt(r.u_error)],
       ["max x-error", r.x_error === null ? "n/a (not an inversion)" : fmt(r.x_error)],
-      ["ns per sample", fmt(r.ns_per_sample)],
+      ["ns per sample", fmt(r.ns_per_sample) + (r.shared_cores ? " (shared cores)" : "")],
       ["build", fmt(r.build_ms) + " ms"],
       ["chi-square", `${fmt(r.chi2.statistic, 4)} on ${r.chi2.dof} dof`],
       ["p-value", fmt(r.chi2.p_value)],
-      ["outside the domain", r.outside_domain],
+      ["outside the domain", String(r.outside_domain)],
     ]);
-    $("s-status").textContent = `${r.samples} samples`;
+    unmarkStale($("s-figure"), $("s-numbers"));
+    $("s-status").textContent = `${r.samples} samples` + (r.shared_cores ? `; ${SHARED}` : "");
   } catch (e) {
-    showError($("s-status"), e);
+    if (e.parameter && $({ n: "s-n", samples: "s-samples", bins: "s-bins" }[e.parameter] || "-")) {
+      markInvalid($({ n: "s-n", samples: "s-samples", bins: "s-bins" }[e.parameter]), e.message);
+    }
+    report($("s-status"), e);
+    markStale($("s-figure"), $("s-numbers"), "This run was refused: these are the results of the last one.");
+  } finally {
+    $("s-run").disabled = false;
   }
-}
-
-function heatColor(t) {
-  t = Math.max(0, Math.min(1, t));
-  const stops = [[0, [250, 250, 255]], [0.5, [120, 160, 220]], [1, [20, 30, 110]]];
-  for (let i = 1; i < stops.length; i++) {
-    const [t0, a] = stops[i - 1], [t1, b] = stops[i];
-    if (t <= t1) { const f = (t - t0) / (t1 - t0); return `rgb(${a.map((v, k) => Math.round(v + f * (b[k] - v))).join(",")})`; }
-  }
-  return "rgb(20,30,110)";
 }
 
 function grid(svg, counts, n, vmax) {
   while (svg.firstChild) svg.removeChild(svg.firstChild);
-  const size = 270, x0 = 24, y0 = 6, cell = size / n;
+  const size = 264, x0 = 30, y0 = 6, cell = size / n;
   for (let iy = 0; iy < n; iy++) for (let ix = 0; ix < n; ix++) {
     // row iy = 0 is cos theta = -1: draw it at the bottom
     el("rect", { x: x0 + ix * cell, y: y0 + (n - 1 - iy) * cell, width: cell + 0.3, height: cell + 0.3,
-      fill: heatColor(counts[iy * n + ix] / vmax) }, svg);
+      fill: heatRgb(counts[iy * n + ix] / vmax) }, svg);
   }
   el("rect", { x: x0, y: y0, width: size, height: size, class: "axis" }, svg);
   el("text", { x: x0 + size / 2, y: y0 + size + 16, "text-anchor": "middle" }, svg).textContent = "phi 0 .. 2pi";
-  el("text", { x: 14, y: y0 + 10, "text-anchor": "middle" }, svg).textContent = "+1";
-  el("text", { x: 14, y: y0 + size, "text-anchor": "middle" }, svg).textContent = "-1";
-  el("text", { x: 14, y: y0 + size / 2 + 4, "text-anchor": "middle" }, svg).textContent = "cos";
+  el("text", { x: 16, y: y0 + 10, "text-anchor": "middle" }, svg).textContent = "+1";
+  el("text", { x: 16, y: y0 + size, "text-anchor": "middle" }, svg).textContent = "-1";
+  el("text", { x: 16, y: y0 + size / 2 + 4, "text-anchor": "middle" }, svg).textContent = "cos";
 }
 
 async function dRun() {
+  if (!checkFields([$("d-samples"), $("d-cells")])) {
+    markStale($("d-plots"), $("d-numbers"), "Not run: a field above is refused. These are the results of the last run.");
+    return;
+  }
   const q = new URLSearchParams({ pdf: $("d-pdf").value, samples: $("d-samples").value, cells: $("d-cells").value });
   $("d-status").textContent = "sampling ...";
+  $("d-run").disabled = true;
   try {
     const r = await api("/api/sampling/sphere?" + q);
     const vmax = Math.max(...r.observed, ...r.expected, 1);
     grid($("d-observed"), r.observed, r.cells, vmax);
     grid($("d-expected"), r.expected, r.cells, vmax);
+    heatKey($("d-key"), [[0, "0"], [0.5, fmt(vmax / 2)], [1, fmt(vmax)]], "samples per cell (both maps): dark few, bright many");
     numbers($("d-numbers"), [
+      ["density", $("d-pdf").selectedOptions[0].textContent],
       ["chi-square", `${fmt(r.statistic, 4)} on ${r.dof} dof`],
       ["p-value", fmt(r.p_value) + (r.p_value < 1e-3 ? "  (the samples are not from this density)" : "")],
-      ["outside support", r.outside_support],
+      ["outside support", String(r.outside_support)],
       ["density integrates to", fmt(r.expected_fraction, 4)],
-      ["ns per direction", fmt(r.ns_per_sample)],
+      ["ns per direction", fmt(r.ns_per_sample) + (r.shared_cores ? " (shared cores)" : "")],
     ]);
-    $("d-status").textContent = `${r.samples} directions`;
+    unmarkStale($("d-plots"), $("d-numbers"));
+    $("d-status").textContent = `${r.samples} directions in ${r.cells} x ${r.cells} cells` + (r.shared_cores ? `; ${SHARED}` : "");
   } catch (e) {
-    showError($("d-status"), e);
+    if (e.parameter && { samples: 1, cells: 1 }[e.parameter]) markInvalid($(e.parameter === "samples" ? "d-samples" : "d-cells"), e.message);
+    report($("d-status"), e);
+    markStale($("d-plots"), $("d-numbers"), "This run was refused: these are the results of the last one.");
+  } finally {
+    $("d-run").disabled = false;
   }
 }
 
 async function samplingInit() {
-  samplingList = await api("/api/sampling/list");
-  for (const d of samplingList.densities) $("s-density").add(new Option(d.about, d.name));
-  for (const d of samplingList.directions) $("d-pdf").add(new Option(d.about, d.name));
+  if (samplingList) return;
+  const list = await api("/api/sampling/list");
+  samplingList = list;
+  const caps = list.caps;
+  for (const [id, [lo, hi]] of [["s-n", caps.n], ["s-samples", caps.samples], ["s-bins", caps.bins],
+    ["d-samples", caps.samples], ["d-cells", caps.cells]]) { $(id).min = lo; $(id).max = hi; }
+  for (const d of list.densities) $("s-density").add(new Option(d.about, d.name));
+  for (const d of list.directions) $("d-pdf").add(new Option(d.about, d.name));
   $("s-density").onchange = sFillMethods;
   $("s-method").onchange = sShowFields;
+  for (const id of ["s-n", "s-samples", "s-bins", "s-tol"]) $(id).oninput = sInputsChanged;
+  for (const id of ["d-pdf", "d-samples", "d-cells"]) {
+    $(id).oninput = () => {
+      checkFields([$("d-samples"), $("d-cells")]);
+      markStale($("d-plots"), $("d-numbers"), "These are the results of the last run, not of the settings above: press Sample.");
+    };
+  }
   sFillMethods();
-  $("s-run").onclick = sRun;
-  $("d-run").onclick = dRun;
+  unmarkStale($("s-figure"), $("s-numbers"));
+  $("s-run").onclick = guarded(sRun, $("s-status"));
+  $("d-run").onclick = guarded(dRun, $("d-status"));
 }
 
 // ---------------------------------------------------------------- Cornell box
-const cornell = { frame: -1, polling: false, timer: null, colors: {} };
+const cornell = { frame: -1, polling: false, strategies: [], settings: null, synced: {}, pending: {},
+  minGeneration: 0, ready: false, errorFor: null };
 
-function cSettings() {
-  return new URLSearchParams({ strategy: $("c-strategy").value, width: $("c-width").value,
-    seed: $("c-seed").value, max_depth: $("c-depth").value, mixture_weight: $("c-weight").value,
-    rr: $("c-rr").checked ? 1 : 0, lds: $("c-lds").checked ? 1 : 0, sph_rect: $("c-sph").checked ? 1 : 0 });
+// The fields, by the name of their query parameter.
+const C_FIELDS = { strategy: "c-strategy", mixture_weight: "c-weight", rr: "c-rr", lds: "c-lds",
+  sph_rect: "c-sph", width: "c-width", seed: "c-seed", max_depth: "c-depth" };
+const C_CHECKBOXES = ["rr", "lds", "sph_rect"];
+
+function cValue(param) {
+  const e = $(C_FIELDS[param]);
+  return C_CHECKBOXES.includes(param) ? (e.checked ? "1" : "0") : e.value;
 }
 
-async function cApply() {
-  const mis = $("c-strategy").value === "mis";
-  for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = !mis;
-  $("c-weight").disabled = $("c-strategy").value !== "mixture";
+// What the server uses for `param`, as the field shows it.
+function serverValue(s, param) {
+  const v = s[param];
+  return typeof v === "boolean" ? (v ? "1" : "0") : String(v);
+}
+
+function cDisabled(param, strategy) {
+  if (param === "mixture_weight") return strategy !== "mixture";
+  if (C_CHECKBOXES.includes(param)) return strategy !== "mis";
+  return false;
+}
+
+// A change of one field: only that parameter goes to the server (a disabled field is never sent, and
+// one refused value does not block the others). Refused, the field keeps the value, marked, with the
+// server's message and what the render goes on with.
+async function cChange(param) {
+  const input = $(C_FIELDS[param]);
+  if (input.disabled) return;
+  if (input.type === "number") {
+    const p = numberProblem(input);
+    if (p) {
+      markInvalid(input, `${p}; not sent: the render goes on with ${cornell.settings ? serverValue(cornell.settings, param) : "the last value"}`);
+      return;
+    }
+  }
+  const q = new URLSearchParams({ [param]: cValue(param) });
+  cornell.pending[param] = true;
   try {
-    const r = await api("/api/render/settings?" + cSettings(), { method: "POST" });
+    const r = await api("/api/render/settings?" + q, { method: "POST" });
+    cornell.minGeneration = Math.max(cornell.minGeneration, r.generation);
+    markValid(input);
+    if (cornell.errorFor === param) { $("c-error").textContent = ""; cornell.errorFor = null; }
     document.body.dataset.renderGeneration = r.generation;
+    cornell.settings = r.settings;
+    syncControls(r.settings, true);
   } catch (e) {
-    showError($("c-status"), e);
+    if (e instanceof Offline) return;
+    const field = e.parameter && C_FIELDS[e.parameter] ? $(C_FIELDS[e.parameter]) : input;
+    const now = cornell.settings ? `; the render goes on with ${serverValue(cornell.settings, e.parameter || param)}` : "";
+    markInvalid(field, e.message + now);
+    $("c-error").textContent = `Refused: ${e.message}${now}.`;
+    cornell.errorFor = e.parameter || param;
+  } finally {
+    delete cornell.pending[param];
+  }
+}
+
+// Show the server's settings (another tab may have changed them), except in a field being edited
+// (focused and changed) or holding a refused value (marked, with what the server uses instead).
+function syncControls(s, afterOwnChange = false) {
+  cornell.settings = s;
+  for (const [param, id] of Object.entries(C_FIELDS)) {
+    const e = $(id), want = serverValue(s, param);
+    const disabled = cDisabled(param, s.strategy);
+    e.disabled = disabled;
+    const box = C_CHECKBOXES.includes(param);
+    const shown = box ? (e.checked ? "1" : "0") : e.value;
+    if (disabled) {
+      // Not used by this strategy: never refused, shows the server's.
+      if (e.getAttribute("aria-invalid")) markValid(e);
+      if (cornell.errorFor === param) { $("c-error").textContent = ""; cornell.errorFor = null; }
+    } else if (e.getAttribute("aria-invalid")) {
+      const m = fieldMsg(e);
+      m.textContent = m.textContent.replace(/the render goes on with .*$/, `the render goes on with ${want}`);
+      continue;
+    } else if (!afterOwnChange && (cornell.pending[param]
+      || (document.activeElement === e && !box && shown !== cornell.synced[param]))) {
+      continue; // being edited, or on its way to the server
+    }
+    if (shown !== want) { if (box) e.checked = want === "1"; else e.value = want; }
+    cornell.synced[param] = want;
   }
 }
 
 async function drawPng(canvas, kind, id) {
-  const r = await fetch(`/api/render/image?kind=${kind}&frame=${id}`);
+  let r;
+  try { r = await fetch(`/api/render/image?kind=${kind}&frame=${id}`); } catch (e) { wentOffline(); throw new Offline("gone"); }
   if (!r.ok) return;
   const bmp = await createImageBitmap(await r.blob());
   if (canvas.width !== bmp.width || canvas.height !== bmp.height) { canvas.width = bmp.width; canvas.height = bmp.height; }
   canvas.getContext("2d").drawImage(bmp, 0, 0);
 }
 
-function colorOf(label) {
-  if (!(label in cornell.colors)) cornell.colors[label] = COLORS[Object.keys(cornell.colors).length % COLORS.length];
-  return cornell.colors[label];
+// A fixed colour per strategy (its place in the server's list), and dashes for its other settings
+// (in the order the server keeps the curves).
+function curveStyles(curves) {
+  const seen = {};
+  return curves.map((c) => {
+    const i = Math.max(0, cornell.strategies.indexOf(c.strategy));
+    const k = seen[c.strategy] = (seen[c.strategy] ?? -1) + 1;
+    return { color: PALETTE[i % PALETTE.length], dash: DASHES[k % DASHES.length] };
+  });
+}
+
+function drawCurves(s) {
+  const styles = curveStyles(s.curves);
+  const widths = new Set(s.curves.map((c) => c.width));
+  widths.add(s.settings.width);
+  const floorAt = {};
+  for (const f of s.floors) floorAt[f.width] = f;
+  // Subtracting the reference's variance is right only where it is measured (at the reference's spp).
+  const exact = (f) => f && f.measured_spp === f.reference_spp;
+  const box = $("c-correct");
+  box.disabled = !s.curves.some((c) => exact(floorAt[c.width]));
+  const correct = box.checked && !box.disabled;
+  const floors = s.floors.filter((f) => widths.has(f.width)).map((f) => ({
+    y: f.rmse,
+    text: `the reference's noise${widths.size > 1 ? ` at ${f.width} px` : ""}`,
+    legend: `the reference's own noise at ${f.width} px, ${exact(f) ? "" : "at most "}about ${fmt(f.rmse, 2)} (it has ${f.reference_spp} spp): ` +
+      (correct && exact(f) ? "subtracted from the curves at this size (marked corrected)"
+        : "below this line a curve measures the reference's noise, not its own error"),
+  }));
+  const curves = s.curves.map((c, i) => {
+    const f = floorAt[c.width];
+    let points = c.points.map((p) => [p[0], p[2]]);
+    let label = c.label;
+    // The slope is fitted where the curve is well above the reference's noise (at it, it flattens
+    // whatever the render does).
+    let fit = f ? points.filter((p) => p[1] >= 2 * f.rmse) : points;
+    if (correct && exact(f)) {
+      const v = f.rmse * f.rmse;
+      points = points.filter((p) => p[1] * p[1] >= 1.25 * v).map(([t, r]) => [t, Math.sqrt(r * r - v)]);
+      fit = points;
+      label += ", corrected";
+    }
+    return { label, color: styles[i].color, dash: styles[i].dash, points, fit };
+  });
+  const svg = $("c-curves");
+  loglogCurves(svg, $("c-curves-legend"), curves, "seconds", correct ? "RMSE, the reference's noise subtracted" : "RMSE (linear radiance)", true, floors);
+  if (correct) {
+    legend($("c-curves-note"), [{ text: "corrected: sqrt(RMSE² − the reference's variance), the render and the reference " +
+      "being independent; points less than 12% above the reference's noise are left out (there the difference is noise)",
+    color: "#555", wide: true, kind: "none" }]);
+  } else $("c-curves-note").textContent = "";
+  svg.dataset.curves = s.curves.length;
+  svg.dataset.floors = floors.length;
+}
+
+function describeReference(s) {
+  const w = s.settings.width, f = s.floors.find((x) => x.width === w);
+  let text = `Reference at ${w} px: ${s.reference}. `;
+  text += `It is not exact: a render of ${s.reference_spp} spp has noise of its own, and every curve flattens at it ` +
+    "whatever the strategy; only a curve that levels off above it (light's) is biased. Slopes are fitted above twice that noise. ";
+  if (!f) text += "Its noise is measured once the reference is ready.";
+  else if (f.measured_spp === f.reference_spp) {
+    text += `Its noise: ${fmt(f.rmse, 2)} RMSE, measured by ${f.measured_by} at ${f.reference_spp} spp, the reference's twin ` +
+      "(the same render under another seed): their mean squared difference is twice the reference's variance.";
+  } else {
+    text += `Its noise: at most about ${fmt(f.rmse, 2)} RMSE, from the error of ${f.measured_by} at ${f.measured_spp} spp ` +
+      `(MSE × ${f.measured_spp} / (${f.reference_spp} + ${f.measured_spp}), its variance falling at least as 1/spp); ` +
+      `measured exactly when a render like the reference (mis+rr+lds, depth 50, any seed but 999) reaches ${f.reference_spp} spp.`;
+  }
+  $("c-reference").textContent = text;
 }
 
 async function pollRender() {
-  if (cornell.polling) return;
+  if (cornell.polling || !cornell.ready) return;
   cornell.polling = true;
-  let first = true;
   try {
-    while (activeBench === "cornell" && document.visibilityState === "visible") {
-      const t0 = performance.now();
-      const s = await api("/api/render/state");
-      if (first) { syncControls(s.settings); first = false; }
-      const f = s.frame;
-      if (f.id !== cornell.frame && f.id > 0) {
-        cornell.frame = f.id;
-        await Promise.all([drawPng($("c-image"), "image", f.id), drawPng($("c-variance"), "variance", f.id)]);
-        $("c-image").dataset.frame = f.id;
-        $("c-image").dataset.generation = f.generation;
+    while (activeBench === "cornell" && document.visibilityState === "visible" && !net.offline) {
+      try {
+        await pollOnce();
+      } catch (e) {
+        // Gone: the banner's probe starts the polling again. Anything else: said, and asked again.
+        if (e instanceof Offline) break;
+        $("c-status").textContent = "";
+        report($("c-status"), e);
+        await new Promise((ok) => setTimeout(ok, 1000));
       }
-      const stale = f.generation !== s.generation ? " (restarting)" : "";
-      $("c-status").textContent = `${s.settings.label}: ${f.spp} spp in ${fmt(f.seconds)} s, ` +
-        `${fmt(f.rays_per_second)} rays/s, RMSE ${f.rmse === null ? "(waiting for the reference)" : fmt(f.rmse, 4)}${stale}`;
-      $("c-reference").textContent = "reference: " + s.reference;
-      const svg = $("c-curves");
-      loglogCurves(svg, s.curves.map((c) => ({ label: c.label, color: colorOf(c.label),
-        points: c.points.map((p) => [p[0], p[2]]) })), "seconds", "RMSE (linear radiance)", true);
-      svg.dataset.curves = s.curves.length;
-      const wait = 150 - (performance.now() - t0);
-      if (wait > 0) await new Promise((ok) => setTimeout(ok, wait));
     }
-  } catch (e) {
-    showError($("c-status"), e);
   } finally {
     cornell.polling = false;
   }
 }
 
-// Show the server's settings (another tab may have changed them).
-function syncControls(s) {
-  $("c-strategy").value = s.strategy;
-  $("c-width").value = s.width; $("c-seed").value = s.seed; $("c-depth").value = s.max_depth;
-  $("c-rr").checked = s.rr; $("c-lds").checked = s.lds; $("c-sph").checked = s.sph_rect;
-  for (const id of ["c-rr", "c-lds", "c-sph"]) $(id).disabled = s.strategy !== "mis";
-  $("c-weight").value = s.mixture_weight; $("c-weight").disabled = s.strategy !== "mixture";
+async function pollOnce() {
+  const t0 = performance.now();
+  const s = await api("/api/render/state");
+  // An answer from before this page's last change of settings: its settings are no longer.
+  if (s.generation >= cornell.minGeneration) syncControls(s.settings);
+  const f = s.frame;
+  if (f.id !== cornell.frame && f.id > 0) {
+    cornell.frame = f.id;
+    await Promise.all([drawPng($("c-image"), "image", f.id), drawPng($("c-variance"), "variance", f.id)]);
+    $("c-image").dataset.frame = f.id;
+    $("c-image").dataset.generation = f.generation;
+  }
+  const switching = f.generation !== s.generation ? " (switching)" : "";
+  const resumed = f.resumed ? "; continued where this setting was left" : "";
+  $("c-status").textContent = f.id > 0 ? `${s.settings.label}: ${f.spp} spp in ${fmt(f.seconds)} s, ` +
+    `${fmt(f.rays_per_second)} rays/s, RMSE ${f.rmse === null ? "(waiting for the reference)" : fmt(f.rmse, 4)}${resumed}${switching}`
+    : `${s.settings.label}: starting ...`;
+  cornell.last = s;
+  describeReference(s);
+  drawCurves(s);
+  const wait = 150 - (performance.now() - t0);
+  if (wait > 0) await new Promise((ok) => setTimeout(ok, wait));
+}
+
+async function cClear() {
+  const r = await api("/api/render/clear", { method: "POST" });
+  cornell.minGeneration = Math.max(cornell.minGeneration, r.generation);
+  document.body.dataset.renderGeneration = r.generation;
 }
 
 async function cornellInit() {
+  if (cornell.ready) return;
   const l = await api("/api/render/list");
+  cornell.strategies = l.strategies;
   for (const s of l.strategies) $("c-strategy").add(new Option(s, s));
-  syncControls(l.current);
-  for (const id of ["c-strategy", "c-weight", "c-rr", "c-lds", "c-sph", "c-width", "c-seed", "c-depth"]) $(id).onchange = cApply;
-  $("c-clear").onclick = () => api("/api/render/clear", { method: "POST" });
+  $("c-width").min = l.widths[0]; $("c-width").max = l.widths[1];
+  syncControls(l.current, true);
+  for (const param of Object.keys(C_FIELDS)) $(C_FIELDS[param]).onchange = () => cChange(param);
+  $("c-clear").onclick = guarded(cClear, $("c-error"));
+  $("c-correct").onchange = () => { if (cornell.last) drawCurves(cornell.last); };
+  heatKey($("c-key"), [[0, "1e-4"], [2 / 7, "1e-2"], [4 / 7, "1"], [6 / 7, "1e2"], [1, "1e3"]],
+    "log scale: dark low, bright high");
   document.addEventListener("visibilitychange", () => { if (activeBench === "cornell") pollRender(); });
+  cornell.ready = true;
+}
+
+// Every bench's menus from the server; again when the server is back, if it was gone.
+async function init() {
+  try {
+    await Promise.all([mcInit(), samplingInit(), cornellInit()]);
+    const fatal = $("fatal");
+    if (fatal) fatal.remove();
+  } catch (e) {
+    if (e instanceof Offline) return;
+    if (!$("fatal")) {
+      const p = document.createElement("p"); p.className = "error"; p.id = "fatal";
+      p.textContent = "The lab's server did not answer as expected: " + e.message; document.body.prepend(p);
+    }
+  }
 }
 
 window.addEventListener("DOMContentLoaded", async () => {
-  for (const b of document.querySelectorAll("nav button")) b.onclick = () => show(b.dataset.bench);
-  try {
-    await Promise.all([mcInit(), samplingInit(), cornellInit()]);
-  } catch (e) {
-    const p = document.createElement("p"); p.className = "error"; p.id = "fatal";
-    p.textContent = "The lab's server did not answer: " + e.message; document.body.prepend(p);
-  }
-  const wanted = location.hash.slice(1);
-  show(["mc", "sampling", "cornell"].includes(wanted) ? wanted : "mc");
+  tabsInit();
+  $("offline-now").onclick = probe;
+  net.onBack.push(async () => {
+    await init();
+    if (activeBench === "cornell") pollRender();
+  });
+  await init();
+  show(location.hash.slice(1));
   window.labReady = true;
 });
