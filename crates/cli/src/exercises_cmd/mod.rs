@@ -7,7 +7,7 @@ use clap::Args;
 #[derive(Args)]
 #[command(disable_help_flag = true)]
 pub struct ExercisesArgs {
-    /// list | check NAME... | hint NAME [--level K] | watch [NAME] | reset NAME | solution NAME [--force]
+    /// list | check NAME... | hint NAME (--level K) | watch (NAME) | reset NAME | solution NAME (--force)
     #[arg(trailing_var_arg = true, allow_hyphen_values = true, num_args = 0..)]
     args: Vec<String>,
 }
