@@ -16,9 +16,9 @@ use std::f64::consts::PI;
 pub trait Contribution: Fn(DVec3, DVec3, f64, f64, DVec3) -> DVec3 {}
 impl<F: Fn(DVec3, DVec3, f64, f64, DVec3) -> DVec3> Contribution for F {}
 
-/// Exact values and every degenerate density.
-pub fn check_cases(contribution: impl Contribution) -> CheckResult {
-    let contribution = |e: DVec3, a: DVec3, s: f64, p: f64, li: DVec3| {
+/// `contribution` with each call's arguments recorded, so that a panic report names them.
+fn recorded(contribution: impl Contribution) -> impl Contribution {
+    move |e: DVec3, a: DVec3, s: f64, p: f64, li: DVec3| {
         let args = [
             ("emitted", Arg::Vector(e)),
             ("attenuation", Arg::Vector(a)),
@@ -29,7 +29,12 @@ pub fn check_cases(contribution: impl Contribution) -> CheckResult {
         check::calling("scatter_contribution", &args, || {
             contribution(e, a, s, p, li)
         })
-    };
+    }
+}
+
+/// Exact values and every degenerate density.
+pub fn check_cases(contribution: impl Contribution) -> CheckResult {
+    let contribution = recorded(contribution);
     let e = DVec3::new(0.25, 0.5, 1.0);
     let a = DVec3::new(0.5, 0.75, 1.0);
     let li = DVec3::new(2.0, 4.0, 8.0);
@@ -71,18 +76,7 @@ pub fn check_cases(contribution: impl Contribution) -> CheckResult {
 
 /// White furnace: albedo 0.75, L_i = 1, uniform hemisphere sampling; the mean is 0.75 (z-test).
 pub fn check_furnace(contribution: impl Contribution) -> CheckResult {
-    let contribution = |e: DVec3, a: DVec3, s: f64, p: f64, li: DVec3| {
-        let args = [
-            ("emitted", Arg::Vector(e)),
-            ("attenuation", Arg::Vector(a)),
-            ("scattering_pdf", Arg::Real(s)),
-            ("pdf_value", Arg::Real(p)),
-            ("incoming", Arg::Vector(li)),
-        ];
-        check::calling("scatter_contribution", &args, || {
-            contribution(e, a, s, p, li)
-        })
-    };
+    let contribution = recorded(contribution);
     let albedo = 0.75;
     let mut rng = check::seeded(60);
     let mut values = Vec::with_capacity(100_000);

@@ -46,13 +46,7 @@ pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
 
 /// Chi-square test of 1e5 directions against the cosine density.
 pub fn check_distribution(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
-    let bins = SphereBins {
-        n_phi: 16,
-        n_z: 10,
-        z_min: 0.0,
-        z_max: 1.0,
-        pole: "the normal",
-    };
+    let bins = SphereBins::hemisphere();
     let sample = recorded(sample);
     let n = 100_000;
     let mut rng = check::seeded(70);

@@ -30,13 +30,7 @@ pub fn check_value(pdf: &dyn Pdf) -> CheckResult {
 /// Unit directions from `generate`, and a chi-square test of 1e5 of them against the density
 /// `value` claims.
 pub fn check_generate(pdf: &dyn Pdf) -> CheckResult {
-    let bins = SphereBins {
-        n_phi: 16,
-        n_z: 10,
-        z_min: 0.0,
-        z_max: 1.0,
-        pole: "the normal",
-    };
+    let bins = SphereBins::hemisphere();
     let n = 100_000;
     let mut rng = check::seeded(101);
     let mut dirs: Vec<DVec3> = Vec::with_capacity(n);

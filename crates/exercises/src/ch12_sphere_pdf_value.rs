@@ -97,9 +97,9 @@ fn cone_direction(center: DVec3, radius: f64, origin: DVec3, rng: &mut impl Rng)
     (r * phi.cos() * u + r * phi.sin() * v + z * w).normalize()
 }
 
-/// Hard cases: hits far away, misses, inside, on and just above the sphere.
-pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
-    let pdf = |center: DVec3, radius: f64, origin: DVec3, direction: DVec3| {
+/// `pdf` with each call's arguments recorded, so that a panic report names them.
+fn recorded(pdf: impl SpherePdf) -> impl SpherePdf {
+    move |center: DVec3, radius: f64, origin: DVec3, direction: DVec3| {
         let args = [
             ("center", Arg::Vector(center)),
             ("radius", Arg::Real(radius)),
@@ -109,7 +109,12 @@ pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
         check::calling("sphere_pdf_value", &args, || {
             pdf(center, radius, origin, direction)
         })
-    };
+    }
+}
+
+/// Hard cases: hits far away, misses, inside, on and just above the sphere.
+pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
+    let pdf = recorded(pdf);
     let c = DVec3::new(0.0, 0.0, 0.0);
     for d in [3.0, 1e2, 1e4, 1e6, 1e9] {
         let origin = DVec3::new(0.0, 0.0, -d);
@@ -186,17 +191,7 @@ pub fn check_values(pdf: impl SpherePdf) -> CheckResult {
 
 /// E[4 pi p] = 1 over 1e5 uniform directions, from outside (z-test) and inside (exactly).
 pub fn check_normalised(pdf: impl SpherePdf) -> CheckResult {
-    let pdf = |center: DVec3, radius: f64, origin: DVec3, direction: DVec3| {
-        let args = [
-            ("center", Arg::Vector(center)),
-            ("radius", Arg::Real(radius)),
-            ("origin", Arg::Vector(origin)),
-            ("direction", Arg::Vector(direction)),
-        ];
-        check::calling("sphere_pdf_value", &args, || {
-            pdf(center, radius, origin, direction)
-        })
-    };
+    let pdf = recorded(pdf);
     let mut rng = check::seeded(121);
     let center = DVec3::new(1.0, -2.0, 0.5);
     for (what, origin) in [

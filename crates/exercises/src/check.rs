@@ -448,6 +448,18 @@ pub struct SphereBins {
 }
 
 impl SphereBins {
+    /// The hemisphere about the normal (+z) in 16 sectors of azimuth and 10 rings of equal cos theta,
+    /// the cells of the exercises' direction samplers.
+    pub fn hemisphere() -> Self {
+        Self {
+            n_phi: 16,
+            n_z: 10,
+            z_min: 0.0,
+            z_max: 1.0,
+            pole: "the normal",
+        }
+    }
+
     /// The cell of direction `d` (normalised first), or `None` outside the zone or for non-finite `d`.
     pub fn cell(&self, d: DVec3) -> Option<usize> {
         let d = d.normalize_or_zero();
@@ -798,13 +810,7 @@ mod tests {
     fn chi_square_says_which_ring_of_directions_has_too_few_and_too_many() {
         // Uniform directions on the hemisphere tested against the cosine density: too few near the
         // normal, too many near the horizon, each ring counted over its 16 sectors.
-        let bins = SphereBins {
-            n_phi: 16,
-            n_z: 10,
-            z_min: 0.0,
-            z_max: 1.0,
-            pole: "the normal",
-        };
+        let bins = SphereBins::hemisphere();
         let n = 100_000;
         let mut rng = seeded(9);
         let dirs = (0..n).map(|_| {
