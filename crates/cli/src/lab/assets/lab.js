@@ -167,7 +167,14 @@ function fmt(x, digits = 3) {
   if (x === null || x === undefined || !isFinite(x)) return "n/a";
   if (x === 0) return "0";
   const a = Math.abs(x);
-  return (a >= 1e4 || a < 1e-3) ? x.toExponential(digits - 1) : x.toPrecision(digits);
+  if (a >= 1e4 && a < 1e12) return Math.round(x).toLocaleString("en-US"); // 190,200, not 1.902e+5
+  return a < 1e-3 ? x.toExponential(digits - 1) : x.toPrecision(digits);
+}
+
+// A p-value; one that underflows to 0 is below the smallest double the test computes.
+function pValue(p) {
+  const text = p === 0 ? "< 1e-300" : fmt(p, 2);
+  return text + (p < 1e-3 ? " (not from this density)" : "");
 }
 
 // Least-squares slope of log10(y) against log10(x): the same fit as `plot::loglog_slope` of
@@ -557,7 +564,7 @@ async function sRun() {
       ["ns per sample", fmt(r.ns_per_sample) + (r.shared_cores ? " (shared cores)" : "")],
       ["build", fmt(r.build_ms) + " ms"],
       ["chi-square", `${fmt(r.chi2.statistic, 4)} on ${r.chi2.dof} dof`],
-      ["p-value", fmt(r.chi2.p_value)],
+      ["p-value", pValue(r.chi2.p_value)],
       ["outside the domain", String(r.outside_domain)],
     ]);
     unmarkStale($("s-figure"), $("s-numbers"));
@@ -605,7 +612,7 @@ async function dRun() {
     numbers($("d-numbers"), [
       ["density", $("d-pdf").selectedOptions[0].textContent],
       ["chi-square", `${fmt(r.statistic, 4)} on ${r.dof} dof`],
-      ["p-value", fmt(r.p_value) + (r.p_value < 1e-3 ? "  (the samples are not from this density)" : "")],
+      ["p-value", pValue(r.p_value)],
       ["outside support", String(r.outside_support)],
       ["density integrates to", fmt(r.expected_fraction, 4)],
       ["ns per direction", fmt(r.ns_per_sample) + (r.shared_cores ? " (shared cores)" : "")],
