@@ -167,7 +167,8 @@ pub enum QuadSampling {
 }
 
 /// Below this solid angle (steradians) the spherical-rectangle terms lose precision and area sampling
-/// is as good; above the upper limit the rectangle is nearly a hemisphere. The values are pbrt-v4's.
+/// is as good; above the upper limit the rectangle is nearly a hemisphere. The values are those pbrt-v4
+/// gives its spherical triangles (its rectangles switch to area sampling below 1e-4 sr only).
 pub const MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE: f64 = 3e-4;
 /// See [`MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE`].
 pub const MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE: f64 = 6.22;

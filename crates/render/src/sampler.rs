@@ -82,9 +82,10 @@ fn block_key(key: u64, k: u64) -> u64 {
 // ANCHOR: padded_sobol
 /// Two-dimensional point `k` of the integrator's dimension pair `dim` for one pixel, each coordinate as
 /// 64 random-looking bits whose top 32 are the Owen-scrambled Sobol value (so `random::<f64>()` of them
-/// lies in the point's 2^-32 cell): pbrt-v4's *padded* Sobol sampler. Every pair is Sobol dimensions 0
-/// and 1 (a (0,2)-sequence) with its own scramble, and the sample index is shuffled per pair by a nested
-/// uniform scramble of its bits (Burley 2020), which maps the first 2^m indices onto one aligned block
+/// lies in the point's 2^-32 cell), after pbrt-v4's *padded* Sobol sampler. Every pair is Sobol
+/// dimensions 0 and 1 (a (0,2)-sequence) with its own scramble, and the sample index is shuffled per
+/// pair (pbrt-v4 permutes the pixel's indices) by a nested uniform scramble of its bits (Burley 2020),
+/// which maps the first 2^m indices onto one aligned block
 /// of 2^m, itself a (0,m,2)-net: so every power-of-two prefix stays stratified, pairs are decorrelated,
 /// and point `k` depends only on `(pixel_key, dim, k)` (prefix-stable).
 #[inline]
