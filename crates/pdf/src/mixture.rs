@@ -132,6 +132,21 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
             pdf: pdf.1,
         })
     }
+
+    /// The book's `generate()`: the direction [`Self::sample`] draws from the same two numbers,
+    /// without the other part's density, which only the mixture's pdf needs (for a light, a
+    /// ray-shape intersection).
+    #[inline]
+    fn generate<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
+        let u = crate::pdf::random_unit_square(rng);
+        let wa = self.weight_a;
+        let s = if u.x < wa {
+            self.a.sample(DVec2::new(remap(u.x, 0.0, wa), u.y))
+        } else {
+            self.b.sample(DVec2::new(remap(u.x, wa, 1.0 - wa), u.y))
+        };
+        s.map_or(DVec3::ZERO, |s| s.direction)
+    }
 }
 // ANCHOR_END: mixture_pdf
 

@@ -647,3 +647,26 @@ fn samples_carry_their_own_density_for_chosen_inputs() {
         .unwrap();
     assert_eq!(s.direction, cosine.direction);
 }
+
+#[test]
+fn a_mixtures_generate_is_the_direction_its_sample_draws() {
+    // `MixturePdf::generate` skips the other part's density, which only the pdf needs: the direction
+    // must be the one `sample` draws from the same two numbers, for either part and at the weights'
+    // ends.
+    let quad = [QuadTarget::new(
+        DVec3::new(-1.0, -0.5, 2.0),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.5, 0.0),
+    )];
+    let to_quad = HittablePdf::new(DVec3::new(0.1, 0.2, 0.0), &quad).unwrap();
+    for w in [0.0, 0.25, 0.5, 1.0] {
+        let mixture = MixturePdf::with_weight(to_quad, CosinePdf::new(DVec3::Z), w).unwrap();
+        let (mut a, mut b) = (rng(17), rng(17));
+        for _ in 0..10_000 {
+            let generated = mixture.generate(&mut a);
+            let u = DVec2::new(b.random::<f64>(), b.random::<f64>());
+            let sampled = mixture.sample(u).map_or(DVec3::ZERO, |s| s.direction);
+            assert_eq!(generated, sampled, "weight {w}, u = {u}");
+        }
+    }
+}
