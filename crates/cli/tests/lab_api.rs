@@ -39,6 +39,22 @@ impl Drop for Lab {
     }
 }
 
+/// The exit status of `child`, which must end within `limit` (else it is killed and the test fails
+/// with `what`).
+fn wait_exit(child: &mut Child, limit: Duration, what: &str) -> std::process::ExitStatus {
+    let start = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return s;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            panic!("{what}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
 fn rtl() -> Command {
     Command::new(env!("CARGO_BIN_EXE_rtl"))
 }
@@ -602,17 +618,11 @@ fn a_port_in_use_is_a_clear_error() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if start.elapsed() > Duration::from_secs(60) {
-            let _ = child.kill();
-            panic!("rtl lab did not stop on a port in use");
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    };
+    let status = wait_exit(
+        &mut child,
+        Duration::from_secs(60),
+        "rtl lab did not stop on a port in use",
+    );
     let mut err = String::new();
     child
         .stderr
@@ -881,17 +891,11 @@ fn the_page_works_in_a_browser() {
         .stderr(Stdio::piped())
         .spawn()
         .expect("node runs");
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        if start.elapsed() > Duration::from_secs(300) {
-            let _ = child.kill();
-            panic!("the browser check took more than 5 minutes");
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    };
+    let status = wait_exit(
+        &mut child,
+        Duration::from_secs(300),
+        "the browser check took more than 5 minutes",
+    );
     let (mut out, mut err) = (String::new(), String::new());
     child
         .stdout
