@@ -689,8 +689,10 @@ fn timed_with_stderr(cmd: &mut Command, what: &str) -> Result<(Vec<u8>, String, 
     Ok((out.stdout, stderr, secs))
 }
 
+/// An image to compare (the book's PPM or rtl's PFM): a regular file of at most 1 GiB, so that a device
+/// or a pipe named by mistake is refused, not read without end.
 fn read(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))
+    rtl_render::limits::read_regular_file(path, "image", 1 << 30).map_err(anyhow::Error::msg)
 }
 
 fn pair_constant(a: &DisplayImage, b: &DisplayImage, spp: u64) -> Result<(f64, f64)> {
@@ -1151,6 +1153,19 @@ mod tests {
         std::fs::write(&b, "P3\n2 1\n255\n0 0 0 0 0 0\n").unwrap();
         let e = noise_of(&args(4)).unwrap_err().to_string();
         assert!(e.contains("differ in size"), "{e}");
+        // A device or a directory is refused before a byte is read, naming it.
+        for not_a_file in ["/dev/zero", "/"] {
+            let e = noise_of(&NoiseArgs {
+                images: vec![a.clone(), not_a_file.into()],
+                spp: 4,
+            })
+            .unwrap_err()
+            .to_string();
+            assert!(
+                e.contains(not_a_file) && e.contains("not a regular file"),
+                "{e}"
+            );
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -4,15 +4,16 @@
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
+/// The largest CSV `--replot` reads: the studies write well under a megabyte.
+pub const MAX_CSV_BYTES: u64 = 64 << 20;
+
 /// What is wrong with a study's CSV: each names the file, and the line and column where it can.
 #[derive(Debug, thiserror::Error)]
 pub enum CsvError {
-    /// (The I/O error is quoted in the message, and not given as a source, so that it is printed once.)
-    #[error("{}: {error} (--replot reads the CSV an earlier run of the study wrote there)", path.display())]
-    Read {
-        path: PathBuf,
-        error: std::io::Error,
-    },
+    /// Not a readable regular file of at most [`MAX_CSV_BYTES`], or not UTF-8; `message` names the
+    /// path and quotes the I/O error (not given as a source, so that it is printed once).
+    #[error("{message} (--replot reads the CSV an earlier run of the study wrote there)")]
+    Read { message: String },
     #[error("{}: empty, not even a header line", path.display())]
     Empty { path: PathBuf },
     #[error("{}:1: no column `{column}` in the header", path.display())]
@@ -147,9 +148,14 @@ impl CsvValue for usize {
 impl CsvTable {
     /// Reads and parses the CSV at `path`.
     pub fn read(path: &Path) -> Result<Self, CsvError> {
-        let text = std::fs::read_to_string(path).map_err(|error| CsvError::Read {
-            path: path.to_path_buf(),
-            error,
+        let bytes = rtl_render::limits::read_regular_file(path, "the study's CSV", MAX_CSV_BYTES)
+            .map_err(|message| CsvError::Read { message })?;
+        let text = String::from_utf8(bytes).map_err(|e| CsvError::Read {
+            message: format!(
+                "{}: the study's CSV is not UTF-8 text (byte {})",
+                path.display(),
+                e.utf8_error().valid_up_to()
+            ),
         })?;
         Self::parse(path, &text)
     }
@@ -319,5 +325,19 @@ mod tests {
             .err()
             .unwrap();
         assert!(e.to_string().starts_with("/nonexistent/rtl/t.csv: "), "{e}");
+        // Not a regular file: refused before a byte is read (a device or pipe could give bytes without
+        // end), naming the path.
+        for path in ["/dev/zero", "/"] {
+            let e = CsvTable::read(Path::new(path)).err().unwrap();
+            assert!(matches!(e, CsvError::Read { .. }), "{path}: {e}");
+            assert!(e.to_string().starts_with(path), "{e}");
+        }
+        let dir = std::env::temp_dir().join(format!("rtl-csv-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let latin1 = dir.join("latin1.csv");
+        std::fs::write(&latin1, b"a,b\n1,\xe9\n").unwrap();
+        let e = CsvTable::read(&latin1).err().unwrap();
+        assert!(e.to_string().contains("not UTF-8"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -14,6 +14,7 @@
 //!    assuming RMSE ~ c / sqrt(spp) (fitted on the two largest spp) and time ~ pixels x spp (the
 //!    per-sample cost measured here) -> `DIR/render-600.csv`.
 
+use crate::csv::CsvTable;
 use crate::plot::{Panel, Series, image_grid, loglog};
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -138,9 +139,13 @@ fn settings(width: usize, scene: &Scene, seed: u64, strategy: Strategy) -> Rende
     }
 }
 
+/// The largest reference PFM read: 3 floats a pixel, 2^26 pixels (a render of 8192 x 8192).
+const MAX_PFM_BYTES: u64 = 12 << 26;
+
 /// Read a colour PFM as written by `write_linear` (rows bottom to top, little-endian).
 fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
-    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+    let bytes = rtl_render::limits::read_regular_file(path, "reference image", MAX_PFM_BYTES)
+        .map_err(anyhow::Error::msg)?;
     let mut fields = Vec::new();
     let mut pos = 0;
     while fields.len() < 4 {
@@ -518,20 +523,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
 
 /// Rows of a render.csv written by an earlier run, with its width, thread count and reference spp.
 fn read_rows(path: &Path) -> Result<(Vec<Row>, usize, usize, u64)> {
-    let text = std::fs::read_to_string(path).with_context(|| {
-        format!(
-            "--replot reads the measurements of an earlier run: {}",
-            path.display()
-        )
-    })?;
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let col = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .with_context(|| format!("{}: no column `{name}`", path.display()))
-    };
+    let table = CsvTable::read(path)?;
+    let col = |name: &str| table.column(name);
     let (c_label, c_spp, c_sec, c_rmse, c_rel, c_disp, c_rays, c_w, c_t, c_ref) = (
         col("strategy")?,
         col("spp")?,
@@ -546,49 +539,36 @@ fn read_rows(path: &Path) -> Result<(Vec<Row>, usize, usize, u64)> {
     );
     let c_bias = col("mean_bias").ok();
     let (mut rows, mut width, mut threads, mut ref_spp) = (Vec::new(), 0, 0, 0);
-    for (i, line) in lines.enumerate() {
-        let f: Vec<&str> = line.split(',').collect();
-        let at = |c: usize| -> Result<&str> {
-            f.get(c)
-                .copied()
-                .with_context(|| format!("{}:{}: too few fields", path.display(), i + 2))
-        };
-        let num = |c: usize| -> Result<f64> {
-            at(c)?.parse::<f64>().with_context(|| {
-                format!(
-                    "{}:{}: field {} is not a number",
-                    path.display(),
-                    i + 2,
-                    header[c]
-                )
-            })
-        };
-        let label = at(c_label)?.to_string();
+    for row in table.rows() {
+        let label = row.text(c_label).to_string();
         let strategy = strategies()
             .into_iter()
             .find(|(l, _)| *l == label)
-            .with_context(|| format!("{}:{}: unknown strategy `{label}`", path.display(), i + 2))?
+            .ok_or_else(|| row.invalid(c_label, format!("unknown strategy `{label}`")))?
             .1;
-        width = num(c_w)? as usize;
-        threads = num(c_t)? as usize;
-        ref_spp = num(c_ref)? as u64;
+        width = row.value::<usize>(c_w)?;
+        threads = row.value::<usize>(c_t)?;
+        ref_spp = row.value::<u64>(c_ref)?;
         rows.push(Row {
             label,
             biased: biased(strategy),
             mean_bias: match c_bias {
-                Some(c) => num(c)?,
+                Some(c) => row.value::<f64>(c)?,
                 None => f64::NAN,
             },
-            spp: num(c_spp)? as u64,
-            seconds: num(c_sec)?,
-            rmse: num(c_rmse)?,
-            rel_mse: num(c_rel)?,
-            rmse_display: num(c_disp)?,
-            rays_per_sample: num(c_rays)?,
+            spp: row.value::<u64>(c_spp)?,
+            seconds: row.value::<f64>(c_sec)?,
+            rmse: row.value::<f64>(c_rmse)?,
+            rel_mse: row.value::<f64>(c_rel)?,
+            rmse_display: row.value::<f64>(c_disp)?,
+            rays_per_sample: row.value::<f64>(c_rays)?,
         });
     }
-    if rows.is_empty() || width < 2 {
-        bail!("{}: no measurements to replot", path.display());
+    if width < 2 {
+        bail!(
+            "{}: no measurements to replot (width {width})",
+            path.display()
+        );
     }
     Ok((rows, width, threads, ref_spp))
 }
