@@ -211,12 +211,7 @@ fn draw_title<'a>(
     let (w, _) = area.dim_in_pixel();
     let lines = title_lines(title, w, px);
     let line_h = px * 5 / 4;
-    let style = TextStyle::from(("sans-serif", px).into_font())
-        .color(&BLACK)
-        .pos(plotters::style::text_anchor::Pos::new(
-            plotters::style::text_anchor::HPos::Center,
-            plotters::style::text_anchor::VPos::Top,
-        ));
+    let style = centred(px);
     for (k, line) in lines.iter().enumerate() {
         area.draw_text(
             line,
@@ -225,8 +220,22 @@ fn draw_title<'a>(
         )
         .map_err(|e| anyhow!("{e}"))?;
     }
-    let title_h = MARGIN_PX / 2 + lines.len() as u32 * line_h;
-    Ok(area.split_vertically(title_h).1)
+    Ok(area.split_vertically(title_height(title, w, px)).1)
+}
+
+/// The height [`draw_title`] takes for `title` at `px` pixels in a width of `w`.
+fn title_height(title: &str, w: u32, px: u32) -> u32 {
+    MARGIN_PX / 2 + title_lines(title, w, px).len() as u32 * (px * 5 / 4)
+}
+
+/// Text of `px` pixels, black, centred on its position and hanging below it.
+fn centred(px: u32) -> TextStyle<'static> {
+    TextStyle::from(("sans-serif", px).into_font())
+        .color(&BLACK)
+        .pos(plotters::style::text_anchor::Pos::new(
+            plotters::style::text_anchor::HPos::Center,
+            plotters::style::text_anchor::VPos::Top,
+        ))
 }
 
 /// Space in a legend box before each label, where the series' line and marker are drawn.
@@ -469,18 +478,13 @@ pub fn image_grid(
     let cw = panels.iter().map(|p| p.width).max().unwrap_or(1) * scale;
     let ch = panels.iter().map(|p| p.height).max().unwrap_or(1) * scale;
     let w = cols * cw + (cols + 1) * gap;
-    let title_h =
-        title_lines(title, w as u32, GRID_TITLE_PX).len() * (GRID_TITLE_PX as usize * 5 / 4) + 18;
+    // the title, and 11 pixels more above the pictures than a chart leaves
+    let title_h = title_height(title, w as u32, GRID_TITLE_PX) as usize + 11;
     let h = title_h + rows * (ch + label_h) + rows * gap;
     let root = BitMapBackend::new(path, (w as u32, h as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
     draw_title(&root, title, GRID_TITLE_PX)?;
-    let label_style = TextStyle::from(("sans-serif", GRID_LABEL_PX).into_font())
-        .color(&BLACK)
-        .pos(plotters::style::text_anchor::Pos::new(
-            plotters::style::text_anchor::HPos::Center,
-            plotters::style::text_anchor::VPos::Top,
-        ));
+    let label_style = centred(GRID_LABEL_PX);
     for (i, p) in panels.iter().enumerate() {
         let (c, r) = (i % cols, i / cols);
         let x0 = gap + c * (cw + gap);
