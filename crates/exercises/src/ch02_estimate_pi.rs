@@ -3,7 +3,7 @@
 //! The checks of the exercise `crates/exercises/exercises/ch02_estimate_pi.rs`, which states the
 //! task.
 
-use crate::check::{self, Arg, CheckResult};
+use crate::check::{self, Arg, CheckResult, Generator};
 use rand::RngCore;
 use std::f64::consts::PI;
 
@@ -11,10 +11,12 @@ use std::f64::consts::PI;
 pub trait PiEstimator: Fn(usize, &mut dyn RngCore) -> Option<f64> {}
 impl<F: Fn(usize, &mut dyn RngCore) -> Option<f64>> PiEstimator for F {}
 
-/// `estimate` with its calls recorded, so that a panic names the `n` that caused it.
-fn recorded(estimate: impl PiEstimator) -> impl PiEstimator {
-    move |n: usize, rng: &mut dyn RngCore| {
-        check::calling("estimate_pi", &[("n", Arg::Count(n))], || estimate(n, rng))
+/// `estimate` with its calls recorded, so that a panic names the `n` and the generator (where it
+/// was, and what it drew) that caused it.
+fn recorded(estimate: impl PiEstimator) -> impl Fn(usize, &mut Generator) -> Option<f64> {
+    move |n: usize, rng: &mut Generator| {
+        let args = [("n", Arg::Count(n)), ("rng", rng.arg())];
+        check::calling("estimate_pi", &args, || estimate(n, rng))
     }
 }
 
@@ -24,20 +26,20 @@ pub fn check_value(estimate: impl PiEstimator) -> CheckResult {
     let n = 100_000;
     let p = PI / 4.0;
     let se = 4.0 * (p * (1.0 - p) / n as f64).sqrt();
-    let got = estimate(n, &mut check::seeded(2)).ok_or("estimate_pi(100000) returned None")?;
+    let got = estimate(n, &mut Generator::new(2)).ok_or("estimate_pi(100000) returned None")?;
     check::z_test("estimate_pi with 1e5 points", got, se, PI)
 }
 
 /// `n = 0` gives `None`; otherwise the estimate is 4 k / n for a whole number k in [0, n].
 pub fn check_lattice(estimate: impl PiEstimator) -> CheckResult {
     let estimate = recorded(estimate);
-    if let Some(x) = estimate(0, &mut check::seeded(3)) {
+    if let Some(x) = estimate(0, &mut Generator::new(3)) {
         return Err(format!(
             "estimate_pi(0) returned Some({}); no samples give no estimate (None)",
             check::num(x)
         ));
     }
-    let mut rng = check::seeded(4);
+    let mut rng = Generator::new(4);
     for n in [1usize, 2, 3, 10, 1000] {
         let got = estimate(n, &mut rng).ok_or(format!("estimate_pi({n}) returned None"))?;
         let k = got * n as f64 / 4.0;
@@ -89,5 +91,32 @@ mod tests {
             (n > 0).then(|| 4.0 * inside as f64 / n as f64)
         };
         assert!(check_value(half).is_err());
+    }
+
+    #[test]
+    fn a_panic_names_n_and_how_to_replay_the_generator() {
+        // Panics at the 4th point of the 10-point call of the lattice check, after the calls with
+        // 1, 2 and 3 points drew 12 values.
+        fn panics_at_10(n: usize, rng: &mut dyn RngCore) -> Option<f64> {
+            for i in 0..n {
+                let _: (f64, f64) = (rng.random(), rng.random());
+                assert!(!(n == 10 && i == 3), "point 3 of 10");
+            }
+            (n > 0).then_some(4.0)
+        }
+        let report = crate::harness::panic_of(|| check_lattice(panics_at_10));
+        // The generator the report names draws the values it shows: the 5th to 8th after 12.
+        let mut replayed = check::replay(4, 12);
+        let u: Vec<f64> = (0..8).map(|_| replayed.random::<f64>()).collect();
+        let call = format!(
+            "your code panicked in estimate_pi(n = 10, rng = rtl_exercises::check::replay(4, 12)), \
+             which drew 8 uniforms, the last u = {}, {}, {}, {}, at ",
+            check::num(u[4]),
+            check::num(u[5]),
+            check::num(u[6]),
+            check::num(u[7])
+        );
+        assert!(report.starts_with(&call), "{report}\n{call}");
+        assert!(report.ends_with(": point 3 of 10"), "{report}");
     }
 }

@@ -3,7 +3,7 @@
 //! The checks of the exercise `crates/exercises/exercises/ch02_jittered_pi.rs`, which states the
 //! task.
 
-use crate::check::{self, Arg, CheckResult};
+use crate::check::{self, Arg, CheckResult, Generator};
 use rand::RngCore;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
@@ -11,19 +11,18 @@ use std::f64::consts::PI;
 /// Unbiased (mean of 400 estimates of 16 x 16 points z-tested against pi) and of variance below
 /// the variance of 256 independent points.
 pub fn check_jittered_pi(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f64>) -> CheckResult {
-    let estimate = |k: usize, rng: &mut dyn RngCore| {
-        check::calling("jittered_pi", &[("sqrt_n", Arg::Count(k))], || {
-            estimate(k, rng)
-        })
+    let estimate = |k: usize, rng: &mut Generator| {
+        let args = [("sqrt_n", Arg::Count(k)), ("rng", rng.arg())];
+        check::calling("jittered_pi", &args, || estimate(k, rng))
     };
-    if let Some(x) = estimate(0, &mut check::seeded(5)) {
+    if let Some(x) = estimate(0, &mut Generator::new(5)) {
         return Err(format!(
             "jittered_pi(0) returned Some({}); no samples give no estimate (None)",
             check::num(x)
         ));
     }
     let (k, reps) = (16usize, 400usize);
-    let mut rng = check::seeded(6);
+    let mut rng = Generator::new(6);
     let mut values = Vec::with_capacity(reps);
     for _ in 0..reps {
         values.push(estimate(k, &mut rng).ok_or("jittered_pi(16) returned None")?);
@@ -90,5 +89,34 @@ mod tests {
             (k > 0).then(|| 4.0 * inside as f64 / (k * k) as f64)
         };
         assert!(check_jittered_pi(centres).is_err());
+    }
+
+    #[test]
+    fn a_panic_names_the_grid_and_how_to_replay_the_generator() {
+        // Panics in the third estimate of 16 x 16 points, at its first draw; each estimate before
+        // it drew 2 values per point.
+        let calls = std::cell::Cell::new(0);
+        let report = crate::harness::panic_of(move || {
+            check_jittered_pi(|k: usize, rng: &mut dyn RngCore| {
+                if k > 0 {
+                    calls.set(calls.get() + 1);
+                }
+                let x: f64 = rng.random();
+                assert!(calls.get() < 3, "the third estimate");
+                for _ in 1..2 * k * k {
+                    let _: f64 = rng.random();
+                }
+                (k > 0).then_some(PI + x - x)
+            })
+        });
+        let mut replayed = check::replay(6, 2 * 2 * 256);
+        let u = check::num(replayed.random::<f64>());
+        assert!(
+            report.starts_with(&format!(
+                "your code panicked in jittered_pi(sqrt_n = 16, rng = \
+                 rtl_exercises::check::replay(6, 1024)), which drew u = {u}, at "
+            )),
+            "{report}"
+        );
     }
 }

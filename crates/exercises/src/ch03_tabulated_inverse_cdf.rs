@@ -97,8 +97,18 @@ fn table(edges: &[f64], weights: &[f64]) -> CdfTable {
     CdfTable::new(edges, weights).expect("the checks' tables are valid")
 }
 
+/// `invert(t, u)`, recorded so that a panic report names the table and `u`.
+fn recorded(invert: &impl Invert, t: &CdfTable, u: f64) -> Result<f64, CdfError> {
+    let args = [
+        ("table.edges", Arg::from(t.edges.as_slice())),
+        ("table.cdf", Arg::from(t.cdf.as_slice())),
+        ("u", Arg::Real(u)),
+    ];
+    check::calling("invert", &args, || invert(t, u))
+}
+
 fn lookup(invert: &impl Invert, t: &CdfTable, u: f64) -> Result<f64, String> {
-    match check::calling("invert", &[("u", Arg::Real(u))], || invert(t, u)) {
+    match recorded(invert, t, u) {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(x) => Err(format!(
             "invert(u = {}) returned {} for cdf {:?}",
@@ -202,7 +212,7 @@ pub fn check_zero_bins(invert: impl Invert) -> CheckResult {
 pub fn check_out_of_range(invert: impl Invert) -> CheckResult {
     let t = table(&[0.0, 1.0, 2.0], &[1.0, 1.0]);
     for u in [-0.25, 1.0, 1.5, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        match check::calling("invert", &[("u", Arg::Real(u))], || invert(&t, u)) {
+        match recorded(&invert, &t, u) {
             Err(CdfError::UOutOfRange(v)) if v.to_bits() == u.to_bits() => {}
             other => {
                 return Err(format!(
@@ -330,5 +340,22 @@ mod tests {
         // Wrong: accepts u = 1 (and clamps), instead of reporting it.
         let clamps = |t: &CdfTable, u: f64| bin_start(t, u.clamp(0.0, U_MAX));
         assert!(check_out_of_range(clamps).is_err());
+    }
+
+    #[test]
+    fn a_panic_names_the_table_and_u() {
+        let report = crate::harness::panic_of(|| {
+            check_out_of_range(|_: &CdfTable, u: f64| {
+                assert!(u >= 0.0, "a negative u");
+                Err(CdfError::UOutOfRange(u))
+            })
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in invert(table.edges = [0, 1, 2], table.cdf = [0, 0.5, 1], \
+                 u = -0.25) at "
+            ),
+            "{report}"
+        );
     }
 }

@@ -7,7 +7,7 @@
 //! in 16 x 9 equal-area (phi, z) cells; and a z-test of the estimate with its exact variance
 //! 16 pi^2 (1/5 - 1/9) / n.
 
-use crate::check::{self, Arg, CheckResult, SphereBins, U_MAX};
+use crate::check::{self, Arg, CheckResult, Generator, SphereBins, U_MAX};
 use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
@@ -40,19 +40,19 @@ pub fn check_uniform_sphere(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
 
 /// z-test of the estimate from 1e5 directions against 4 pi / 3; `None` for `n = 0`.
 pub fn check_estimate(estimate: impl Fn(usize, &mut dyn RngCore) -> Option<f64>) -> CheckResult {
-    let estimate = |n: usize, rng: &mut dyn RngCore| {
-        check::calling("estimate_cos_sq", &[("n", Arg::Count(n))], || {
-            estimate(n, rng)
-        })
+    let estimate = |n: usize, rng: &mut Generator| {
+        let args = [("n", Arg::Count(n)), ("rng", rng.arg())];
+        check::calling("estimate_cos_sq", &args, || estimate(n, rng))
     };
-    if let Some(x) = estimate(0, &mut check::seeded(41)) {
+    if let Some(x) = estimate(0, &mut Generator::new(41)) {
         return Err(format!(
             "estimate_cos_sq(0) returned Some({}); no samples give no estimate (None)",
             check::num(x)
         ));
     }
     let n = 100_000;
-    let got = estimate(n, &mut check::seeded(42)).ok_or("estimate_cos_sq(100000) returned None")?;
+    let got =
+        estimate(n, &mut Generator::new(42)).ok_or("estimate_cos_sq(100000) returned None")?;
     let se = (16.0 * PI * PI * (1.0 / 5.0 - 1.0 / 9.0) / n as f64).sqrt();
     check::z_test("integral of cos^2 over the sphere", got, se, 4.0 * PI / 3.0)
 }
@@ -90,5 +90,36 @@ mod tests {
             })
         };
         assert!(check_estimate(mean_only).is_err());
+    }
+
+    #[test]
+    fn a_panic_names_the_input_of_either_function() {
+        // The estimate panics at once for n > 0, before drawing.
+        let report = crate::harness::panic_of(|| {
+            check_estimate(|n: usize, _: &mut dyn RngCore| {
+                assert!(n == 0, "no estimate yet");
+                None
+            })
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in estimate_cos_sq(n = 100000, rng = \
+                 rtl_exercises::check::seeded(42)), which drew nothing from rng, at "
+            ),
+            "{report}"
+        );
+        // The sampler panics at u1 = 1 - 2^-53 of the corners.
+        let report = crate::harness::panic_of(|| {
+            check_uniform_sphere(|u1: f64, _: f64| {
+                assert!(u1 < 0.75, "u1 near 1");
+                DVec3::Z
+            })
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in uniform_sphere(u1 = 0.9999999999999999, u2 = 0) at "
+            ),
+            "{report}"
+        );
     }
 }

@@ -65,7 +65,12 @@ pub fn check_unit(normal: impl Normal) -> CheckResult {
 pub fn check_normalised(normal: impl Normal) -> CheckResult {
     let radius = 2.0;
     let p = CENTER + DVec3::new(0.0, radius, 0.0);
-    let n = normal(CENTER, radius, p);
+    let args = [
+        ("center", Arg::Vector(CENTER)),
+        ("radius", Arg::Real(radius)),
+        ("point", Arg::Vector(p)),
+    ];
+    let n = check::calling("outward_normal", &args, || normal(CENTER, radius, p));
     let mut rng = check::seeded(51);
     let values =
         (0..100_000).map(|_| 4.0 * PI * lambertian_pdf(n, check::uniform_direction(&mut rng)));
@@ -106,5 +111,19 @@ mod tests {
         let normalised = |c: DVec3, _r: f64, p: DVec3| (p - c).normalize();
         assert!(check_unit(normalised).is_err());
         assert!(check_normalised(normalised).is_ok());
+    }
+
+    #[test]
+    fn a_panic_names_the_sphere_and_the_point() {
+        let report = crate::harness::panic_of(|| {
+            check_normalised(|_: DVec3, r: f64, _: DVec3| -> DVec3 { panic!("radius {r}") })
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in outward_normal(center = [1, -2, 0.5], radius = 2, \
+                 point = [1, 0, 0.5]) at "
+            ),
+            "{report}"
+        );
     }
 }

@@ -32,6 +32,7 @@ pub fn check_corners(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
 /// A failure names the factor-2 bug only if the mean is also within the z-test's reach of
 /// [`FACTOR_TWO_MEAN_COSINE`].
 pub fn check_mean_cosine(sample: impl Fn(f64, f64) -> DVec3) -> CheckResult {
+    let sample = ch07_cosine_direction::recorded(sample);
     let mut rng = check::seeded(71);
     let zs: Vec<f64> = (0..100_000)
         .map(|_| sample(rng.random(), rng.random()).normalize_or_zero().z)
@@ -98,6 +99,22 @@ mod tests {
         assert!(
             !err.contains("factor-2") && !err.contains("radius 2"),
             "{err}"
+        );
+    }
+
+    #[test]
+    fn a_panic_in_the_mean_names_the_uniforms() {
+        let report = crate::harness::panic_of(|| {
+            check_mean_cosine(|u1: f64, u2: f64| -> DVec3 { panic!("{u1} {u2}") })
+        });
+        let mut rng = check::seeded(71);
+        let (u1, u2): (f64, f64) = (rng.random(), rng.random());
+        let (u1, u2) = (check::num(u1), check::num(u2));
+        assert!(
+            report.starts_with(&format!(
+                "your code panicked in random_cosine_direction(u1 = {u1}, u2 = {u2}) at "
+            )) && report.ends_with(&format!(": {u1} {u2}")),
+            "{report}"
         );
     }
 }

@@ -14,7 +14,7 @@ use rand::Rng;
 use std::f64::consts::FRAC_1_PI;
 
 /// `sample` with its call recorded, so that a panic names the (u1, u2) that caused it.
-fn recorded(sample: impl Fn(f64, f64) -> DVec3) -> impl Fn(f64, f64) -> DVec3 {
+pub(crate) fn recorded(sample: impl Fn(f64, f64) -> DVec3) -> impl Fn(f64, f64) -> DVec3 {
     move |u1, u2| {
         let args = [("u1", Arg::Real(u1)), ("u2", Arg::Real(u2))];
         check::calling("random_cosine_direction", &args, || sample(u1, u2))
@@ -138,5 +138,26 @@ mod tests {
         // Wrong: the factor-2 bug in the pdf (cos / (2 pi)), and an unclamped cosine.
         assert!(check_pdf(|c: f64| c.max(0.0) / (2.0 * PI)).is_err());
         assert!(check_pdf(|c: f64| c / PI).is_err());
+    }
+
+    #[test]
+    fn a_panic_names_the_uniforms_drawn() {
+        // Panics only where u1 > 0.9999, which 1e5 draws reach about 10 times.
+        let report = crate::harness::panic_of(|| {
+            check_distribution(|u1: f64, _: f64| {
+                assert!(u1 <= 0.9999, "u1 = {u1}");
+                DVec3::Z
+            })
+        });
+        let (call, message) = report.split_once(") at ").expect(&report);
+        let u1 = call
+            .strip_prefix("your code panicked in random_cosine_direction(u1 = ")
+            .and_then(|rest| rest.split_once(", u2 = "))
+            .map(|(u1, _)| u1.parse::<f64>().unwrap());
+        assert!(u1.is_some_and(|u1| u1 > 0.9999), "{report}");
+        assert!(
+            message.ends_with(&format!("u1 = {}", u1.unwrap())),
+            "{report}"
+        );
     }
 }

@@ -90,9 +90,13 @@ pub fn check_transform(transform: impl Fn(&Onb, DVec3) -> DVec3) -> CheckResult 
         (DVec3::new(0.5, -2.0, 0.25), DVec3::new(-2.0, 0.25, 0.5)),
     ];
     for (a, want) in cases {
-        let got = check::calling("Onb::transform", &[("a", Arg::Vector(a))], || {
-            transform(&b, a)
-        });
+        let args = [
+            ("self.u", Arg::Vector(b.u)),
+            ("self.v", Arg::Vector(b.v)),
+            ("self.w", Arg::Vector(b.w)),
+            ("a", Arg::Vector(a)),
+        ];
+        let got = check::calling("Onb::transform", &args, || transform(&b, a));
         if got != want {
             return Err(format!(
                 "Onb::transform({a}) = {got} in the basis {b:?}, expected {want}"

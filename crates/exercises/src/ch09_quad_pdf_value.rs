@@ -30,15 +30,23 @@ const SQUARE: Quad = Quad {
     v: DVec3::new(0.0, 2.0, 0.0),
 };
 
-/// Exact values: head-on, oblique, and the misses.
-pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
-    let pdf = |quad: &Quad, origin: DVec3, direction: DVec3| {
+/// `pdf` with each call's arguments recorded, so that a panic report names them.
+fn recorded(pdf: impl QuadPdf) -> impl QuadPdf {
+    move |quad: &Quad, origin: DVec3, direction: DVec3| {
         let args = [
+            ("quad.q", Arg::Vector(quad.q)),
+            ("quad.u", Arg::Vector(quad.u)),
+            ("quad.v", Arg::Vector(quad.v)),
             ("origin", Arg::Vector(origin)),
             ("direction", Arg::Vector(direction)),
         ];
         check::calling("quad_pdf_value", &args, || pdf(quad, origin, direction))
-    };
+    }
+}
+
+/// Exact values: head-on, oblique, and the misses.
+pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
+    let pdf = recorded(pdf);
     let o = DVec3::ZERO;
     check::close(
         "quad_pdf_value head-on at distance 1 (1/A)",
@@ -126,13 +134,7 @@ pub fn check_values(pdf: impl QuadPdf) -> CheckResult {
 
 /// E[4 pi p(omega)] = 1 over 1e5 uniform directions (z-test), for the square and a skewed quad.
 pub fn check_normalised(pdf: impl QuadPdf) -> CheckResult {
-    let pdf = |quad: &Quad, origin: DVec3, direction: DVec3| {
-        let args = [
-            ("origin", Arg::Vector(origin)),
-            ("direction", Arg::Vector(direction)),
-        ];
-        check::calling("quad_pdf_value", &args, || pdf(quad, origin, direction))
-    };
+    let pdf = recorded(pdf);
     let skew = Quad {
         q: DVec3::new(-0.5, 1.0, 0.2),
         u: DVec3::new(1.0, 0.3, 0.0),
@@ -210,5 +212,23 @@ mod tests {
             })
         };
         assert!(check_values(t_zero).is_err());
+    }
+
+    #[test]
+    fn a_panic_names_the_quad_the_origin_and_the_direction() {
+        // Panics from the light's plane, the first such case being "origin in the plane, along it".
+        let report = crate::harness::panic_of(|| {
+            check_values(|q: &Quad, o: DVec3, d: DVec3| {
+                assert!(o.z != q.q.z, "origin in the plane");
+                hit(q, o, d).map_or(0.0, |(t, c, a)| t * t / (c * a))
+            })
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in quad_pdf_value(quad.q = [-1, -1, -1], quad.u = [2, 0, 0], \
+                 quad.v = [0, 2, 0], origin = [0, 0, -1], direction = [1, 0, 0]) at "
+            ),
+            "{report}"
+        );
     }
 }

@@ -11,9 +11,22 @@
 //! gives a biased image, not just a noisy one.
 
 use crate::ch10_mixture_pdf::Pdf;
-use crate::check::{self, CheckResult, SphereBins};
+use crate::check::{self, CheckResult, Generator, SphereBins};
 use glam::DVec3;
 use std::f64::consts::PI;
+
+/// `pdf.value(d)`, recorded so that a panic report names `d`.
+fn value(pdf: &dyn Pdf, d: DVec3) -> f64 {
+    check::calling("HemispherePdf::value", &[("direction", d.into())], || {
+        pdf.value(d)
+    })
+}
+
+/// `pdf.generate(rng)`, recorded so that a panic report says how to replay the generator.
+fn generate(pdf: &dyn Pdf, rng: &mut Generator) -> DVec3 {
+    let args = [("rng", rng.arg())];
+    check::calling("HemispherePdf::generate", &args, || pdf.generate(rng))
+}
 
 /// Exact values: 1/(2 pi) at and above the horizon, 0 below.
 pub fn check_value(pdf: &dyn Pdf) -> CheckResult {
@@ -21,7 +34,7 @@ pub fn check_value(pdf: &dyn Pdf) -> CheckResult {
     for _ in 0..1000 {
         let d = check::uniform_direction(&mut rng);
         let want = if d.z >= 0.0 { 1.0 / (2.0 * PI) } else { 0.0 };
-        let got = check::calling("value", &[("direction", d.into())], || pdf.value(d));
+        let got = value(pdf, d);
         check::close(&format!("value({d})"), got, want, 1e-12)?;
     }
     Ok(())
@@ -32,28 +45,28 @@ pub fn check_value(pdf: &dyn Pdf) -> CheckResult {
 pub fn check_generate(pdf: &dyn Pdf) -> CheckResult {
     let bins = SphereBins::hemisphere();
     let n = 100_000;
-    let mut rng = check::seeded(101);
+    let mut rng = Generator::new(101);
     let mut dirs: Vec<DVec3> = Vec::with_capacity(n);
     for _ in 0..n {
-        let d = pdf.generate(&mut rng);
+        let d = generate(pdf, &mut rng);
         check::unit("generate()", d).map_err(|e| {
             format!("{e}: a direction is a unit vector, and value's density is per unit direction")
         })?;
         dirs.push(d);
     }
     let observed = bins.histogram("generate", dirs)?;
-    let expected = bins.expected(n, |d| pdf.value(d), |_, _| true, 4);
+    let expected = bins.expected(n, |d| value(pdf, d), |_, _| true, 4);
     check::chi_square("generate against value", &observed, &expected, &bins)
         .map_err(|e| format!("{e}\n(generate does not draw the density value states)"))
 }
 
 /// The integral of cos theta over the hemisphere, pi, estimated with f / value from 1e5 directions.
 pub fn check_estimate(pdf: &dyn Pdf) -> CheckResult {
-    let mut rng = check::seeded(102);
+    let mut rng = Generator::new(102);
     let estimates: Vec<f64> = (0..100_000)
         .map(|_| {
-            let d = pdf.generate(&mut rng);
-            let p = pdf.value(d);
+            let d = generate(pdf, &mut rng);
+            let p = value(pdf, d);
             if p > 0.0 { d.z.max(0.0) / p } else { 0.0 }
         })
         .collect();
@@ -127,5 +140,51 @@ mod tests {
     fn checks_reject_directions_that_are_not_unit_vectors() {
         let err = check_generate(&NotUnit).unwrap_err();
         assert!(err.contains("not a unit vector"), "{err}");
+    }
+
+    /// Panics on its first draw above 0.99, and where its value is asked below the horizon.
+    struct Panics;
+    impl Pdf for Panics {
+        fn value(&self, d: DVec3) -> f64 {
+            assert!(d.z >= 0.0, "below the horizon");
+            Mislabelled.value(d)
+        }
+        fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+            use rand::Rng;
+            let u: f64 = rng.random();
+            assert!(u <= 0.99, "u = {u}");
+            CosinePdf.generate(rng)
+        }
+    }
+
+    #[test]
+    fn a_panic_names_the_direction_or_how_to_replay_the_generator() {
+        let report = crate::harness::panic_of(|| check_generate(&Panics));
+        // Each generate draws 3 values; the report names where the panicking one starts.
+        let mut rng = check::seeded(101);
+        let mut skip = 0;
+        let u = loop {
+            use rand::Rng;
+            let u: f64 = rng.random();
+            if u > 0.99 {
+                break u;
+            }
+            rng.next_u64();
+            rng.next_u64();
+            skip += 3;
+        };
+        assert!(
+            report.starts_with(&format!(
+                "your code panicked in HemispherePdf::generate(rng = \
+                 rtl_exercises::check::replay(101, {skip})), which drew u = {}, at ",
+                check::num(u)
+            )),
+            "{report}"
+        );
+        let report = crate::harness::panic_of(|| check_value(&Panics));
+        assert!(
+            report.starts_with("your code panicked in HemispherePdf::value(direction = ["),
+            "{report}"
+        );
     }
 }

@@ -9,7 +9,7 @@
 //! against `n` times the integral of the mixture's own `value` over each cell: whatever `generate`
 //! samples, `value` must be its density.
 
-use crate::check::{self, CheckResult, SphereBins};
+use crate::check::{self, Arg, CheckResult, Generator, SphereBins};
 use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::{FRAC_1_PI, PI};
@@ -68,6 +68,22 @@ impl Pdf for ConePdf {
 /// The cone of the checks: z >= 0.84, a cell edge of the chi-square binning.
 const CONE: ConePdf = ConePdf { cos_max: 0.84 };
 
+/// `m.value(d)` of the mixture of weight `w`, recorded so that a panic report names them.
+fn value(m: &impl Pdf, w: f64, d: DVec3) -> f64 {
+    let args = [
+        ("self.weight_a", Arg::Real(w)),
+        ("direction", Arg::Vector(d)),
+    ];
+    check::calling("MixturePdf::value", &args, || m.value(d))
+}
+
+/// `m.generate(rng)` of the mixture of weight `w`, recorded so that a panic report names the weight
+/// and how to replay the generator.
+fn generate(m: &impl Pdf, w: f64, rng: &mut Generator) -> DVec3 {
+    let args = [("self.weight_a", Arg::Real(w)), ("rng", rng.arg())];
+    check::calling("MixturePdf::generate", &args, || m.generate(rng))
+}
+
 /// `value` equals the weighted sum of the parts' values at 1000 random directions.
 pub fn check_value<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckResult {
     let mut rng = check::seeded(100);
@@ -81,9 +97,7 @@ pub fn check_value<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckR
                 CONE.generate(&mut rng)
             };
             let want = w * CosinePdf.value(d) + (1.0 - w) * CONE.value(d);
-            let got = check::calling("MixturePdf::value", &[("direction", d.into())], || {
-                m.value(d)
-            });
+            let got = value(&m, w, d);
             if (got.is_nan() || got < 0.0) || (got - want).abs() > 1e-14 * want.max(1.0) {
                 return Err(format!(
                     "MixturePdf(weight {w}).value({d}) = {}, expected {}",
@@ -108,12 +122,12 @@ pub fn check_generate<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> Che
         pole: "the normal",
     };
     let n = 100_000;
-    let mut rng = check::seeded(101);
+    let mut rng = Generator::new(101);
     for w in [0.3, 0.0] {
         let m = mix(CosinePdf, CONE, w);
         let mut dirs = Vec::with_capacity(n);
         for _ in 0..n {
-            let d = m.generate(&mut rng);
+            let d = generate(&m, w, &mut rng);
             check::unit(&format!("MixturePdf(weight {w}).generate()"), d)?;
             dirs.push(d);
         }
@@ -122,7 +136,7 @@ pub fn check_generate<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> Che
         // The support, decided analytically: the cosine lobe covers z > 0, the cone z >= 0.84.
         let support =
             |_z_lo: f64, z_hi: f64| (w > 0.0 && z_hi > 0.0) || (w < 1.0 && z_hi > CONE.cos_max);
-        let expected = bins.expected(n, |d| m.value(d), support, 16);
+        let expected = bins.expected(n, |d| value(&m, w, d), support, 16);
         check::chi_square(&what, &observed, &expected, &bins)?;
     }
     Ok(())
@@ -189,5 +203,58 @@ mod tests {
         };
         assert!(check_value(half).is_err());
         assert!(check_generate(half).is_err());
+    }
+
+    /// Right, but panics where it samples the cone at its edge (z < 0.8404), and where its value is
+    /// asked below the horizon.
+    struct PanicsAtTheEdge(f64);
+    impl Pdf for PanicsAtTheEdge {
+        fn value(&self, d: DVec3) -> f64 {
+            assert!(d.z >= 0.0, "below the horizon");
+            self.0 * CosinePdf.value(d) + (1.0 - self.0) * CONE.value(d)
+        }
+        fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+            if rng.random::<f64>() < self.0 {
+                return CosinePdf.generate(rng);
+            }
+            let d = CONE.generate(rng);
+            assert!(d.z >= 0.8404, "at the edge of the cone");
+            d
+        }
+    }
+
+    #[test]
+    fn a_panic_names_the_weight_and_how_to_replay_the_generator() {
+        let report = crate::harness::panic_of(|| {
+            check_generate(|_: CosinePdf, _: ConePdf, w: f64| PanicsAtTheEdge(w))
+        });
+        // "... generate(self.weight_a = 0.3, rng = rtl_exercises::check::replay(101, K)), which
+        // drew u = U1, U2, U3, at ...": the generator replayed from K draws the same three values,
+        // and generate panics on them.
+        let (head, _) = report.split_once(", at ").expect(&report);
+        let rest = head
+            .strip_prefix(
+                "your code panicked in MixturePdf::generate(self.weight_a = 0.3, rng = \
+                 rtl_exercises::check::replay(101, ",
+            )
+            .expect(&report);
+        let (skip, drew) = rest.split_once(")), which drew u = ").expect(&report);
+        let mut replayed = check::replay(101, skip.parse().unwrap());
+        let u: Vec<String> = (0..3).map(|_| check::num(replayed.random())).collect();
+        assert_eq!(drew, u.join(", "), "{report}");
+        let again = std::panic::catch_unwind(|| {
+            PanicsAtTheEdge(0.3).generate(&mut check::replay(101, skip.parse().unwrap()))
+        });
+        assert!(again.is_err());
+        // Its value panics below the horizon, where half the directions of check_value lie.
+        let report = crate::harness::panic_of(|| {
+            check_value(|_: CosinePdf, _: ConePdf, w: f64| PanicsAtTheEdge(w))
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in MixturePdf::value(self.weight_a = 0, direction = ["
+            ),
+            "{report}"
+        );
     }
 }

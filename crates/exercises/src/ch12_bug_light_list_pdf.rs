@@ -16,7 +16,7 @@
 //! in the first alone p_1 / 2; and that list's `pdf_value` integrates to 1 as well. (With disjoint
 //! cones only, the density of "the light the direction points at" divided by 2 would pass.)
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, CheckResult, Generator};
 use glam::DVec3;
 use rand::{Rng, RngCore};
 use std::f64::consts::PI;
@@ -82,11 +82,27 @@ pub fn lights() -> [ConeLight; 2] {
     ]
 }
 
+/// `list.pdf_value(d)`, recorded so that a panic report names `d`.
+fn pdf_value(list: &dyn Light, d: DVec3) -> f64 {
+    check::calling("LightList::pdf_value", &[("direction", d.into())], || {
+        list.pdf_value(d)
+    })
+}
+
+/// `list.random(rng)`, recorded so that a panic report says how to replay the generator.
+fn random(list: &dyn Light, rng: &mut Generator) -> DVec3 {
+    let args = [("rng", rng.arg())];
+    check::calling("LightList::random", &args, || list.random(rng))
+}
+
 /// `pdf_value` is positive where `random` lands, and integrates to 1.
 pub fn check_pdf_value(list: &dyn Light) -> CheckResult {
-    let mut rng = check::seeded(120);
+    let mut rng = Generator::new(120);
     let zeros = (0..1000)
-        .filter(|_| list.pdf_value(list.random(&mut rng)) <= 0.0)
+        .filter(|_| {
+            let d = random(list, &mut rng);
+            pdf_value(list, d) <= 0.0
+        })
         .count();
     if zeros > 0 {
         return Err(format!(
@@ -96,16 +112,17 @@ pub fn check_pdf_value(list: &dyn Light) -> CheckResult {
         ));
     }
     let values =
-        (0..100_000).map(|_| 4.0 * PI * list.pdf_value(check::uniform_direction(&mut rng)));
+        (0..100_000).map(|_| 4.0 * PI * pdf_value(list, check::uniform_direction(&mut rng)));
     check::z_test_mean("pdf_value integrated over the sphere", values, 1.0)
 }
 
 /// The lights' total solid angle, estimated as the mean of 1 / pdf_value over generated directions.
 pub fn check_estimate(list: &dyn Light) -> CheckResult {
     let exact: f64 = lights().iter().map(ConeLight::solid_angle).sum();
-    let mut rng = check::seeded(121);
+    let mut rng = Generator::new(121);
     let values = (0..100_000).map(|_| {
-        let p = list.pdf_value(list.random(&mut rng));
+        let d = random(list, &mut rng);
+        let p = pdf_value(list, d);
         if p > 0.0 { 1.0 / p } else { 0.0 }
     });
     check::z_test_mean(
@@ -156,9 +173,7 @@ pub fn check_overlapping(list: &dyn Light) -> CheckResult {
         (-a.axis, "in neither cone", 0.0),
     ];
     for (d, where_, want) in cases {
-        let got = check::calling("LightList::pdf_value", &[("direction", d.into())], || {
-            list.pdf_value(d)
-        });
+        let got = pdf_value(list, d);
         if (got - want).abs() > 1e-12 * want.max(1e-300) || got.is_nan() {
             return Err(format!(
                 "with two lights whose cones overlap, pdf_value({d}) ({where_}) = {}, expected {}: \
@@ -172,7 +187,7 @@ pub fn check_overlapping(list: &dyn Light) -> CheckResult {
     }
     let mut rng = check::seeded(122);
     let values =
-        (0..100_000).map(|_| 4.0 * PI * list.pdf_value(check::uniform_direction(&mut rng)));
+        (0..100_000).map(|_| 4.0 * PI * pdf_value(list, check::uniform_direction(&mut rng)));
     check::z_test_mean(
         "pdf_value of two overlapping lights, integrated over the sphere",
         values,
@@ -253,5 +268,59 @@ mod tests {
         assert!(check_pdf_value(&Sum(lights())).is_err());
         assert!(check_estimate(&Sum(lights())).is_err());
         assert!(check_overlapping(&NoPdf(overlapping_lights())).is_err());
+    }
+
+    /// Panics when it draws the second light, and where its density is asked outside both cones.
+    struct Panics([ConeLight; 2]);
+    impl Light for Panics {
+        fn pdf_value(&self, d: DVec3) -> f64 {
+            assert!(
+                self.0.iter().any(|l| l.pdf_value(d) > 0.0),
+                "outside both cones"
+            );
+            Average(self.0.to_vec()).pdf_value(d)
+        }
+        fn random(&self, rng: &mut dyn RngCore) -> DVec3 {
+            let i = rng.random_range(0..2);
+            assert!(i == 0, "the second light");
+            self.0[i].random(rng)
+        }
+    }
+
+    #[test]
+    fn a_panic_names_the_direction_or_how_to_replay_the_generator() {
+        let report = crate::harness::panic_of(|| check_estimate(&Panics(lights())));
+        // The first call that draws the second light: the calls before it drew the first light
+        // (a draw to choose, two for the direction).
+        let mut rng = check::seeded(121);
+        let mut skip = 0;
+        while rng.random_range(0..2) == 0 {
+            lights()[0].random(&mut rng);
+            skip += 3;
+        }
+        let rng = if skip == 0 {
+            "seeded(121)".to_string()
+        } else {
+            format!("replay(121, {skip})")
+        };
+        assert!(
+            report.starts_with(&format!(
+                "your code panicked in LightList::random(rng = rtl_exercises::check::{rng}), which \
+                 drew u = "
+            )),
+            "{report}"
+        );
+        let report = crate::harness::panic_of(|| check_pdf_value(&Panics(lights())));
+        assert!(
+            report.starts_with("your code panicked in LightList::random(rng = "),
+            "{report}"
+        );
+        let report = crate::harness::panic_of(|| check_overlapping(&Panics(overlapping_lights())));
+        assert!(
+            report.starts_with(
+                "your code panicked in LightList::pdf_value(direction = [-0, -0.6, -0.8]) at "
+            ),
+            "{report}"
+        );
     }
 }

@@ -15,12 +15,19 @@
 //! probability 1/1000, the mean pixel value is z-tested against 1/2, and a black pixel (exactly 0)
 //! there fails.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, Arg, CheckResult};
 use rand::{Rng, RngCore};
 
 /// The pixel estimate under test: its samples -> its value.
 pub trait PixelValue: Fn(&[f64]) -> f64 {}
 impl<F: Fn(&[f64]) -> f64> PixelValue for F {}
+
+/// `value(samples)`, recorded so that a panic report names the samples.
+fn pixel(value: &impl PixelValue, samples: &[f64]) -> f64 {
+    check::calling("pixel_value", &[("samples", Arg::from(samples))], || {
+        value(samples)
+    })
+}
 
 fn samples(rng: &mut dyn RngCore, n: usize, nan_rate: f64) -> Vec<f64> {
     (0..n)
@@ -62,7 +69,7 @@ pub fn check_exact(value: impl PixelValue) -> CheckResult {
         (&[], 0.0, " (no sample at all: the pixel is 0)"),
     ];
     for (samples, want, why) in cases {
-        let got = value(samples);
+        let got = pixel(&value, samples);
         if got == want {
             continue;
         }
@@ -93,11 +100,11 @@ pub fn check_exact(value: impl PixelValue) -> CheckResult {
 pub fn check_pixel(value: impl PixelValue) -> CheckResult {
     let mut rng = check::seeded(130);
     let mut s = samples(&mut rng, 10_000, 0.0);
-    let clean = value(&s);
+    let clean = pixel(&value, &s);
     for at in [17, 5_000, 9_999] {
         s[at] = f64::NAN;
     }
-    let got = value(&s);
+    let got = pixel(&value, &s);
     let (mean, se) = check::mean_and_std_error(s.iter().copied().filter(|x| x.is_finite()));
     check::z_test("a pixel of 10^4 samples in [0, 1), 3 of them NaN", got, se, 0.5).map_err(|e| {
         // The guard after the average: right without NaN, exactly 0 with one.
@@ -121,7 +128,7 @@ pub fn check_image(value: impl PixelValue) -> CheckResult {
     let pixels: Vec<(f64, bool)> = (0..400)
         .map(|_| {
             let s = samples(&mut rng, 256, 1e-3);
-            (value(&s), s.iter().any(|x| x.is_nan()))
+            (pixel(&value, &s), s.iter().any(|x| x.is_nan()))
         })
         .collect();
     let black = pixels.iter().filter(|p| p.0 == 0.0).count();
@@ -224,5 +231,41 @@ mod tests {
             "{err}"
         );
         assert!(!err.contains("exactly the"), "{err}");
+    }
+
+    #[test]
+    fn a_panic_names_the_samples() {
+        // Panics on a NaN sample among more than 4: first in the exact pixel [NaN, 0.5, NaN, 0.25,
+        // NaN], shown whole; then, given short pixels, in the pixel of 10^4 samples.
+        let more_than_4 = |s: &[f64]| {
+            assert!(s.len() <= 4 || s.iter().all(|x| !x.is_nan()), "NaN");
+            let good: Vec<f64> = s.iter().copied().filter(|x| x.is_finite()).collect();
+            if good.is_empty() {
+                0.0
+            } else {
+                good.iter().sum::<f64>() / good.len() as f64
+            }
+        };
+        let report = crate::harness::panic_of(move || check_exact(more_than_4));
+        assert!(
+            report.starts_with(
+                "your code panicked in pixel_value(samples = [NaN, 0.5, NaN, 0.25, NaN]) at "
+            ),
+            "{report}"
+        );
+        let report = crate::harness::panic_of(move || check_pixel(more_than_4));
+        let mut rng = check::seeded(130);
+        let first: Vec<String> = samples(&mut rng, 6, 0.0)
+            .iter()
+            .map(|&x| check::num(x))
+            .collect();
+        assert!(
+            report.starts_with(&format!(
+                "your code panicked in pixel_value(samples = [{}, ...] (10,000 values; not finite \
+                 at 17, 5,000, 9,999)) at ",
+                first.join(", ")
+            )),
+            "{report}"
+        );
     }
 }

@@ -8,16 +8,37 @@
 //! middle or last) leaves the mean exactly 0.5 and is counted; [1, 2, 3, 4] average to exactly 2.5;
 //! two samples of 1e308 average to 1e308; no samples, or only bad ones, give `None`.
 
-use crate::check::CheckResult;
+use crate::check::{self, Arg, CheckResult};
 use glam::DVec3;
 
-/// The accumulator under test: a fold of the samples into `(mean, used, dropped)`.
-pub trait Accumulate: Fn(&[DVec3]) -> (Option<DVec3>, u64, u64) {}
-impl<F: Fn(&[DVec3]) -> (Option<DVec3>, u64, u64)> Accumulate for F {}
+/// `(mean, used, dropped)` of the learner's accumulator fed `samples`, every call recorded so
+/// that a panic report names the sample added and the ones added before it.
+fn accumulate<A>(
+    new: &impl Fn() -> A,
+    add: &impl Fn(&mut A, DVec3),
+    finish: &impl Fn(&A) -> (Option<DVec3>, u64, u64),
+    samples: &[DVec3],
+) -> (Option<DVec3>, u64, u64) {
+    let mut acc = check::calling("PixelAccumulator::new", &[], new);
+    for (i, &s) in samples.iter().enumerate() {
+        let before = (
+            "on PixelAccumulator::new() after adding",
+            Arg::from(&samples[..i]),
+        );
+        check::calling_method("add", &[("sample", Arg::Vector(s))], before, || {
+            add(&mut acc, s)
+        });
+    }
+    let all = (
+        "on PixelAccumulator::new() after adding",
+        Arg::from(samples),
+    );
+    check::calling_method("mean", &[], all, || finish(&acc))
+}
 
 fn expect(
     what: &str,
-    acc: &impl Accumulate,
+    acc: &impl Fn(&[DVec3]) -> (Option<DVec3>, u64, u64),
     samples: &[DVec3],
     want: (Option<DVec3>, u64, u64),
 ) -> CheckResult {
@@ -31,8 +52,15 @@ fn expect(
     }
 }
 
-/// Constant samples, one bad sample among 100, exact means, overflow, and no usable samples.
-pub fn check_nan_guard(acc: impl Accumulate) -> CheckResult {
+/// Constant samples, one bad sample among 100, exact means, overflow, and no usable samples, on the
+/// accumulator that `new` makes, `add` feeds and `finish` reads: `(acc.mean(), acc.used,
+/// acc.dropped)`.
+pub fn check_nan_guard<A>(
+    new: impl Fn() -> A,
+    add: impl Fn(&mut A, DVec3),
+    finish: impl Fn(&A) -> (Option<DVec3>, u64, u64),
+) -> CheckResult {
+    let acc = |samples: &[DVec3]| accumulate(&new, &add, &finish, samples);
     let half = DVec3::splat(0.5);
     for n in [1usize, 2, 10, 16, 1000] {
         expect(
@@ -101,6 +129,11 @@ pub fn check_nan_guard(acc: impl Accumulate) -> CheckResult {
 mod tests {
     use super::*;
 
+    /// The checks on an accumulator that keeps its samples and computes with `f` at the end.
+    fn check_on(f: impl Fn(&[DVec3]) -> (Option<DVec3>, u64, u64)) -> CheckResult {
+        check_nan_guard(Vec::new, |v: &mut Vec<DVec3>, s| v.push(s), |v| f(v))
+    }
+
     #[test]
     fn check_rejects_the_books_zeroing_and_a_plain_sum() {
         // Wrong: the book's fix, NaN components replaced by 0, still divided by all samples.
@@ -115,7 +148,7 @@ mod tests {
                 0,
             )
         };
-        assert!(check_nan_guard(zeroing).is_err());
+        assert!(check_on(zeroing).is_err());
         // Wrong: drops bad samples correctly but sums, so large finite samples overflow.
         let summing = |s: &[DVec3]| {
             let good: Vec<DVec3> = s.iter().copied().filter(|x| x.is_finite()).collect();
@@ -126,7 +159,61 @@ mod tests {
                 (s.len() - good.len()) as u64,
             )
         };
-        let err = check_nan_guard(summing).unwrap_err();
+        let err = check_on(summing).unwrap_err();
         assert!(err.contains("1e308"), "{err}");
+    }
+
+    /// The running mean of the finite samples, as the reference solution computes it.
+    fn right(samples: &[DVec3]) -> (Option<DVec3>, u64, u64) {
+        let (mut mean, mut used, mut dropped) = (DVec3::ZERO, 0, 0);
+        for &s in samples {
+            if s.is_finite() {
+                used += 1;
+                mean += (s - mean) / used as f64;
+            } else {
+                dropped += 1;
+            }
+        }
+        ((used > 0).then_some(mean), used, dropped)
+    }
+
+    #[test]
+    fn a_panic_names_the_sample_and_the_ones_added_before() {
+        // add panics on a NaN after other samples: first in "one NaN sample at 50 among 100".
+        let report = crate::harness::panic_of(|| {
+            check_nan_guard(
+                Vec::new,
+                |v: &mut Vec<DVec3>, s: DVec3| {
+                    assert!(!s.is_nan() || v.is_empty(), "a NaN after a sample");
+                    v.push(s)
+                },
+                |v| right(v),
+            )
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in add(sample = [NaN, NaN, NaN]) on PixelAccumulator::new() \
+                 after adding [[0.5, 0.5, 0.5], [0.5, 0.5, 0.5], [0.5, 0.5, 0.5], ...] (50 values) at "
+            ),
+            "{report}"
+        );
+        // mean panics once a sample was dropped: first after "one NaN sample at 0 among 100".
+        let report = crate::harness::panic_of(|| {
+            check_nan_guard(
+                Vec::new,
+                |v: &mut Vec<DVec3>, s: DVec3| v.push(s),
+                |v| {
+                    assert!(v.iter().all(|s| s.is_finite()), "a sample was dropped");
+                    (v.first().copied(), v.len() as u64, 0)
+                },
+            )
+        });
+        assert!(
+            report.starts_with(
+                "your code panicked in mean() on PixelAccumulator::new() after adding [[NaN, NaN, \
+                 NaN], [0.5, 0.5, 0.5], [0.5, 0.5, 0.5], ...] (100 values; not finite at 0) at "
+            ),
+            "{report}"
+        );
     }
 }

@@ -15,8 +15,9 @@
 //! it exits 0 when the solution passes and the stub does not.
 
 use crate::check::CheckResult;
+use std::cell::{Cell, RefCell};
 use std::panic::{self, AssertUnwindSafe};
-use std::sync::Mutex;
+use std::sync::Once;
 
 /// One named check of an exercise.
 pub struct Check {
@@ -65,20 +66,27 @@ impl State {
     }
 }
 
-static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
+thread_local! {
+    /// Whether a panic on this thread is a check's to report ([`run_check`] is running one).
+    static CAPTURING: Cell<bool> = const { Cell::new(false) };
+    /// The report of the last panic captured on this thread.
+    static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+}
 
 /// Runs one check, turning a panic into an [`Outcome`] instead of a harness's backtrace.
 pub fn run_check(check: &Check) -> Outcome {
-    *LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    install_panic_hook();
+    LAST_PANIC.with(|p| p.borrow_mut().take());
     crate::check::forget_call();
-    match panic::catch_unwind(AssertUnwindSafe(|| (check.run)())) {
+    let capturing = CAPTURING.with(|c| c.replace(true));
+    let result = panic::catch_unwind(AssertUnwindSafe(|| (check.run)()));
+    CAPTURING.with(|c| c.set(capturing));
+    match result {
         Ok(Ok(())) => Outcome::Pass,
         Ok(Err(why)) => Outcome::Fail(why),
         Err(_) => {
             let msg = LAST_PANIC
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .take()
+                .with(|p| p.borrow_mut().take())
                 .unwrap_or_else(|| "a panic".to_string());
             match msg.split_once("not yet implemented") {
                 Some((_, rest)) => Outcome::Todo(rest.trim_start_matches(": ").to_string()),
@@ -88,31 +96,57 @@ pub fn run_check(check: &Check) -> Outcome {
     }
 }
 
-/// Records a panic's message, its place (the learner's file and line) and, when the check recorded
-/// it (see [`crate::check::calling`]), the call and input that caused it, instead of printing it.
-fn quiet_panic_hook() {
-    panic::set_hook(Box::new(|info| {
-        let payload = info.payload();
-        let msg = payload
-            .downcast_ref::<String>()
-            .cloned()
-            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_else(|| "a panic".to_string());
-        let during = crate::check::call_in_progress()
-            .map(|call| format!(" in {call}"))
-            .unwrap_or_default();
-        let text = match info.location() {
-            Some(_) if msg.starts_with("not yet implemented") => msg,
-            Some(l) => format!(
-                "your code panicked{during} at {}:{}:{}: {msg}",
-                l.file().replace("/tests/../", "/"),
-                l.line(),
-                l.column()
-            ),
-            None => format!("your code panicked{during}: {msg}"),
-        };
-        *LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner()) = Some(text);
-    }));
+/// Installs, once, the panic hook that records a check's panic: its message, its place (the
+/// learner's file and line) and, when the check recorded it (see [`crate::check::calling`]), the
+/// call and input that caused it, instead of printing it. A panic outside [`run_check`] (another
+/// test's failing assertion) goes to the hook that was there before.
+fn install_panic_hook() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let before = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if CAPTURING.with(Cell::get) {
+                let text = panic_report(info);
+                LAST_PANIC.with(|p| *p.borrow_mut() = Some(text));
+            } else {
+                before(info);
+            }
+        }));
+    });
+}
+
+/// "your code panicked in f(u = 0.5) at crates/exercises/exercises/ch03_x.rs:12:5: MESSAGE"; a
+/// `todo!()`'s message as it is.
+fn panic_report(info: &panic::PanicHookInfo) -> String {
+    let payload = info.payload();
+    let msg = payload
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_else(|| "a panic".to_string());
+    let during = crate::check::call_in_progress()
+        .map(|call| format!(" in {call}"))
+        .unwrap_or_default();
+    match info.location() {
+        Some(_) if msg.starts_with("not yet implemented") => msg,
+        Some(l) => format!(
+            "your code panicked{during} at {}:{}:{}: {msg}",
+            l.file().replace("/tests/../", "/"),
+            l.line(),
+            l.column()
+        ),
+        None => format!("your code panicked{during}: {msg}"),
+    }
+}
+
+/// The report of a check that must panic: `run` is a check fed a deliberately panicking
+/// implementation. Panics (fails the test) if the check passes, fails or reaches a `todo!()`.
+#[cfg(test)]
+pub(crate) fn panic_of(run: impl Fn() -> CheckResult + 'static) -> String {
+    match run_check(&Check::new("panics", run)) {
+        Outcome::Panic(report) => report,
+        other => panic!("expected a panic report, got {other:?}"),
+    }
 }
 
 /// The outcomes of all of an exercise's checks.
@@ -247,7 +281,6 @@ pub fn main(name: &str, learner: Vec<Check>, stub: Option<Vec<Check>>) -> ! {
         }
         Mode::Run => {}
     }
-    quiet_panic_hook();
     let report = Report::run(&learner);
     let code = match stub {
         None => {
@@ -313,7 +346,6 @@ mod tests {
 
     #[test]
     fn states_and_the_summary_line() {
-        quiet_panic_hook();
         let checks = vec![
             Check::new("passes", || Ok(())),
             Check::new("fails", || Err("saw 3, expected 4\nmore".into())),
@@ -353,7 +385,5 @@ mod tests {
             text.contains("your code panicked in f(u = 0.25) at "),
             "{text}"
         );
-        // Back to the default hook, for the other tests.
-        let _ = panic::take_hook();
     }
 }

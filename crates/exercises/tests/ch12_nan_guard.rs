@@ -18,5 +18,5 @@ use glam::DVec3;
 use rtl_exercises::ch12_nan_guard::*;
 
 rtl_exercises::exercise_main!("ch12_nan_guard", e => {
-    "bad samples dropped and counted; exact means; no overflow" => check_nan_guard(|samples: &[DVec3]| { let mut acc = e::PixelAccumulator::new(); for &s in samples { acc.add(s); } (acc.mean(), acc.used, acc.dropped) }),
+    "bad samples dropped and counted; exact means; no overflow" => check_nan_guard(e::PixelAccumulator::new, |acc: &mut e::PixelAccumulator, s: DVec3| acc.add(s), |acc: &e::PixelAccumulator| (acc.mean(), acc.used, acc.dropped)),
 });

@@ -246,8 +246,8 @@ pub enum Ran {
 /// case the programs run one at a time, and only one that runs long shares the processor.
 pub const PATIENCE: Duration = Duration::from_secs(1);
 
-/// How often a long run is reported as still running.
-pub const NOTICE_EVERY: Duration = Duration::from_secs(2);
+/// How long a program runs before it is reported as still running ([`crate::still_running`]).
+pub const NOTICE_AFTER: Duration = Duration::from_secs(2);
 
 /// A test program running, with the threads that read its output.
 struct Running {
@@ -338,8 +338,9 @@ impl Drop for Running {
 /// Each has `limit` to finish (then it is stopped: [`Ran::TimedOut`]). They start one after the
 /// other; one still running after [`PATIENCE`] keeps running to its own limit while the next
 /// starts, so `k` programs that loop for ever take about `limit + k PATIENCE`, not `k limit`.
-/// While a program has been running longer than [`NOTICE_EVERY`], `still_running` is told, every
-/// [`NOTICE_EVERY`], which ones and for how long the oldest has run.
+/// `still_running` is told, at every look at them (every 10 ms), which programs have been running
+/// for [`NOTICE_AFTER`] or more (none, most of the time) and for how long the oldest of them has
+/// run; it decides what to say, and when ([`crate::still_running::StillRunning`]).
 pub fn run_all(
     ws: &Workspace,
     programs: &[(String, PathBuf)],
@@ -349,7 +350,6 @@ pub fn run_all(
     let mut results: Vec<Option<Ran>> = vec![None; programs.len()];
     let mut running: Vec<Running> = Vec::new();
     let mut next = 0;
-    let mut last_notice: Option<Instant> = None;
     loop {
         let mut i = 0;
         while i < running.len() {
@@ -379,19 +379,16 @@ pub fn run_all(
         }
         let long: Vec<&Running> = running
             .iter()
-            .filter(|r| r.started.elapsed() >= NOTICE_EVERY)
+            .filter(|r| r.started.elapsed() >= NOTICE_AFTER)
             .collect();
-        if !long.is_empty() && last_notice.is_none_or(|t| t.elapsed() >= NOTICE_EVERY) {
-            let mut names: Vec<&str> = long.iter().map(|r| programs[r.index].0.as_str()).collect();
-            names.sort_unstable();
-            let oldest = long
-                .iter()
-                .map(|r| r.started.elapsed())
-                .max()
-                .unwrap_or_default();
-            still_running(&names, oldest);
-            last_notice = Some(Instant::now());
-        }
+        let mut names: Vec<&str> = long.iter().map(|r| programs[r.index].0.as_str()).collect();
+        names.sort_unstable();
+        let oldest = long
+            .iter()
+            .map(|r| r.started.elapsed())
+            .max()
+            .unwrap_or_default();
+        still_running(&names, oldest);
         std::thread::sleep(Duration::from_millis(10));
     }
     Ok(results

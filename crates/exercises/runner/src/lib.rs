@@ -22,13 +22,17 @@ pub mod cargo;
 pub mod info;
 pub mod out;
 pub mod status;
+pub mod still_running;
 pub mod watch;
 
 use cargo::Workspace;
 use info::{Exercise, Kind};
 use status::Status;
 use std::fmt;
+use std::io::IsTerminal;
 use std::path::PathBuf;
+use std::time::Instant;
+use still_running::StillRunning;
 
 /// How the learner started the runner, so that every command it suggests is one they can type:
 /// `cargo exercises ...` works in any clone, `rtl exercises ...` once `rtl` is installed.
@@ -415,7 +419,8 @@ impl Context {
     }
 
     /// The state of each of `exercises`: built together (no time limit), then each one's checks run
-    /// under [`status::time_limit`], saying on standard error while a run takes long.
+    /// under [`status::time_limit`], saying on standard error while a run takes long
+    /// ([`StillRunning`]).
     pub fn statuses(&self, exercises: &[&Exercise]) -> Result<Vec<Status>, Error> {
         let limit = status::time_limit()?;
         let names: Vec<String> = exercises.iter().map(|e| e.name.clone()).collect();
@@ -435,15 +440,14 @@ impl Context {
                 programs.push((e.name.clone(), exe.clone()));
             }
         }
-        let mut runs = cargo::run_all(&self.ws, &programs, limit, &mut |names, elapsed| {
-            warn!(
-                "still running: {} ({} of the {} limit; RTL_EXERCISES_TIMEOUT=SECONDS changes it)",
-                names.join(", "),
-                status::seconds(std::time::Duration::from_secs(elapsed.as_secs())),
-                status::seconds(limit)
-            );
+        let stderr = std::io::stderr();
+        let terminal = stderr.is_terminal();
+        let mut notices = StillRunning::new(stderr, terminal, limit);
+        let mut runs = cargo::run_all(&self.ws, &programs, limit, &mut |names, oldest| {
+            notices.update(names, oldest, Instant::now());
         })?
         .into_iter();
+        notices.finish();
         let mut out = Vec::new();
         for e in exercises {
             let b = &built[&e.name];
