@@ -194,6 +194,12 @@ fn the_page_comes_from_the_binary() {
         assert!(!r.body.is_empty());
     }
     assert!(!lab.get("/lab.js").text().contains("https://"));
+    // The heat colours come from the server (the Rust colour map), not from a copy in the script.
+    let heat = lab.get("/api/heat");
+    assert_eq!(heat.status, 200, "{}", heat.text());
+    let colours = heat.text();
+    assert_eq!(colours.matches("],[").count() + 1, 256, "{colours}");
+    assert!(!lab.get("/lab.js").text().contains("0.05, 0.03, 0.25"));
     assert_eq!(lab.get("/nope").status, 404);
     // The benches link to the book's chapters: the built page, or else the chapter's source.
     let chapter = lab.get("/book/ch02-a-simple-monte-carlo-program.html");
@@ -268,6 +274,7 @@ fn every_bad_parameter_is_refused_with_a_message() {
         ("GET", "/api/mc/run?integral=%zz", "escape"),
         ("GET", &long, "at most"),
         ("GET", "/api/mc/list?x=1", "unknown parameter"),
+        ("GET", "/api/heat?x=1", "unknown parameter"),
         ("GET", "/api/sampling/line?samples=999999999", "samples"),
         ("GET", "/api/sampling/line?samples=-5", "samples"),
         ("GET", "/api/sampling/line?n=1", "`n=1`"),
@@ -946,6 +953,13 @@ const check = (ok, what) => { console.log(`${ok ? "ok  " : "FAIL"} ${what}`); if
   await page.click("#tab-cornell");
   await wait(() => / spp in /.test(document.querySelector("#c-status").textContent));
 
+  // The heat colours are the server's (the Rust colour map of the variance map): its key, step by step.
+  const heat = (await (await page.request.get(url + "api/heat")).json()).colours;
+  const key = await page.evaluate(() => [...document.querySelectorAll("#c-key rect:not(.axis)")].map((r) => r.getAttribute("fill")));
+  const keyWant = key.map((_, i) => `rgb(${heat[Math.round((i + 0.5) / key.length * (heat.length - 1))].join(",")})`);
+  check(heat.length === 256 && key.length === 64 && key.every((c, i) => c === keyWant[i]),
+    `the variance map's key has the server's heat colours (${key.length} steps; ${key[0]} .. ${key[key.length - 1]})`);
+
   // A refused value stays, marked, and blocks no other change.
   await page.selectOption("#c-strategy", "mixture");
   await wait(() => /^mixture seed/.test(document.querySelector("#c-status").textContent));
@@ -997,8 +1011,41 @@ const check = (ok, what) => { console.log(`${ok ? "ok  " : "FAIL"} ${what}`); if
   await page.waitForSelector("#offline:not([hidden])");
   check(await page.evaluate(() => document.body.classList.contains("offline")), "no answer: the banner shows and the page is greyed");
   await page.click("#c-clear");
+  // Changes made meanwhile wait, the latest value of each field, marked on it and counted on the
+  // banner; back, each goes as its own parameter (a refused one stays on its field and blocks none
+  // of the others), and the fields show what the server uses. The test asks the server itself
+  // (page.request is not blocked).
+  const server = async () => (await (await page.request.get(url + "api/render/state?peek=1")).json()).settings;
+  const was = await server();
+  await page.selectOption("#c-strategy", "cosine");
+  await page.fill("#c-depth", "7");
+  await page.press("#c-depth", "Tab");
+  await page.fill("#c-depth", "8");
+  await page.press("#c-depth", "Tab");
+  await page.fill("#c-seed", "99999999999999999999999"); // past u64::MAX: the server refuses it
+  await page.press("#c-seed", "Tab");
+  const queued = await page.evaluate(() => ({ banner: document.querySelector("#offline-queue").textContent,
+    marked: [...document.querySelectorAll("[data-queued]")].map((e) => e.id).sort(),
+    depth: (document.getElementById("c-depth-msg") || {}).textContent || "" }));
+  check(/^3 changes waiting for the server \(strategy cosine, seed 99999999999999999999999, max depth 8\)/.test(queued.banner)
+    && queued.marked.join() === "c-depth,c-seed,c-strategy" && /waiting for the server/.test(queued.depth),
+    `changes made while the server is gone wait, marked and counted (${JSON.stringify(queued)})`);
+  const meanwhile = await server();
+  check(meanwhile.strategy === was.strategy && meanwhile.max_depth === was.max_depth,
+    `nothing reached the server meanwhile (${JSON.stringify(meanwhile)})`);
   await page.unroute("**/api/**");
   await page.waitForSelector("#offline[hidden]", { state: "attached", timeout: 15000 });
+  await wait(() => document.body.dataset.queuedChanges === "0" && !document.querySelector("[data-queued]"));
+  const got = await server();
+  check(got.strategy === "cosine" && got.max_depth === 8 && got.seed === was.seed,
+    `back, the server got the waiting changes, the latest of each, all but the refused seed (${JSON.stringify(got)} was ${JSON.stringify(was)})`);
+  await wait(() => document.querySelector("#c-seed").getAttribute("aria-invalid") === "true");
+  const shown = await page.evaluate(() => ({ strategy: document.querySelector("#c-strategy").value,
+    depth: document.querySelector("#c-depth").value, seed: document.querySelector("#c-seed").value,
+    message: (document.getElementById("c-seed-msg") || {}).textContent || "", banner: document.querySelector("#offline-queue").textContent }));
+  check(shown.strategy === "cosine" && shown.depth === "8" && shown.seed === "99999999999999999999999"
+    && new RegExp(`goes on with ${was.seed}$`).test(shown.message) && shown.banner === "",
+    `the fields show what the server uses; the refused seed stays, marked (${JSON.stringify(shown)})`);
   const before = await status();
   await wait((b) => document.querySelector("#c-status").textContent !== b, before);
   check(!(await page.evaluate(() => document.body.classList.contains("offline"))), "the server back: the page goes on by itself");
@@ -1019,6 +1066,17 @@ const check = (ok, what) => { console.log(`${ok ? "ok  " : "FAIL"} ${what}`); if
     return line ? line.getAttribute("d").split("L").length : 0;
   });
   check(bars >= 2 * 80, `the expected count is drawn per histogram bin (${bars} points)`);
+
+  // On the sphere: every cell in a heat colour of the server's.
+  await page.fill("#d-samples", "20000");
+  await page.fill("#d-cells", "8");
+  await page.click("#d-run");
+  await wait(() => /directions in 8 x 8 cells/.test(document.querySelector("#d-status").textContent));
+  const cells = await page.evaluate(() => [...document.querySelectorAll("#d-observed rect:not(.axis), #d-expected rect:not(.axis)")]
+    .map((r) => r.getAttribute("fill")));
+  const served = new Set(heat.map((c) => `rgb(${c.join(",")})`));
+  check(cells.length === 128 && cells.every((c) => served.has(c)) && new Set(cells).size > 3,
+    `the sphere's cells are drawn in the server's heat colours (${cells.length} cells, ${new Set(cells).size} colours)`);
 
   // Monte Carlo: Clear during a run stops it and leaves the plots empty.
   await page.click("#tab-mc");

@@ -9,6 +9,7 @@ use super::glue::{self, Settings};
 use super::http::{self, Refusal, Request, Response};
 use super::params::{BadRequest, Query, bad, bad_param};
 use super::{mc, sampling};
+use crate::study::render::heat;
 use rtl_render::render::check_mixture_weight;
 use serde_json::{Value, json};
 use std::net::{TcpListener, TcpStream};
@@ -43,6 +44,21 @@ const ASSETS: [(&str, &str, &[u8]); 4] = [
         include_bytes!("assets/favicon.svg"),
     ),
 ];
+
+/// The colours of the page's heat maps (the sphere's grids, the keys) in [`HEAT_STEPS`] steps: the
+/// variance map's own colour map (`rtl study render`'s [`heat`]) at `k / (HEAT_STEPS - 1)`, served
+/// by `GET /api/heat`, so that the page keeps no copy of its stops.
+pub const HEAT_STEPS: usize = 256;
+
+fn heat_json() -> Value {
+    let colours: Vec<[u8; 3]> = (0..HEAT_STEPS)
+        .map(|k| heat(k as f64 / (HEAT_STEPS - 1) as f64))
+        .collect();
+    json!({
+        "about": "rtl study render's heat colour map, dark blue (0) to yellow-white (1): colour k is t = k / (steps - 1)",
+        "colours": colours,
+    })
+}
 
 /// What the handlers share.
 pub struct App {
@@ -302,6 +318,7 @@ fn route(app: &App, method: &str, path: &str, query: &str) -> Answer {
         "/api/sampling/list" => |_, q| no_query(q).map(|()| Answer::Json(sampling::list())),
         "/api/sampling/line" => |app, q| app.one_at_a_time(|| sampling::run_line(q)),
         "/api/sampling/sphere" => |app, q| app.one_at_a_time(|| sampling::run_sphere(q)),
+        "/api/heat" => |_, q| no_query(q).map(|()| Answer::Json(heat_json())),
         "/api/render/list" => |app, q| no_query(q).map(|()| Answer::Json(render_list(app))),
         "/api/render/settings" => |app, q| set_render(app, q).map(Answer::Json),
         "/api/render/state" => |app, q| render_state(app, q).map(Answer::Json),
@@ -485,4 +502,23 @@ fn book_page(dir: &Path, rest: &str) -> Answer {
             dir.display()
         ),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The page's heat colours are the variance map's: the Rust colour map itself, step by step.
+    #[test]
+    fn the_heat_colours_are_the_variance_maps() {
+        let v = heat_json();
+        let colours = v["colours"].as_array().unwrap();
+        assert_eq!(colours.len(), HEAT_STEPS);
+        for (k, c) in colours.iter().enumerate() {
+            let want = heat(k as f64 / (HEAT_STEPS - 1) as f64);
+            assert_eq!(c, &json!(want), "step {k}");
+        }
+        assert_eq!(colours[0], json!(heat(0.0)));
+        assert_eq!(colours[HEAT_STEPS - 1], json!(heat(1.0)));
+    }
 }

@@ -7,10 +7,10 @@ const SVG = "http://www.w3.org/2000/svg";
 // Okabe & Ito's colour-blind-safe palette, always in this order; past its end, dashes tell lines apart.
 const PALETTE = ["#D55E00", "#0072B2", "#009E73", "#E69F00", "#CC79A7", "#56B4E9", "#000000"];
 const DASHES = ["", "7 4", "2 3", "9 3 2 3", "4 2 1 2 1 2", "12 4"];
-// The colour map of the heat maps, the server's (`rtl study render`'s): dark blue (low) to
-// yellow-white (high).
-const HEAT = [[0, [0.05, 0.03, 0.25]], [0.35, [0.2, 0.3, 0.7]], [0.6, [0.1, 0.7, 0.5]],
-  [0.85, [0.9, 0.85, 0.2]], [1, [1.0, 1.0, 0.9]]];
+// The colours of the heat maps (the sphere's grids, the keys): the variance map's own, `rtl study
+// render`'s colour map, dark blue (low) to yellow-white (high), as the server serves it (/api/heat:
+// colour k at t = k / (steps - 1)). No copy here.
+const heat = { colours: null, loading: null };
 
 // ---------------------------------------------------------------- the server, and when it is gone
 class Offline extends Error {}
@@ -125,13 +125,15 @@ function fieldMsg(input) {
 
 function markInvalid(input, message) {
   input.setAttribute("aria-invalid", "true");
-  fieldMsg(input).textContent = message;
+  const m = fieldMsg(input);
+  m.classList.remove("pending");
+  m.textContent = message;
 }
 
 function markValid(input) {
   if (input.getAttribute("aria-invalid")) input.removeAttribute("aria-invalid");
   const m = $(input.id + "-msg");
-  if (m) m.textContent = "";
+  if (m && !input.dataset.queued) { m.classList.remove("pending"); m.textContent = ""; }
 }
 
 // Why a number field's value is refused, or null: its min, max and (unless data-any-step) whole numbers.
@@ -292,16 +294,20 @@ function loglogCurves(svg, legendBox, curves, xlabel, ylabel, withSlope, floors 
   return c;
 }
 
+// The server's heat colours, once (again after a failure).
+function heatInit() {
+  if (heat.colours) return Promise.resolve();
+  heat.loading = heat.loading || api("/api/heat").then((r) => { heat.colours = r.colours; })
+    .finally(() => { heat.loading = null; });
+  return heat.loading;
+}
+
+// The heat colour of t in [0, 1]: the server's colour of the nearest step.
 function heatRgb(t) {
-  t = Math.max(0, Math.min(1, t));
-  for (let i = 1; i < HEAT.length; i++) {
-    const [t0, a] = HEAT[i - 1], [t1, b] = HEAT[i];
-    if (t <= t1) {
-      const f = (t - t0) / (t1 - t0);
-      return `rgb(${a.map((v, k) => Math.round(255 * (v + f * (b[k] - v)))).join(",")})`;
-    }
-  }
-  return "rgb(255,255,230)";
+  const c = heat.colours;
+  if (!c) return "#888";
+  const k = Math.round(Math.max(0, Math.min(1, isFinite(t) ? t : 0)) * (c.length - 1));
+  return `rgb(${c[k].join(",")})`;
 }
 
 // A colour key: the heat colours from left to right, ticks [[t in 0..1, label]] and a title.
@@ -605,6 +611,7 @@ async function dRun() {
   $("d-run").disabled = true;
   try {
     const r = await api("/api/sampling/sphere?" + q);
+    await heatInit();
     const vmax = Math.max(...r.observed, ...r.expected, 1);
     grid($("d-observed"), r.observed, r.cells, vmax);
     grid($("d-expected"), r.expected, r.cells, vmax);
@@ -654,12 +661,15 @@ async function samplingInit() {
 
 // ---------------------------------------------------------------- Cornell box
 const cornell = { frame: -1, polling: false, strategies: [], settings: null, synced: {}, pending: {},
-  minGeneration: 0, ready: false, errorFor: null };
+  minGeneration: 0, ready: false, errorFor: null, queued: {}, flushing: false };
 
 // The fields, by the name of their query parameter.
 const C_FIELDS = { strategy: "c-strategy", mixture_weight: "c-weight", rr: "c-rr", lds: "c-lds",
   sph_rect: "c-sph", width: "c-width", seed: "c-seed", max_depth: "c-depth" };
 const C_CHECKBOXES = ["rr", "lds", "sph_rect"];
+// How the offline banner names them.
+const C_NAMES = { strategy: "strategy", mixture_weight: "mixture weight", rr: "Russian roulette",
+  lds: "low-discrepancy", sph_rect: "spherical rectangles", width: "size", seed: "seed", max_depth: "max depth" };
 
 function cValue(param) {
   const e = $(C_FIELDS[param]);
@@ -678,20 +688,124 @@ function cDisabled(param, strategy) {
   return false;
 }
 
+// The strategy the fields are for: one waiting for the server, else the server's.
+function cStrategy(s) {
+  return cornell.queued.strategy ? cornell.queued.strategy.value : s.strategy;
+}
+
+// ------------------------------------------------ changes made while the server is gone
+// `cornell.queued`: by parameter, the latest value of each field changed while the server did not
+// answer ({ value }). Each is sent as its own parameter when the server is back (`cFlush`), in the
+// order of C_FIELDS (the strategy before the fields it enables); until then its field is marked, and
+// the banner counts them.
+
+function markQueued(input, text) {
+  input.dataset.queued = "1";
+  if (input.getAttribute("aria-invalid")) input.removeAttribute("aria-invalid");
+  const m = fieldMsg(input);
+  m.classList.add("pending");
+  m.textContent = text;
+}
+
+function unmarkQueued(input) {
+  if (!input.dataset.queued) return;
+  delete input.dataset.queued;
+  const m = fieldMsg(input);
+  // A refusal's message, put there meanwhile, stays.
+  if (m.classList.contains("pending")) { m.classList.remove("pending"); m.textContent = ""; }
+}
+
+function cQueue(param, value) {
+  cornell.queued[param] = { value };
+  if (cornell.errorFor === param) { $("c-error").textContent = ""; cornell.errorFor = null; }
+  markQueued($(C_FIELDS[param]), "waiting for the server: sent when it answers");
+  cQueueShow();
+}
+
+function cUnqueue(param) {
+  if (!cornell.queued[param]) return;
+  delete cornell.queued[param];
+  unmarkQueued($(C_FIELDS[param]));
+  cQueueShow();
+}
+
+// The fields as the changes waiting make them (a strategy waiting enables its own fields; a value
+// waiting in a field that is now disabled is dropped: a disabled field is never sent), and the
+// banner's count.
+function cQueueShow() {
+  if (cornell.settings) {
+    const strategy = cStrategy(cornell.settings);
+    for (const [param, id] of Object.entries(C_FIELDS)) {
+      const disabled = cDisabled(param, strategy);
+      $(id).disabled = disabled;
+      if (disabled && cornell.queued[param]) { delete cornell.queued[param]; unmarkQueued($(id)); }
+    }
+  }
+  const waiting = Object.keys(C_FIELDS).filter((p) => cornell.queued[p]);
+  const n = waiting.length;
+  const shown = (p) => C_CHECKBOXES.includes(p) ? (cornell.queued[p].value === "1" ? "on" : "off") : cornell.queued[p].value;
+  $("offline-queue").textContent = n ? `${n} change${n > 1 ? "s" : ""} waiting for the server (` +
+    waiting.map((p) => `${C_NAMES[p]} ${shown(p)}`).join(", ") + "): sent when it answers." : "";
+  document.body.dataset.queuedChanges = n;
+}
+
+// Send the changes waiting, one at a time (each its own parameter: a refused one stays on its
+// field, marked, and blocks none of the others), then show what the server uses. Gone again: what
+// is left waits for the next time.
+async function cFlush() {
+  if (cornell.flushing) return;
+  cornell.flushing = true;
+  try {
+    while (!net.offline) {
+      const param = Object.keys(C_FIELDS).find((p) => cornell.queued[p]);
+      if (!param) break;
+      const q = cornell.queued[param], input = $(C_FIELDS[param]);
+      markQueued(input, "sending ...");
+      const result = await cSend(param, q.value);
+      if (result === "offline") {
+        if (cornell.queued[param] === q) markQueued(input, "waiting for the server: sent when it answers");
+        break;
+      }
+      // Changed again meanwhile: the newer value goes next.
+      if (cornell.queued[param] === q) { delete cornell.queued[param]; unmarkQueued(input); }
+    }
+  } finally {
+    cornell.flushing = false;
+    cQueueShow();
+    if (cornell.settings && !net.offline) syncControls(cornell.settings, true);
+  }
+}
+
 // A change of one field: only that parameter goes to the server (a disabled field is never sent, and
 // one refused value does not block the others). Refused, the field keeps the value, marked, with the
-// server's message and what the render goes on with.
+// server's message and what the render goes on with. The server gone, it waits (`cornell.queued`).
 async function cChange(param) {
   const input = $(C_FIELDS[param]);
   if (input.disabled) return;
   if (input.type === "number") {
     const p = numberProblem(input);
     if (p) {
+      // The latest value is this one: nothing of the field waits to be sent.
+      cUnqueue(param);
       markInvalid(input, `${p}; not sent: the render goes on with ${cornell.settings ? serverValue(cornell.settings, param) : "the last value"}`);
       return;
     }
   }
-  const q = new URLSearchParams({ [param]: cValue(param) });
+  const value = cValue(param);
+  // Gone, or changes made while it was gone still on their way: after them, in their order.
+  if (net.offline || cornell.flushing || cornell.queued[param]) {
+    cQueue(param, value);
+    if (!net.offline) cFlush();
+    return;
+  }
+  // It went away just now: the change waits for it, unless a newer one already does.
+  if (await cSend(param, value) === "offline" && !cornell.queued[param]) cQueue(param, value);
+}
+
+// POST one parameter; "taken", "refused" (the field marked, with the server's message) or "offline".
+async function cSend(param, value) {
+  const input = $(C_FIELDS[param]);
+  const q = new URLSearchParams({ [param]: value });
   cornell.pending[param] = true;
   try {
     const r = await api("/api/render/settings?" + q, { method: "POST" });
@@ -701,26 +815,31 @@ async function cChange(param) {
     document.body.dataset.renderGeneration = r.generation;
     cornell.settings = r.settings;
     syncControls(r.settings, true);
+    return "taken";
   } catch (e) {
-    if (e instanceof Offline) return;
+    if (e instanceof Offline) return "offline";
     const field = e.parameter && C_FIELDS[e.parameter] ? $(C_FIELDS[e.parameter]) : input;
     const now = cornell.settings ? `; the render goes on with ${serverValue(cornell.settings, e.parameter || param)}` : "";
     markInvalid(field, e.message + now);
     $("c-error").textContent = `Refused: ${e.message}${now}.`;
     cornell.errorFor = e.parameter || param;
+    return "refused";
   } finally {
     delete cornell.pending[param];
   }
 }
 
 // Show the server's settings (another tab may have changed them), except in a field being edited
-// (focused and changed) or holding a refused value (marked, with what the server uses instead).
+// (focused and changed), holding a refused value (marked, with what the server uses instead) or a
+// value waiting for the server.
 function syncControls(s, afterOwnChange = false) {
   cornell.settings = s;
+  const strategy = cStrategy(s);
   for (const [param, id] of Object.entries(C_FIELDS)) {
     const e = $(id), want = serverValue(s, param);
-    const disabled = cDisabled(param, s.strategy);
+    const disabled = cDisabled(param, strategy);
     e.disabled = disabled;
+    if (cornell.queued[param]) continue;
     const box = C_CHECKBOXES.includes(param);
     const shown = box ? (e.checked ? "1" : "0") : e.value;
     if (disabled) {
@@ -873,7 +992,7 @@ async function cClear() {
 
 async function cornellInit() {
   if (cornell.ready) return;
-  const l = await api("/api/render/list");
+  const [l] = await Promise.all([api("/api/render/list"), heatInit()]);
   cornell.strategies = l.strategies;
   for (const s of l.strategies) $("c-strategy").add(new Option(s, s));
   $("c-width").min = l.widths[0]; $("c-width").max = l.widths[1];
@@ -906,6 +1025,8 @@ window.addEventListener("DOMContentLoaded", async () => {
   tabsInit();
   $("offline-now").onclick = probe;
   net.onBack.push(async () => {
+    // What was changed meanwhile goes first (each change in its turn), then the menus and the polling.
+    if (cornell.ready) cFlush();
     await init();
     if (activeBench === "cornell") pollRender();
   });
