@@ -147,8 +147,11 @@ impl Domain for ParallelogramDomain {
 /// The outcome of a chi-square test.
 #[derive(Clone, Debug)]
 pub struct Chi2Report {
+    /// `sum (observed - expected)^2 / expected` over the cells after pooling.
     pub statistic: f64,
+    /// Degrees of freedom: cells after pooling, minus 1.
     pub dof: usize,
+    /// The probability of a statistic at least this large if the sampler is right.
     pub p_value: f64,
     /// The sum of the expected counts over `N`: the pdf's integral over the domain (1 if the domain
     /// holds its whole support).
@@ -267,8 +270,7 @@ impl<D: Domain, F: Fn(DVec3) -> f64> Integrand<'_, D, F> {
         }
         let coarse = self.gauss(lo, hi);
         let parts = Self::quadrants(lo, hi);
-        let fine: Vec<f64> = parts.iter().map(|&(a, b)| self.gauss(a, b)).collect();
-        let total: f64 = fine.iter().sum();
+        let total: f64 = parts.iter().map(|&(a, b)| self.gauss(a, b)).sum();
         if depth >= cfg.max_depth || (total - coarse).abs() <= tol {
             return total;
         }

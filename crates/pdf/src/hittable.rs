@@ -131,12 +131,6 @@ impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
         }
     }
 
-    /// The book-style name of [`HittablePdf::pmf`].
-    #[inline]
-    pub fn probability(&self, i: usize) -> f64 {
-        self.pmf(i)
-    }
-
     /// `sum_{j != skip} p_j pdf_j(d)`: the density the other shapes give `direction`.
     #[inline]
     fn others_pdf(&self, skip: usize, direction: DVec3) -> f64 {

@@ -4,7 +4,7 @@
 //! of "Ray Tracing: The Rest of Your Life":
 //!
 //! - [`warp`]: maps from the unit square to directions (uniform sphere, hemisphere, cosine, cone,
-//!   parallelogram, spherical rectangle), each with its density and inverse;
+//!   spherical rectangle) and points (disk, parallelogram), each with its density and inverse;
 //! - [`Onb`]: an orthonormal basis from one vector, to carry local directions to the world;
 //! - [`Pdf`] with [`SpherePdf`], [`HemispherePdf`], [`CosinePdf`], [`HittablePdf`] (towards [`ShapeSampler`]s
 //!   such as [`SphereTarget`] and [`QuadTarget`]) and [`MixturePdf`];

@@ -6,6 +6,16 @@
 //! every direction, which keeps the combined estimator unbiased. Both functions return a number in
 //! `[0, 1]`, never NaN: 0 when `f` could not have produced the sample (`f_pdf = 0`), 1 when only `f`
 //! could.
+//!
+//! ```
+//! use rtl_pdf::{balance_heuristic, power_heuristic};
+//! // One light sample and one material sample of the same direction, densities 3 and 1 per steradian.
+//! let (light, material) = (3.0, 1.0);
+//! assert_eq!(balance_heuristic(1.0, light, 1.0, material), 0.75); // 3 / (3 + 1)
+//! let w = power_heuristic(1.0, light, 1.0, material); // 9 / (9 + 1)
+//! assert!((w - 0.9).abs() < 1e-15);
+//! assert!((w + power_heuristic(1.0, material, 1.0, light) - 1.0).abs() < 1e-15);
+//! ```
 
 // ANCHOR: mis
 /// The balance heuristic `nf f / (nf f + ng g)`.

@@ -160,7 +160,7 @@ pub struct MixtureOfPdfs<'a, P: Pdf> {
 }
 
 impl<'a, P: Pdf> MixtureOfPdfs<'a, P> {
-    /// `parts[i]` with probability `selection.probability(i)`; the lengths must agree.
+    /// `parts[i]` with probability `selection.pmf(i)`; the lengths must agree.
     pub fn new(
         parts: &'a [P],
         selection: &'a Selection,

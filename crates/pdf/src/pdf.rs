@@ -102,7 +102,7 @@ impl<P: Pdf + ?Sized> Pdf for &P {
 }
 
 // ANCHOR: sphere_pdf
-/// Uniform over the whole sphere: `value = 1 / (4 pi)`.
+/// Uniform over the whole sphere: `value = 1 / (4 pi)` per steradian.
 ///
 /// ```
 /// use rtl_pdf::{Pdf, SpherePdf};
@@ -130,7 +130,8 @@ impl Pdf for SpherePdf {
 }
 // ANCHOR_END: sphere_pdf
 
-/// Uniform over the hemisphere about a unit normal: `value = 1 / (2 pi)` above the horizon, 0 below.
+/// Uniform over the hemisphere about a unit normal: `value = 1 / (2 pi)` per steradian on and above
+/// the horizon, 0 below.
 #[derive(Clone, Copy, Debug)]
 pub struct HemispherePdf {
     uvw: Onb,
@@ -165,8 +166,8 @@ impl Pdf for HemispherePdf {
 }
 
 // ANCHOR: cosine_pdf
-/// Cosine-weighted about a unit normal: `value = max(0, cos theta) / pi`, exactly 0 at and below the
-/// horizon. The ideal density for a Lambertian surface, where it cancels the `cos theta / pi` of the
+/// Cosine-weighted about a unit normal: `value = max(0, cos theta) / pi` per steradian, exactly 0 at
+/// and below the horizon. The ideal density for a Lambertian surface, where it cancels the `cos theta / pi` of the
 /// scattering, so `f cos / p` is just the albedo.
 ///
 /// Its value needs only the normal (`cos theta = d . n`); the basis `Onb::new(n)` that carries the
@@ -197,8 +198,9 @@ impl Pdf for CosinePdf {
     fn pdf(&self, direction: DVec3) -> f64 {
         warp::cosine_hemisphere_pdf(direction.dot(self.normal))
     }
-    /// The concentric cosine warp; its density is `cos theta / pi` of the local direction (`None` for
-    /// the measure-zero `u` that lands on the horizon, where the density is 0).
+    /// The concentric cosine warp; its density is `cos theta / pi` per steradian of the local
+    /// direction. Never `None`: the warp keeps `cos theta >= warp::MIN_COS_THETA`, above the horizon,
+    /// where the density is positive.
     #[inline]
     fn sample(&self, u: DVec2) -> Option<DirectionSample> {
         let local = warp::sample_cosine_hemisphere(u);
@@ -207,7 +209,8 @@ impl Pdf for CosinePdf {
             warp::cosine_hemisphere_pdf(local.z),
         )
     }
-    /// The book's `generate`: the warp's direction even on the horizon (where `value` is 0).
+    /// The book's `generate`: the direction [`Pdf::sample`] draws from the same two numbers, without
+    /// its density.
     #[inline]
     fn generate<R: Rng + ?Sized>(&self, rng: &mut R) -> DVec3 {
         self.direction(random_unit_square(rng))

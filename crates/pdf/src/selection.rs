@@ -35,10 +35,17 @@ pub struct Choice {
     pub u_remapped: f64,
 }
 
+/// `x` in `[0, 1)`: clamped to `[0, 1 - 2^-53]`, and a NaN to 0 (which `f64::clamp` would keep).
+#[inline]
+#[allow(clippy::manual_clamp)]
+fn below_one(x: f64) -> f64 {
+    x.max(0.0).min(ONE_MINUS_EPSILON)
+}
+
 /// `(u - lo) / p`, the leftover of `u` in `[lo, lo + p)`, kept below 1.
 #[inline]
 pub(crate) fn remap(u: f64, lo: f64, p: f64) -> f64 {
-    ((u - lo) / p).clamp(0.0, ONE_MINUS_EPSILON)
+    below_one((u - lo) / p)
 }
 
 /// The uniform choice among `n` parts by `u`: `i = floor(n u)` (kept below `n`), and `n u - i`.
@@ -46,7 +53,7 @@ pub(crate) fn remap(u: f64, lo: f64, p: f64) -> f64 {
 pub(crate) fn choose_uniform(n: usize, u: f64) -> (usize, f64) {
     let scaled = u * n as f64;
     let i = (scaled as usize).min(n - 1);
-    (i, (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON))
+    (i, below_one(scaled - i as f64))
 }
 
 /// The part chosen by `u` from probabilities `pmf` (`>= 0`, summing to 1) by a linear scan: the first
@@ -55,7 +62,7 @@ pub(crate) fn choose_uniform(n: usize, u: f64) -> (usize, f64) {
 /// only if every `p_i` is 0.
 #[inline]
 pub(crate) fn choose_by_pmf(pmf: &[f64], u: f64) -> Option<(usize, f64)> {
-    let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+    let u = below_one(u);
     let mut lo = 0.0;
     let mut last = None;
     for (i, &p) in pmf.iter().enumerate() {
@@ -138,18 +145,12 @@ impl Selection {
         }
     }
 
-    /// The book-style name of [`Selection::pmf`].
-    #[inline]
-    pub fn probability(&self, i: usize) -> f64 {
-        self.pmf(i)
-    }
-
     /// The part chosen by `u` in `[0, 1)`, the first `i` with `u < F_{i+1}` (which has `p_i > 0`),
     /// with its probability and the remapped rest of `u`.
     #[inline]
     #[doc(alias = "choose")]
     pub fn sample(&self, u: f64) -> Choice {
-        let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        let u = below_one(u);
         let index = self.cdf.bin(u);
         let lo = self.cdf.cdf_values()[index];
         let pmf = self.cdf.bin_probability(index);
@@ -160,13 +161,8 @@ impl Selection {
         }
     }
 
-    /// The part chosen by `u` (the index of [`Selection::sample`]).
-    #[inline]
-    pub fn choose(&self, u: f64) -> usize {
-        self.sample(u).index
-    }
-
-    /// The `u` that chooses part `i` and leaves `u_remapped`: the inverse of [`Selection::sample`].
+    /// The `u` that chooses part `i` (`i < len()`) and leaves `u_remapped`: `F_i + u_remapped p_i`,
+    /// the inverse of [`Selection::sample`].
     pub fn invert(&self, i: usize, u_remapped: f64) -> f64 {
         let lo = self.cdf.cdf_values()[i];
         (lo + u_remapped * self.pmf(i)).min(ONE_MINUS_EPSILON)
@@ -254,11 +250,11 @@ mod tests {
             1.0 - f64::EPSILON / 2.0,
             1.0,
         ] {
-            let i = s.choose(u);
+            let i = s.sample(u).index;
             assert!(i == 1 || i == 3, "u = {u} chose {i}");
         }
-        assert_eq!(s.choose(0.1), 1);
-        assert_eq!(s.choose(0.3), 3);
+        assert_eq!(s.sample(0.1).index, 1);
+        assert_eq!(s.sample(0.3).index, 3);
         let p: Vec<f64> = (0..5).map(|i| s.pmf(i)).collect();
         assert_eq!(p, [0.0, 0.25, 0.0, 0.75, 0.0]);
         // the rest of u is handed on, and inverting gives u back

@@ -2,7 +2,7 @@
 //! book needs, spheres and quads.
 //!
 //! This crate knows nothing of the renderer's shapes. A shape that wants to be sampled towards
-//! implements [`Target`]; [`SphereTarget`] and [`QuadTarget`] hold the geometry and the sampling so that a
+//! implements [`ShapeSampler`]; [`SphereTarget`] and [`QuadTarget`] hold the geometry and the sampling so that a
 //! renderer's sphere or quad can delegate to them.
 
 use crate::pdf::{positive_finite, random_unit_square};
@@ -83,10 +83,12 @@ impl SphereTarget {
         }
     }
 
+    /// The centre.
     pub fn center(&self) -> DVec3 {
         self.center
     }
 
+    /// The radius (never negative).
     pub fn radius(&self) -> f64 {
         self.radius
     }
@@ -245,21 +247,27 @@ impl QuadTarget {
         self.area > 0.0 && self.u.dot(self.v).abs() <= 1e-12 * self.u.length() * self.v.length()
     }
 
+    /// How directions are picked: by area, or by spherical rectangles where they are worth it.
     pub fn sampling(&self) -> QuadSampling {
         self.sampling
     }
+    /// The corner `q`.
     pub fn q(&self) -> DVec3 {
         self.q
     }
+    /// The first edge `u`.
     pub fn u(&self) -> DVec3 {
         self.u
     }
+    /// The second edge `v`.
     pub fn v(&self) -> DVec3 {
         self.v
     }
+    /// The area `|u x v|`.
     pub fn area(&self) -> f64 {
         self.area
     }
+    /// The unit normal `u x v / |u x v|` (zero for a degenerate quad).
     pub fn normal(&self) -> DVec3 {
         self.normal
     }

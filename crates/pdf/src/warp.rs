@@ -6,6 +6,17 @@
 //! Directions are in a local frame whose `+z` axis is the normal (or the cone's axis); an [`Onb`]
 //! carries them to the world.
 //!
+//! ```
+//! use glam::DVec2;
+//! use rtl_pdf::warp;
+//! let u = DVec2::new(0.25, 0.5);
+//! let w = warp::sample_cosine_hemisphere(u); // a unit direction with z = cos theta > 0
+//! let pdf = warp::cosine_hemisphere_pdf(w.z); // cos theta / pi, per steradian
+//! assert!((pdf - w.z / std::f64::consts::PI).abs() < 1e-16);
+//! let back = warp::invert_cosine_hemisphere_sample(w);
+//! assert!((back - u).abs().max_element() < 1e-15);
+//! ```
+//!
 //! [`Onb`]: crate::Onb
 
 use glam::{DVec2, DVec3};
@@ -108,7 +119,8 @@ pub const fn uniform_sphere_pdf() -> f64 {
 }
 // ANCHOR_END: uniform_sphere
 
-/// The `u` for which [`sample_uniform_sphere`] returns the unit vector `w`.
+/// The `u` for which [`sample_uniform_sphere`] returns the unit vector `w`. At the poles
+/// (`u.x = 0`) every `u.y` gives the same direction, and `u.y` does not come back.
 #[inline]
 pub fn invert_uniform_sphere_sample(w: DVec3) -> DVec2 {
     DVec2::new(one_minus_cos_theta(w) / 2.0, azimuth_turns(w))
@@ -134,7 +146,8 @@ pub const fn uniform_hemisphere_pdf() -> f64 {
 }
 // ANCHOR_END: uniform_hemisphere
 
-/// The `u` for which [`sample_uniform_hemisphere`] returns `w` (`w.z >= 0`).
+/// The `u` for which [`sample_uniform_hemisphere`] returns `w` (`w.z >= 0`): `(cos theta, phi / 2 pi)`.
+/// A `u.x` below `MIN_COS_THETA` comes back as `MIN_COS_THETA`, the `cos theta` it was drawn with.
 #[inline]
 pub fn invert_uniform_hemisphere_sample(w: DVec3) -> DVec2 {
     DVec2::new(w.z, azimuth_turns(w))
@@ -163,8 +176,16 @@ pub fn sample_uniform_disk_concentric(u: DVec2) -> DVec2 {
 }
 // ANCHOR_END: concentric_disk
 
-/// The `u` for which [`sample_uniform_disk_concentric`] returns `p` (`|p| <= 1`).
-pub fn invert_uniform_disk_concentric(p: DVec2) -> DVec2 {
+/// The density of [`sample_uniform_disk_concentric`]: `1 / pi` per unit area of the disk.
+#[inline]
+pub const fn uniform_disk_pdf() -> f64 {
+    FRAC_1_PI
+}
+
+/// The `u` in `[0, 1)^2` for which [`sample_uniform_disk_concentric`] returns `p` (`|p| <= 1`). A
+/// coordinate `u = 0` comes back as `2^-53`, which the warp maps to the same point (see
+/// [`CONCENTRIC_MAX`]).
+pub fn invert_uniform_disk_concentric_sample(p: DVec2) -> DVec2 {
     let r = p.length();
     if r == 0.0 {
         return DVec2::splat(0.5);
@@ -217,7 +238,7 @@ pub fn cosine_hemisphere_pdf(cos_theta: f64) -> f64 {
 /// The `u` for which [`sample_cosine_hemisphere`] returns `w`.
 #[inline]
 pub fn invert_cosine_hemisphere_sample(w: DVec3) -> DVec2 {
-    invert_uniform_disk_concentric(DVec2::new(w.x, w.y))
+    invert_uniform_disk_concentric_sample(DVec2::new(w.x, w.y))
 }
 
 // ANCHOR: uniform_cone
@@ -253,7 +274,9 @@ pub fn uniform_cone_pdf(one_minus_cos_max: f64) -> f64 {
 }
 // ANCHOR_END: uniform_cone
 
-/// The `u` for which [`sample_uniform_cone`] returns the unit vector `w` (inside the cone).
+/// The `u` for which [`sample_uniform_cone`] returns the unit vector `w` (inside the cone):
+/// `((1 - cos theta) / (1 - cos theta_max), phi / 2 pi)`. A `u.x` above `CONE_U_MAX` comes back as
+/// `CONE_U_MAX`, the `u.x` it was drawn with; at the apex (`u.x = 0`) `u.y` does not come back.
 #[inline]
 pub fn invert_uniform_cone_sample(w: DVec3, one_minus_cos_max: f64) -> DVec2 {
     DVec2::new(one_minus_cos_theta(w) / one_minus_cos_max, azimuth_turns(w))
@@ -452,7 +475,8 @@ impl SphericalRectangle {
         1.0 / self.solid_angle
     }
 
-    /// A point on the rectangle whose direction from the origin is uniform in solid angle.
+    /// A point on the rectangle for `u` in `[0, 1)^2`, whose direction from the origin is uniform in
+    /// solid angle: density [`SphericalRectangle::pdf`] per steradian.
     pub fn sample(&self, u: DVec2) -> DVec3 {
         // 1. The x of the sub-rectangle [x0, xu] with solid angle u.x S.
         let au = u.x * self.solid_angle + self.k;
@@ -483,7 +507,8 @@ impl SphericalRectangle {
     }
 
     /// The `u` for which [`SphericalRectangle::sample`] returns `point` (a point of the rectangle):
-    /// `u.x` is the solid angle of the sub-rectangle `[x0, x_p]` over `S`, `u.y` the relative height.
+    /// `u.x` is the solid angle of the sub-rectangle `[x0, x_p]` over `S`, `u.y` the relative height;
+    /// both clamped into `[0, 1]`.
     pub fn invert(&self, point: DVec3) -> DVec2 {
         let p = point - self.origin;
         let xu = p.dot(self.x).clamp(self.x0, self.x1);

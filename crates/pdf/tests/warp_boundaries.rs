@@ -123,7 +123,7 @@ fn concentric_disk_at_every_boundary_u_stays_in_the_disk() {
             p.is_finite() && p.length_squared() <= 1.0,
             "disk at {u}: {p}"
         );
-        let back = warp::invert_uniform_disk_concentric(p);
+        let back = warp::invert_uniform_disk_concentric_sample(p);
         assert!(
             back.cmpge(DVec2::ZERO).all() && back.cmplt(DVec2::ONE).all(),
             "{back}"

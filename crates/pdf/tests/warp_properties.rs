@@ -96,7 +96,7 @@ proptest! {
         let c = warp::invert_cosine_hemisphere_sample(warp::sample_cosine_hemisphere(inner));
         prop_assert!((c - inner).abs().max_element() < 1e-6, "{} vs {}", c, inner);
         // at the boundary itself the inverse stays in [0, 1)
-        let d = warp::invert_uniform_disk_concentric(warp::sample_uniform_disk_concentric(u));
+        let d = warp::invert_uniform_disk_concentric_sample(warp::sample_uniform_disk_concentric(u));
         prop_assert!(d.cmpge(DVec2::ZERO).all() && d.cmplt(DVec2::ONE).all(), "{}", d);
     }
 }

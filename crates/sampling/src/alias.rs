@@ -18,7 +18,16 @@ struct Column {
     alias: u32,
 }
 
-/// Vose's alias table over bins `0..n` with probabilities proportional to the weights.
+/// Vose's alias table over bins `0..n` with probabilities proportional to the weights (a
+/// probability mass function: no density, no measure but counting).
+///
+/// ```
+/// use rtl_sampling::AliasTable;
+/// let table = AliasTable::new(&[1.0, 0.0, 3.0]).unwrap();
+/// assert_eq!((table.pmf(0), table.pmf(1), table.pmf(2)), (0.25, 0.0, 0.75));
+/// let (bin, rest) = table.sample(0.5);
+/// assert!(bin != 1 && (0.0..1.0).contains(&rest)); // a bin of weight 0 is never returned
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct AliasTable {
     columns: Vec<Column>,
@@ -235,7 +244,7 @@ impl AliasPiecewise {
     }
     // ANCHOR_END: piecewise
 
-    /// The density at `x`, 0 outside the support.
+    /// The density `p(x)` per unit length: `pmf(i) / width(i)` of `x`'s bin, 0 outside the support.
     pub fn pdf(&self, x: f64) -> f64 {
         let n = self.columns.len();
         if !(self.columns[0].own.x0..=self.columns[n - 1].own.x1).contains(&x) {

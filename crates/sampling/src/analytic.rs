@@ -69,6 +69,7 @@ impl Uniform {
         }
     }
 
+    /// `p(x) = 1 / (b - a)` per unit length on `[a, b]`, 0 outside.
     pub fn pdf(&self, x: f64) -> f64 {
         if (self.a..=self.b).contains(&x) {
             self.density()
@@ -76,6 +77,7 @@ impl Uniform {
             0.0
         }
     }
+    /// `x = F⁻¹(u) = (1 - u) a + u b` (exact at both ends) and `p(x)`.
     pub fn sample(&self, u: f64) -> Sample {
         let u = clamp_u(u);
         let x = (1.0 - u) * self.a + u * self.b;
@@ -84,6 +86,7 @@ impl Uniform {
             pdf: self.density(),
         }
     }
+    /// `u = F(x) = (x - a) / (b - a)`, clamped into `[0, 1]`.
     pub fn invert(&self, x: f64) -> f64 {
         let w = self.b - self.a;
         let t = if w.is_finite() {
@@ -103,6 +106,7 @@ impl Uniform {
 pub struct Linear;
 
 impl Linear {
+    /// `p(x) = x / 2` per unit length on `[0, 2]`, 0 outside.
     pub fn pdf(&self, x: f64) -> f64 {
         if (0.0..=2.0).contains(&x) {
             x / 2.0
@@ -110,12 +114,14 @@ impl Linear {
             0.0
         }
     }
+    /// `x = F⁻¹(u) = 2 sqrt(u)` and `p(x) = x / 2`.
     pub fn sample(&self, u: f64) -> Sample {
         // u = 0 would give x = 0, where the density is 0 and f(x)/p(x) is 0/0: the smallest normal u
         // instead (still within the first of the 2^53 equal steps of u).
         let x = 2.0 * clamp_u(u).max(f64::MIN_POSITIVE).sqrt();
         Sample { x, pdf: x / 2.0 }
     }
+    /// `u = F(x) = x² / 4`, clamped into `[0, 1]`.
     pub fn invert(&self, x: f64) -> f64 {
         (x * x / 4.0).clamp(0.0, 1.0)
     }
@@ -129,6 +135,7 @@ impl Linear {
 pub struct Quadratic;
 
 impl Quadratic {
+    /// `p(x) = 3x² / 8` per unit length on `[0, 2]`, 0 outside.
     pub fn pdf(&self, x: f64) -> f64 {
         if (0.0..=2.0).contains(&x) {
             3.0 * x * x / 8.0
@@ -136,6 +143,7 @@ impl Quadratic {
             0.0
         }
     }
+    /// `x = F⁻¹(u) = 2 ∛u` and `p(x) = 3x² / 8`.
     pub fn sample(&self, u: f64) -> Sample {
         // As for `Linear`: never x = 0, where the density is 0.
         let x = 2.0 * clamp_u(u).max(f64::MIN_POSITIVE).cbrt();
@@ -144,6 +152,7 @@ impl Quadratic {
             pdf: 3.0 * x * x / 8.0,
         }
     }
+    /// `u = F(x) = x³ / 8`, clamped into `[0, 1]`.
     pub fn invert(&self, x: f64) -> f64 {
         (x * x * x / 8.0).clamp(0.0, 1.0)
     }
@@ -179,6 +188,7 @@ impl Exponential {
         }
     }
 
+    /// `p(x) = λ e^(-λx)` per unit length for `x >= 0`, 0 for `x < 0`.
     pub fn pdf(&self, x: f64) -> f64 {
         if x >= 0.0 {
             self.rate * (-self.rate * x).exp()
@@ -186,6 +196,7 @@ impl Exponential {
             0.0
         }
     }
+    /// `x = F⁻¹(u) = -ln(1 - u) / λ` and `p(x)`.
     pub fn sample(&self, u: f64) -> Sample {
         let x = -(-clamp_u(u)).ln_1p() / self.rate;
         Sample {
@@ -193,6 +204,7 @@ impl Exponential {
             pdf: self.pdf(x),
         }
     }
+    /// `u = F(x) = 1 - e^(-λx)`; 0 for `x <= 0`.
     pub fn invert(&self, x: f64) -> f64 {
         if x <= 0.0 {
             0.0

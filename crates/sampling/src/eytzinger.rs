@@ -26,7 +26,17 @@ struct Node {
 #[repr(C, align(64))]
 struct Line([Node; 4]);
 
-/// A tabulated CDF whose interior nodes are stored in Eytzinger order.
+/// A tabulated CDF whose interior nodes are stored in Eytzinger order: the same piecewise-constant
+/// density (per unit length) and the same `x = F⁻¹(u)` as the [`TabulatedCdf`] it was built from.
+///
+/// ```
+/// use rtl_sampling::{EytzingerCdf, TabulatedCdf};
+/// let table = TabulatedCdf::from_weights(0.0, 4.0, &[1.0, 0.0, 2.0, 1.0]).unwrap();
+/// let tree = EytzingerCdf::new(&table);
+/// for u in [0.0, 0.25, 0.5, 0.9] {
+///     assert_eq!(tree.sample(u), table.sample(u));
+/// }
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct EytzingerCdf {
     /// Node `k` (1-based) lives at `lines[k / 4].0[k % 4]`; slot 0 is unused.
@@ -135,7 +145,7 @@ impl EytzingerCdf {
         )
     }
 
-    /// The density at `x`, 0 outside the support.
+    /// The density `p(x)` per unit length: that of `x`'s bin, 0 outside the support.
     pub fn pdf(&self, x: f64) -> f64 {
         if !(self.first.x..=self.last.x).contains(&x) {
             return 0.0;
@@ -144,7 +154,7 @@ impl EytzingerCdf {
         (hi.cdf - lo.cdf) / (hi.x - lo.x)
     }
 
-    /// `u = F(x)`.
+    /// `u = F(x)`, the piecewise-linear CDF; 0 left of the support, 1 right of it.
     pub fn invert(&self, x: f64) -> f64 {
         if x <= self.first.x || x.is_nan() {
             return 0.0;

@@ -56,7 +56,9 @@ pub const ONE_MINUS_EPSILON: f64 = 1.0 - f64::EPSILON / 2.0;
 /// A sample `x` together with its density `p(x)` (with respect to length on the real line).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
+    /// The point drawn.
     pub x: f64,
+    /// Its density `p(x)`, per unit length.
     pub pdf: f64,
 }
 

@@ -48,8 +48,11 @@ pub struct NumericInverse<F, P = fn(f64) -> f64> {
     tolerance: f64,
 }
 
-/// The most evaluations one inversion may take; bisection alone needs fewer than 1100 to shrink
-/// any bracket of finite floats to neighbours.
+/// The most evaluations one inversion may take. Bisection halves the bracket's width, so it needs
+/// about `log2(width / spacing of the floats at the root)` steps to reach neighbouring floats: 52
+/// for `[1, 2]`, about 1100 for a root near 1 in `[-f64::MAX, f64::MAX]`, and up to about 2100 for
+/// a subnormal root in that bracket, which this limit stops short of (the best `x` found is then
+/// returned, with its `u_error`).
 const MAX_EVALUATIONS: u32 = 2000;
 
 impl<F: Fn(f64) -> f64> NumericInverse<F> {
@@ -261,7 +264,8 @@ impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> NumericInverse<F, P> {
 }
 
 impl<F: Fn(f64) -> f64, P: Fn(f64) -> f64> rand::distr::Distribution<f64> for NumericInverse<F, P> {
-    /// Inverts `u = F(a) + (F(b) - F(a)) U` for a uniform `U`.
+    /// Inverts `u = F(a) + (F(b) - F(a)) U` for a uniform `U`; NaN where `F` turns non-finite on
+    /// the way (the error [`NumericInverse::invert`] reports).
     fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> f64 {
         let u = self.fa + (self.fb - self.fa) * rng.random::<f64>();
         self.invert(u.clamp(self.fa, self.fb))

@@ -8,12 +8,28 @@ use crate::{SamplingError, TabulatedCdf, tabulated::equal_edges};
 /// A 2D sample: the point and its density with respect to area.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample2 {
+    /// The point's first coordinate (the column).
     pub x: f64,
+    /// The point's second coordinate (the row).
     pub y: f64,
+    /// Its density `p(x, y) = p(y) p(x | y)`, per unit area.
     pub pdf: f64,
 }
 
-/// A piecewise-constant density on `[x₀, x₁] × [y₀, y₁]` with `nx × ny` equal cells.
+/// A piecewise-constant density on `[x₀, x₁] × [y₀, y₁]` with `nx × ny` equal cells: the density
+/// per unit area of a cell of weight `w` is `w / (W A)`, `W` the total weight and `A` a cell's area.
+///
+/// ```
+/// use rtl_sampling::PiecewiseConstant2D;
+/// // Two rows of two cells on [0, 2] × [0, 1]; all the weight in the top row, three times as much
+/// // on the right as on the left.
+/// let map = PiecewiseConstant2D::new(&[0.0, 0.0, 1.0, 3.0], 2, 2, (0.0, 2.0), (0.0, 1.0)).unwrap();
+/// let s = map.sample(0.5, 0.5);
+/// assert!(s.y >= 0.5 && s.x >= 1.0); // top row, right cell
+/// assert_eq!(s.pdf, 0.75 / 0.5); // probability 3/4 over the area 1/2
+/// let (u1, u2) = map.invert(s.x, s.y);
+/// assert!((u1 - 0.5).abs() < 1e-15 && (u2 - 0.5).abs() < 1e-15);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct PiecewiseConstant2D {
     /// One conditional density over x per row (a uniform one for a row of zero mass, which the
@@ -114,7 +130,7 @@ impl PiecewiseConstant2D {
     }
 
     // ANCHOR: sample
-    /// The point for `(u₁, u₂)`: `u₂` picks the row (and `y`) through the marginal, `u₁` the column
+    /// The point for `(u₁, u₂)` in `[0, 1)²`: `u₂` picks the row (and `y`) through the marginal, `u₁` the column
     /// (and `x`) through that row's conditional; the density is the product `p(y) p(x | y)`.
     pub fn sample(&self, u1: f64, u2: f64) -> Sample2 {
         let u2 = crate::clamp_u(u2);
