@@ -156,6 +156,9 @@ struct Measured {
 /// 1024).
 const FAR_BELOW: f64 = 4.0;
 
+/// The most rounds a comparison may measure (each runs every renderer twice, seconds at least).
+const MAX_ROUNDS: usize = 1000;
+
 /// Whether a constant measured at `measured` spp is projected far beyond it (`needed` spp).
 fn measured_far_below(measured: u64, needed: f64) -> bool {
     needed > FAR_BELOW * measured as f64
@@ -242,6 +245,50 @@ fn validate(a: &CompareArgs) -> Result<()> {
     ] {
         if zero {
             bail!("{flag} must be positive, got 0");
+        }
+    }
+    // What `rtl render` would refuse, refused here, before the book's program is built and run with
+    // it: that program holds width, samples and depth in a C++ `int`, and renders whatever it is given
+    // (`--width 1000000000` built it and ran it without end; rtl's own render refused at once).
+    let limits = [
+        (
+            "--width",
+            a.width as u64,
+            rtl_render::limits::MAX_SIDE as u64,
+        ),
+        (
+            "--threads",
+            a.threads as u64,
+            rtl_render::limits::MAX_THREADS as u64,
+        ),
+        ("--rounds", a.rounds as u64, MAX_ROUNDS as u64),
+    ];
+    for (flag, value, most) in limits {
+        if value > most {
+            bail!("{flag} {value}: must be at most {most}");
+        }
+    }
+    if let Some(d) = a.max_depth
+        && let Some(problem) = rtl_render::limits::max_depth_problem(d)
+    {
+        bail!("--max-depth {d}: the maximum depth {problem}");
+    }
+    if a.book.is_some() {
+        let (flag, spp) = match a.book_spp {
+            Some(n) => ("--book-spp", n),
+            None => ("--spp", a.spp),
+        };
+        if spp > i32::MAX as u64 {
+            bail!(
+                "{flag} {spp}: the book's program counts samples in a C++ int, at most {}",
+                i32::MAX
+            );
+        }
+        if a.target_rmse.is_none() && a.book_noise.is_none() && a.target_book_spp == 0 {
+            bail!(
+                "--target-book-spp must be positive, got 0 (the target is the book's noise at that \
+                 many samples)"
+            );
         }
     }
     if let Some(w) = a.project_width
@@ -1246,6 +1293,21 @@ mod tests {
             assert!(e.contains("--project-width") && e.contains(w), "{e}");
         }
         assert!(validate(&parse(&["--target-rmse", "0.01", "--project-width", "800"])).is_ok());
+        // past rtl render's limits, each named with its value (the book's program ran first with
+        // them, and `--rounds 100000000000` aborted allocating the rounds)
+        for (flag, value, words) in [
+            ("--width", "65537", "at most 65536"),
+            ("--threads", "1025", "at most 1024"),
+            ("--rounds", "100000000000", "at most 1000"),
+            ("--max-depth", "0", "at least 1"),
+            ("--max-depth", "10001", "at most 10000"),
+        ] {
+            let e = err(&["--target-rmse", "0.01", flag, value]);
+            assert!(
+                e.starts_with(&format!("{flag} {value}: ")) && e.contains(words),
+                "{e}"
+            );
+        }
         let dir = std::env::temp_dir().join(format!("rtl-bench-no-book-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
@@ -1275,6 +1337,19 @@ mod tests {
         let e = validate(&book("0")).unwrap_err().to_string();
         assert!(e.contains("--book-spp must be positive"), "{e}");
         assert!(validate(&book("1024")).is_ok());
+        // the book's program counts samples in an int, and its noise at no samples is no target
+        let e = validate(&book("4294967296")).unwrap_err().to_string();
+        assert!(
+            e.contains("--book-spp 4294967296") && e.contains("C++ int"),
+            "{e}"
+        );
+        let e = err(&["--book", dir.to_str().unwrap(), "--spp", "4294967296"]);
+        assert!(
+            e.contains("--spp 4294967296") && e.contains("C++ int"),
+            "{e}"
+        );
+        let e = err(&["--book", dir.to_str().unwrap(), "--target-book-spp", "0"]);
+        assert!(e.contains("--target-book-spp must be positive"), "{e}");
         let noise = |r: &str| parse(&["--book", dir.to_str().unwrap(), "--book-noise", r]);
         let e = validate(&noise("0")).unwrap_err().to_string();
         assert!(e.contains("--book-noise must be positive"), "{e}");

@@ -82,15 +82,13 @@ fn check_merge_memory(args: &MergeArgs) -> Result<()> {
     // The largest part is held twice while it is parsed, the merged result once more.
     let needed = total.saturating_mul(2);
     if let Some(available) = limits::available_memory()
-        && needed > available
+        && needed > available.bytes
     {
         bail!(
-            "the {} part(s) hold {} and merging them needs about {}, but this machine has {} available \
-             (MemAvailable in /proc/meminfo)",
+            "the {} part(s) hold {} and merging them needs about {}, but {available}",
             args.parts.len(),
             limits::Bytes(total),
             limits::Bytes(needed),
-            limits::Bytes(available)
         );
     }
     Ok(())

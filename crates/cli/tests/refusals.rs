@@ -128,6 +128,51 @@ fn an_image_past_the_side_limit_or_the_memory_is_refused_before_allocation() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// Run `rtl args` in `d` under `ulimit` (`limit`, e.g. `-v 1500000`: KiB of address space).
+fn rtl_under_ulimit(d: &Path, limit: &str, args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit {limit} && exec timeout 60 \"$0\" \"$@\""))
+        .arg(RTL)
+        .args(args)
+        .current_dir(d)
+        .output()
+        .expect("sh runs")
+}
+
+#[test]
+fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
+    // 4000 x 4000 pixels need 2.5 GB: the machine may have them, a process under `ulimit -v
+    // 1500000` (or `-d`) has not. Only MemAvailable was asked, and the render aborted on allocation.
+    let d = dir("ulimit");
+    for (limit, words) in [("-v 1500000", "ulimit -v"), ("-d 1500000", "ulimit -d")] {
+        let args = [
+            "render", "quads", "--width", "4000", "--spp", "1", "-o", "q.png",
+        ];
+        let out = rtl_under_ulimit(&d, limit, &args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "ulimit {limit}: {err}");
+        for w in ["--width 4000", "4000x4000", "2.5 GB", words] {
+            assert!(err.contains(w), "ulimit {limit}: wanted {w:?} in: {err}");
+        }
+        assert!(files(&d).is_empty());
+    }
+    // within the limit, the same process renders
+    let out = rtl_under_ulimit(
+        &d,
+        "-v 1500000",
+        &[
+            "render", "quads", "--width", "64", "--spp", "1", "-o", "q.png",
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 #[test]
 fn extreme_aspect_ratios_in_a_scene_file_are_refused_with_their_place() {
     let d = dir("aspect");

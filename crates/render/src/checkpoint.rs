@@ -378,7 +378,7 @@ impl Checkpoint {
     /// give bytes without end) no larger than the memory available
     /// ([`crate::limits::available_memory`]), by [`crate::limits::read_regular_file`].
     pub fn read(path: &Path) -> Result<Checkpoint, CheckpointError> {
-        let max = crate::limits::available_memory().unwrap_or(u64::MAX);
+        let max = crate::limits::available_memory().map_or(u64::MAX, |a| a.bytes);
         let bytes = crate::limits::read_regular_file(path, "checkpoint", max)
             .map_err(CheckpointError::Read)?;
         Checkpoint::from_bytes(&bytes, path)

@@ -65,7 +65,8 @@
 //! expanded and nests groups at most [`MAX_NESTING`](crate::limits::MAX_NESTING) deep, counted as each
 //! object is read (an instance counts again every object of the group it places), so that a few
 //! kilobytes of instances of instances are refused at the object that crosses the limit, before
-//! anything is expanded; scene and texture files are regular files of bounded size, and an image
+//! anything is expanded; scene and texture files are regular files of bounded size, a scene file one
+//! the TOML reader can hold within 2 GiB and the memory available (bounded from its text), and an image
 //! texture's size is read from its header before it is decoded. [`load_str`] is the entry point
 //! without the file system (the fuzz target's); [`load_file`] reads a file. The parts: `doc.rs` (the document's serde
 //! types), `span.rs` (places and the typed [`SceneFileError`]), `values.rs` (numbers, vectors,
@@ -109,14 +110,62 @@ pub fn load_file(path: &Path) -> Result<SceneFile, SceneFileError> {
         crate::limits::read_regular_file(path, "scene file", crate::limits::MAX_SCENE_FILE_BYTES)
             .map_err(read_error)?;
     let text = String::from_utf8(bytes).map_err(|e| {
-        read_error(format!(
-            "{}: cannot read scene file: it is not UTF-8 text (byte {} is not)",
-            path.display(),
-            e.utf8_error().valid_up_to()
-        ))
+        // The place of the first byte that is not UTF-8, as a syntax error's (the text before it is)
+        let at = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
+        let (line, col) = line_col(before, at);
+        SceneFileError::Syntax {
+            place: Place {
+                file: path.to_path_buf(),
+                line,
+                col,
+            },
+            message: format!(
+                "not UTF-8 text: byte {at} (0x{:02x}) is not part of a UTF-8 character (a scene \
+                 file is TOML, which is UTF-8: save it as UTF-8)",
+                bytes[at]
+            ),
+        }
     })?;
     let dir = path.parent().unwrap_or(Path::new(""));
-    load_str(&text, &path.display().to_string(), dir)
+    let name = path.display().to_string();
+    reading_fits(&text, &name, crate::limits::available_memory())?;
+    load_str(&text, &name, dir)
+}
+
+/// Refuse `text` (the file `name`) if the TOML reader would take more memory to hold it than
+/// [`MAX_SCENE_READ_BYTES`](crate::limits::MAX_SCENE_READ_BYTES) or than is `available`, as
+/// [`toml_read_bytes`](crate::limits::toml_read_bytes) bounds it: before it is read, rather than
+/// abort (or be killed) on an allocation half-way.
+fn reading_fits(
+    text: &str,
+    name: &str,
+    available: Option<crate::limits::Available>,
+) -> Result<(), SceneFileError> {
+    use crate::limits::{Bytes, MAX_SCENE_READ_BYTES, toml_read_bytes};
+    let needed = toml_read_bytes(text);
+    let beyond = if needed > MAX_SCENE_READ_BYTES {
+        format!(
+            "more than the {} a scene file may take (its tables, arrays, keys and list elements \
+             cost memory, inline tables most: about 1.3 kB each)",
+            Bytes(MAX_SCENE_READ_BYTES)
+        )
+    } else {
+        match available {
+            Some(a) if needed > a.bytes => format!("but {a}"),
+            _ => return Ok(()),
+        }
+    };
+    Err(SceneFileError::Read {
+        path: name.into(),
+        message: format!(
+            "{name}: cannot read scene file: its {} of text would take the TOML reader up to {} of \
+             memory, {beyond}",
+            Bytes(text.len() as u64),
+            Bytes(needed)
+        ),
+    })
 }
 
 /// Build the scene described by `text`. `name` names the file in errors (`name:line:col: ...`), and
@@ -124,6 +173,7 @@ pub fn load_file(path: &Path) -> Result<SceneFile, SceneFileError> {
 /// scene-file fuzz target: whatever `text` is, this returns, without a panic.
 pub fn load_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneFile, SceneFileError> {
     let file = Path::new(name);
+    reading_fits(text, name, None)?;
     let root = DeTable::parse(text).map_err(|e| SceneFileError::syntax(file, text, &e))?;
     Loader::new(base_dir.to_path_buf(), text)
         .load(root)
@@ -148,6 +198,29 @@ mod tests {
             .unwrap();
         assert!(err.to_string().starts_with("bad.toml:2:"), "{err}");
         assert_eq!(err.place().map(|p| p.line), Some(2));
+    }
+
+    #[test]
+    fn a_file_is_read_only_within_the_memory_available() {
+        use crate::limits::{Available, MemoryLimit, toml_read_bytes};
+        let text = "[camera]\nlookfrom = [0, 0, 5]\nlookat = [0, 0, 0]\n";
+        let needed = toml_read_bytes(text);
+        let left = |bytes| {
+            Some(Available {
+                bytes,
+                limit: MemoryLimit::AddressSpace,
+            })
+        };
+        assert!(reading_fits(text, "s.toml", left(needed)).is_ok());
+        assert!(reading_fits(text, "s.toml", None).is_ok());
+        let e = reading_fits(text, "s.toml", left(needed - 1))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("s.toml: cannot read scene file: its 49 B of text")
+                && e.contains("ulimit -v"),
+            "{e}"
+        );
     }
 
     #[test]

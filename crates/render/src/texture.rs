@@ -134,13 +134,12 @@ impl ImageData {
         };
         let needed = decoder.total_bytes() + rgb8 + 12 * n;
         if let Some(available) = limits::available_memory()
-            && needed > available
+            && needed > available.bytes
         {
             return Err(format!(
                 "{name}: the image is {w} x {h} pixels, which needs {} of memory to decode, but \
-                 this machine has {} available (MemAvailable in /proc/meminfo)",
-                Bytes(needed),
-                Bytes(available)
+                 {available}",
+                Bytes(needed)
             ));
         }
         let rgb = DynamicImage::from_decoder(decoder)

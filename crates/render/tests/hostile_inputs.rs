@@ -268,8 +268,45 @@ fn two_hundred_thousand_spheres_load() {
         ));
     }
     assert!(text.len() as u64 <= MAX_SCENE_FILE_BYTES);
+    // the bound of the reader's memory admits a file of spheres as large as a file may be
+    let scale = MAX_SCENE_FILE_BYTES as f64 / text.len() as f64;
+    assert!(
+        limits::toml_read_bytes(&text) as f64 * scale <= limits::MAX_SCENE_READ_BYTES as f64,
+        "{}",
+        limits::toml_read_bytes(&text)
+    );
     let file = load(&text).unwrap();
     assert_eq!(limits::expanded_objects(&file.built.scene), 200_000);
+}
+
+#[test]
+fn a_file_the_toml_reader_would_take_gigabytes_to_hold_is_refused_before_it_is_read() {
+    // 7.2 MB of one-key inline tables, within the 32 MiB a scene file may be: the reader took 1.4 kB
+    // for each (1.7 GB here; 32 MiB of them took 8 GB, which aborted or was killed where the memory
+    // was short, after seconds of reading).
+    let text = format!("lights = [{}]\n", vec!["{a=1}"; 1_200_000].join(","));
+    assert!(text.len() as u64 <= MAX_SCENE_FILE_BYTES);
+    let start = Instant::now();
+    let e = load(&text).err().expect("refused");
+    assert!(
+        e.starts_with("some/dir/bad.toml: cannot read scene file: its 7.2 MB of text")
+            && e.contains("more than the 2.1 GB a scene file may take")
+            && e.contains("inline tables"),
+        "{e}"
+    );
+    assert!(
+        start.elapsed() < Duration::from_secs(1),
+        "{:?}",
+        start.elapsed()
+    );
+    // so are long lists of arrays and of numbers, at their own costs
+    for item in ["[[1]]", "0"] {
+        let n = (limits::MAX_SCENE_READ_BYTES / limits::toml_read_bytes(&format!("{item},"))) + 1;
+        let text = format!("x = [{}]", vec![item; n as usize].join(","));
+        assert!(text.len() as u64 <= MAX_SCENE_FILE_BYTES, "{item}");
+        let e = load(&text).err().expect("refused");
+        assert!(e.contains("cannot read scene file"), "{e}");
+    }
 }
 
 /// A PNG of `width x height` 8-bit RGB pixels as far as its header says (the signature, the IHDR
@@ -429,6 +466,31 @@ fn files_that_are_not_regular_files_or_too_large_are_refused() {
             )),
         "{err}"
     );
+
+    // Bytes that are not UTF-8, named by line and column as a syntax error (it was "byte 40").
+    let latin1 = dir.join("latin1.toml");
+    std::fs::write(
+        &latin1,
+        b"# a scene\ndescription = \"caf\xe9 \xe0 Paris\"\n",
+    )
+    .unwrap();
+    let e = scene_file::load_file(&latin1).err().unwrap();
+    assert_eq!(e.place().map(|p| (p.line, p.col)), Some((2, 19)), "{e}");
+    let e = e.to_string();
+    assert!(
+        e.starts_with(&format!(
+            "{}:2:19: not UTF-8 text: byte 28 (0xe9)",
+            latin1.display()
+        )),
+        "{e}"
+    );
+    // a byte-order mark and CRLF line ends are UTF-8 TOML like any other
+    let bom = dir.join("bom.toml");
+    let text = format!(
+        "\u{feff}{HEAD}[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"white\"\n"
+    );
+    std::fs::write(&bom, text.replace('\n', "\r\n")).unwrap();
+    assert!(scene_file::load_file(&bom).is_ok());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -383,6 +383,20 @@ fn a_bad_camera_is_an_error() {
         "camera.vfov",
         "vfov must lie in (0, 180)",
     );
+    // A focus distance below 1e-30, like every quantity that must be positive: its rays' squared
+    // lengths would underflow (it was taken down to 5e-324, and the image was the background).
+    for (focus, words) in [
+        ("1e-31", "focus_dist must be at least 1e-30, got 1e-31"),
+        ("5e-324", "focus_dist must be at least 1e-30"),
+        ("-0.0", "focus_dist must be positive"),
+    ] {
+        error_at(
+            &BASE.replace("[camera]", &format!("[camera]\nfocus_dist = {focus}")),
+            2,
+            "camera.focus_dist",
+            words,
+        );
+    }
     error_at(
         &BASE.replace("[camera]", "[camera]\nshutter = [1, 0.5]"),
         2,
@@ -627,4 +641,54 @@ fn albedos_above_one_are_refused_where_they_stand() {
         "[materials]\nlamp = { type = \"light\", emit = [1e6, 1e6, 1e6] }\n",
     );
     assert!(load(&bright).is_ok());
+}
+
+#[test]
+fn a_control_character_in_a_name_or_description_is_an_error() {
+    // An escape sequence in a description would act on the terminal `--explain` prints it to.
+    error_at(
+        &format!("description = \"red \\u001b[31m\"\n{BASE}"),
+        1,
+        "description",
+        "control character (U+001B)",
+    );
+    // In a key (quoted), at any depth, and in a name: the same.
+    let lines = BASE.lines().count();
+    error_at(
+        &format!("{BASE}\"ra\\u009bdius\" = 1\n"),
+        lines + 1,
+        "",
+        "control character (U+009B) in a key",
+    );
+    // Tabs and line ends are text.
+    load(&format!(
+        "description = \"\"\"two\tlines\r\nof it\"\"\"\n{BASE}"
+    ))
+    .unwrap();
+}
+
+#[test]
+fn a_sphere_too_large_to_place_for_the_camera_is_an_error() {
+    // A floor of radius 1e17 under a camera 5 from what it looks at: doubles there are 16 apart, and
+    // the image came out black. Refused, at the radius.
+    let floor = |r: &str| {
+        format!(
+            "{BASE}\n[[objects]]\ntype = \"sphere\"\ncenter = [0, -{r}, 0]\nradius = {r}\nmaterial = \"white\"\n"
+        )
+    };
+    let line = BASE.lines().count() + 5;
+    error_at(
+        &floor("1e17"),
+        line,
+        "objects[1].radius",
+        "cannot be placed finely enough",
+    );
+    // The book's floor (radius 1000) and one of 1e12 are fine; so is a sphere of radius 1e20 seen
+    // from its own scale.
+    load(&floor("1000")).unwrap();
+    load(&floor("1e12")).unwrap();
+    let far = BASE
+        .replace("lookfrom = [0, 0, 5]", "lookfrom = [0, 0, 5e20]")
+        .replace("radius = 1\n", "radius = 1e20\n");
+    load(&far).unwrap();
 }

@@ -250,3 +250,40 @@ pub(super) struct TargetQuadDoc {
     pub(super) u: Spanned<V3>,
     pub(super) v: Spanned<V3>,
 }
+
+/// Refuses a control character (other than tab, line feed and carriage return) in any key or string
+/// of the document: names and descriptions are printed to a terminal (`--explain`, errors), where an
+/// escape sequence would act rather than show.
+pub(super) fn plain_text(t: &DeTable<'_>) -> Result<(), Fail> {
+    fn control(s: &str) -> Option<char> {
+        s.chars()
+            .find(|&c| c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
+    }
+    fn refuse(span: Span, what: &str, c: char) -> Result<(), Fail> {
+        fail(
+            span,
+            format!(
+                "a control character (U+{:04X}) in {what}: a scene file's text must print as it reads",
+                c as u32
+            ),
+        )
+    }
+    fn value(v: &Val<'_>) -> Result<(), Fail> {
+        match v.get_ref() {
+            DeValue::String(s) => match control(s) {
+                Some(c) => refuse(v.span(), "a string", c),
+                None => Ok(()),
+            },
+            DeValue::Table(t) => plain_text(t),
+            DeValue::Array(a) => a.iter().try_for_each(value),
+            _ => Ok(()),
+        }
+    }
+    for (k, v) in t.iter() {
+        if let Some(c) = control(k.get_ref()) {
+            return refuse(k.span(), "a key", c);
+        }
+        value(v)?;
+    }
+    Ok(())
+}

@@ -6,7 +6,7 @@ use super::SceneFile;
 use super::doc::{
     AlbedoDoc, CameraDoc, CheckerDoc, DielectricDoc, ImageDoc, LightDoc, MATERIAL_TYPES, MarbleDoc,
     MetalDoc, RenderDoc, SolidDoc, TEXTURE_TYPES, TOP_KEYS, Typed, de, de_table, in_file_order,
-    take, typed,
+    plain_text, take, typed,
 };
 use super::span::{Fail, Span, Val, fail, line_col};
 use super::values::{Aspect, BackgroundSpec, ColorSpec, Num, Real, Step, V3, compose};
@@ -175,6 +175,7 @@ impl<'t> Loader<'t> {
 
     pub(super) fn load(mut self, root: Spanned<DeTable<'_>>) -> Result<SceneFile, Fail> {
         let mut t = root.into_inner();
+        plain_text(&t)?;
         for (k, _) in t.iter() {
             if !TOP_KEYS.contains(&k.get_ref().as_ref()) {
                 return fail(
@@ -333,13 +334,12 @@ impl<'t> Loader<'t> {
                 ),
             );
         }
-        let (focus_dist, fd_span) = real(&c.focus_dist, d.focus_dist);
-        if focus_dist <= 0.0 {
-            return fail(
-                fd_span,
-                format!("focus_dist must be positive, got {}", Num(focus_dist)),
-            );
-        }
+        // (at least MIN_POSITIVE, as every quantity that must be positive: at 1e-300 the camera's
+        // ray directions, of that length, have squares that underflow to 0)
+        let focus_dist = match &c.focus_dist {
+            Some(f) => positive(f, "focus_dist")?,
+            None => d.focus_dist,
+        };
         let (lookfrom, lookat) = (c.lookfrom.get_ref().0, c.lookat.get_ref().0);
         let view = lookfrom - lookat;
         if lookfrom == lookat {

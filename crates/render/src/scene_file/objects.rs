@@ -7,10 +7,12 @@ use super::doc::{
 };
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
-use super::values::{Num, Step};
+use super::values::{Num, Real, Step};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::shapes::{Quad, Sphere};
+use crate::vec::Point3;
+use toml::Spanned;
 use toml::de::DeTable;
 
 impl Loader<'_> {
@@ -46,6 +48,7 @@ impl Loader<'_> {
         let m = self.material_id(&d.material)?;
         let r = positive(&d.radius, "radius")?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.placeable(&[p.to_world.point(d.center.0)], r, &d.radius)?;
         self.count(p.group, None, &span, "this sphere")?;
         self.b
             .sphere(p.group, d.center.0, r, m)
@@ -53,6 +56,33 @@ impl Loader<'_> {
         self.place(into, &p, &span, "this sphere")?;
         let world = Sphere::new(p.to_world.point(d.center.0), r, m);
         self.name(d.name, Named::Sphere(world))
+    }
+
+    /// Refuses a sphere whose surface doubles cannot place finely enough for the camera: the
+    /// spacing of doubles at its farthest coordinate (a world-space `centers`' largest plus the
+    /// radius `r`) more than 1/1024 of the camera's distance to what it looks at. Its hits would be
+    /// off by about that much (a floor of radius 1e17 seen from 10 away rendered black).
+    fn placeable(&self, centers: &[Point3], r: f64, radius: &Spanned<Real>) -> Result<(), Fail> {
+        let c = &self.b.camera;
+        let view = (c.lookfrom - c.lookat).length();
+        let far = centers
+            .iter()
+            .map(|p| p.abs().max_element())
+            .fold(0.0, f64::max)
+            + r;
+        let spacing = far.next_up() - far;
+        if spacing > view / 1024.0 {
+            return fail(
+                radius.span(),
+                format!(
+                    "a sphere reaching {far:.3e} from the origin cannot be placed finely enough for \
+                     this camera: doubles there are {spacing:.3e} apart, more than 1/1024 of the \
+                     camera's distance to lookat ({view:.3e}), so its hits would be that far off; \
+                     a floor this large is better a quad"
+                ),
+            );
+        }
+        Ok(())
     }
 
     /// `moving_sphere`: `center0` at time 0, `center1` at time 1, `radius`.
@@ -72,6 +102,7 @@ impl Loader<'_> {
         let motion = d.center1.0 - d.center0.0;
         let (c0, c1) = (d.center0.0 + open * motion, d.center0.0 + close * motion);
         let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.placeable(&[p.to_world.point(c0), p.to_world.point(c1)], r, &d.radius)?;
         self.count(p.group, None, &span, "this moving sphere")?;
         self.b
             .moving_sphere(p.group, c0, c1, r, m)
