@@ -472,11 +472,20 @@ pub fn image_grid(
     cols: usize,
 ) -> Result<()> {
     register_fonts();
-    let (gap, label_h) = (12usize, GRID_LABEL_PX as usize + 14);
+    let gap = 12usize;
     let cols = cols.clamp(1, panels.len().max(1));
     let rows = panels.len().div_ceil(cols);
     let cw = panels.iter().map(|p| p.width).max().unwrap_or(1) * scale;
     let ch = panels.iter().map(|p| p.height).max().unwrap_or(1) * scale;
+    // Each label in lines no wider than its picture (a long one would run into its neighbour's),
+    // and the band under every row as tall as its most lines.
+    let label_lines: Vec<Vec<String>> = panels
+        .iter()
+        .map(|p| wrap(&p.label, cw as u32, |s| text_size(s, GRID_LABEL_PX).0))
+        .collect();
+    let line_h = (GRID_LABEL_PX * 5 / 4) as usize;
+    let most = label_lines.iter().map(Vec::len).max().unwrap_or(1);
+    let label_h = most * line_h + 14 - (line_h - GRID_LABEL_PX as usize);
     let w = cols * cw + (cols + 1) * gap;
     // the title, and 11 pixels more above the pictures than a chart leaves
     let title_h = title_height(title, w as u32, GRID_TITLE_PX) as usize + 11;
@@ -499,15 +508,17 @@ pub fn image_grid(
                 .map_err(|e| anyhow!("{e}"))?;
             }
         }
-        root.draw_text(
-            &p.label,
-            &label_style,
-            (
-                (x0 + p.width * scale / 2) as i32,
-                (y0 + p.height * scale + 6) as i32,
-            ),
-        )
-        .map_err(|e| anyhow!("{e}"))?;
+        for (k, line) in label_lines[i].iter().enumerate() {
+            root.draw_text(
+                line,
+                &label_style,
+                (
+                    (x0 + p.width * scale / 2) as i32,
+                    (y0 + p.height * scale + 6 + k * line_h) as i32,
+                ),
+            )
+            .map_err(|e| anyhow!("{e}"))?;
+        }
     }
     root.present()
         .with_context(|| format!("writing {}", path.display()))?;
@@ -517,6 +528,37 @@ pub fn image_grid(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_grid_label_longer_than_its_picture_wraps_under_it() {
+        let dir = std::env::temp_dir().join(format!("rtl-grid-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let panel = |label: &str| Panel {
+            width: 40,
+            height: 40,
+            rgb: vec![128; 40 * 40 * 3],
+            label: label.to_string(),
+        };
+        let height = |label: &str| {
+            let path = dir.join("grid.png");
+            image_grid(&path, "t", &[panel("a"), panel(label)], 4, 2).unwrap();
+            image::image_dimensions(&path).unwrap()
+        };
+        let (w, short) = height("short");
+        let long =
+            "noise without connections (--no-manifold): c = 0.222, a label wider than 160 px";
+        let (w2, tall) = height(long);
+        // The same width (nothing runs into the neighbour), and a taller band for the extra lines.
+        assert_eq!(w, w2);
+        assert!(tall >= short + GRID_LABEL_PX, "{short} -> {tall}");
+        let lines = wrap(long, 160, |s| text_size(s, GRID_LABEL_PX).0);
+        assert!(lines.len() >= 2, "{lines:?}");
+        assert!(
+            lines.iter().all(|l| text_size(l, GRID_LABEL_PX).0 <= 160),
+            "{lines:?}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn slope_of_a_power_law_is_its_exponent() {
