@@ -43,7 +43,7 @@ mod selection;
 mod target;
 pub mod warp;
 
-pub use hittable::HittablePdf;
+pub use hittable::{HittablePdf, MAX_CANDIDATES, ShapeIndex};
 pub use mis::{balance_heuristic, power_heuristic};
 pub use mixture::{MixtureError, MixtureOfPdfs, MixturePdf};
 pub use onb::Onb;

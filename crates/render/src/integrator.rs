@@ -228,14 +228,14 @@ pub fn sample_diffuse(
         (Strategy::Uniform, ScatterPdf::Cosine(_)) => {
             weighted(HemispherePdf::new(normal).sample(u)?)
         }
-        (Strategy::Light, _) => match HittablePdf::new(p, &lights.all) {
+        (Strategy::Light, _) => match lights.towards_all(p) {
             // With no targets there is nothing to aim at: sample the material.
             None => Some((pdf.sample(u)?.direction, 1.0)),
             Some(towards) => weighted(towards.sample(u)?),
         },
         // (`mis` has its own integrator; were it asked here, it would get the mixture.)
         // `mixture_weight` was checked to be in (0, 1) when the renderer was built.
-        (Strategy::Mixture, _) | (Strategy::Mis(_), _) => match HittablePdf::new(p, &lights.all) {
+        (Strategy::Mixture, _) | (Strategy::Mis(_), _) => match lights.towards_all(p) {
             None => Some((pdf.sample(u)?.direction, 1.0)),
             Some(towards) => weighted(
                 MixturePdf::with_weight(towards, *pdf, mixture_weight)

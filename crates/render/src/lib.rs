@@ -61,6 +61,7 @@ pub mod scene;
 pub mod scene_file;
 pub mod scenes;
 pub mod shapes;
+pub mod target_index;
 pub mod texture;
 pub mod tier_race;
 pub mod transform;

@@ -21,6 +21,7 @@ use crate::limits::{MAX_NESTING, WalkBudget};
 use crate::manifold::{FoundShape, Manifold};
 use crate::material::{Albedo, Material};
 use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, Scene, Transform};
+use crate::target_index::{INDEX_FROM, TargetIndex};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
 use rtl_pdf::{DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeSampler, SphereTarget};
@@ -102,12 +103,35 @@ pub struct Lights {
     /// The dielectric spheres that light reaches the inside of only by refraction, and the emitters
     /// to connect to through them ([`crate::manifold`]).
     pub manifold: Manifold,
+    /// A hierarchy over `emitters` when they are [`INDEX_FROM`] or more.
+    pub emitter_index: Option<TargetIndex>,
+    /// A hierarchy over `all` when it holds [`INDEX_FROM`] targets or more.
+    pub all_index: Option<TargetIndex>,
+}
+
+/// `targets` seen from `x` uniformly (`None` if empty), through `index` if there is one.
+#[inline]
+fn uniform<'a>(
+    x: Point3,
+    targets: &'a [LightTarget],
+    index: &'a Option<TargetIndex>,
+) -> Option<HittablePdf<'a, LightTarget>> {
+    let h = HittablePdf::new(x, targets)?;
+    Some(match index {
+        Some(i) => h.with_index(i),
+        None => h,
+    })
+}
+
+/// A hierarchy over `targets` if the list is long enough to need one.
+fn index_of(targets: &[LightTarget]) -> Option<TargetIndex> {
+    (targets.len() >= INDEX_FROM).then(|| TargetIndex::new(targets))
 }
 
 /// The most emitters whose choice is weighed per shading point: their probabilities live in a
 /// fixed-size array on the stack ([`EmitterPmf`]). Scenes with more keep the uniform choice (the
-/// weights would cost `O(n)` per vertex on top of the `O(n)` density; a light tree is what such
-/// scenes need).
+/// weights would cost `O(n)` per vertex, where the density costs `O(log n)` through
+/// [`TargetIndex`]; a light tree is what such scenes need).
 pub const MAX_WEIGHED_EMITTERS: usize = 16;
 
 /// The share of next-event estimation's choice spread uniformly over the emitters that can
@@ -291,7 +315,16 @@ impl Lights {
                 .emitter_weights
                 .push(EmitterWeight::new(&target, radiance));
         }
+        lights.emitter_index = index_of(&lights.emitters);
+        lights.all_index = index_of(&lights.all);
         lights
+    }
+
+    /// The book's list seen from `x`, each target chosen with probability `1 / n` (`None` if the
+    /// list is empty): what `light` and `mixture` aim at.
+    #[inline]
+    pub fn towards_all(&self, x: Point3) -> Option<HittablePdf<'_, LightTarget>> {
+        uniform(x, &self.all, &self.all_index)
     }
 
     /// Whether next-event estimation weighs its choice of emitter per shading point: two emitters or
@@ -323,7 +356,7 @@ impl Lights {
         pmf: &'a mut EmitterPmf,
     ) -> Option<HittablePdf<'a, LightTarget>> {
         if !self.weighs_emitters() {
-            return HittablePdf::new(x, &self.emitters);
+            return uniform(x, &self.emitters, &self.emitter_index);
         }
         let n = self.emitters.len();
         let pmf = &mut pmf[..n];
@@ -367,7 +400,7 @@ impl Lights {
             self.sample_weighed(x, u)
         } else {
             // (no probabilities to keep: the common case of one emitter pays nothing for them)
-            HittablePdf::new(x, &self.emitters)?.sample(u)
+            uniform(x, &self.emitters, &self.emitter_index)?.sample(u)
         }
     }
 
@@ -378,7 +411,7 @@ impl Lights {
         if self.weighs_emitters() {
             self.pdf_weighed(x, direction)
         } else {
-            HittablePdf::new(x, &self.emitters).map_or(0.0, |h| h.pdf(direction))
+            uniform(x, &self.emitters, &self.emitter_index).map_or(0.0, |h| h.pdf(direction))
         }
     }
 
@@ -408,6 +441,11 @@ impl Lights {
                 ", each chosen per shading point in proportion to its radiance x the solid angle it \
                  subtends there ({:.0}% spread uniformly)",
                 100.0 * UNIFORM_SHARE
+            )
+        } else if self.emitter_index.is_some() {
+            format!(
+                ", chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters); a direction's \
+                 density adds only the emitters a hierarchy over them says it may meet"
             )
         } else {
             format!(", chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters)")
