@@ -692,3 +692,14 @@ fn a_sphere_too_large_to_place_for_the_camera_is_an_error() {
         .replace("radius = 1\n", "radius = 1e20\n");
     load(&far).unwrap();
 }
+
+#[test]
+fn a_target_listed_twice_is_an_error() {
+    error_at(
+        &format!("lights = [\"ball\", \"ball\"]\n{BASE}"),
+        1,
+        "lights[1]",
+        "`ball` is already in `lights` (at line 1:11)",
+    );
+    load(&format!("lights = [\"ball\"]\n{BASE}")).unwrap();
+}

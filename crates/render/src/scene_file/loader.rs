@@ -239,7 +239,22 @@ impl<'t> Loader<'t> {
             self.object(world, o, Transform::IDENTITY)?;
         }
         if let Some(lights) = take(&mut t, "lights") {
+            // Each named target once: listed twice it would only take twice the share of the
+            // samples (and a list of one name a million times, a million times the work a vertex).
+            let mut listed: HashMap<String, usize> = HashMap::new();
             for l in self.array(lights, "a list of object names or shapes")? {
+                if let Some(name) = l.get_ref().as_str() {
+                    if let Some(&first) = listed.get(name) {
+                        return fail(
+                            l.span(),
+                            format!(
+                                "`{name}` is already in `lights` (at {}): list each target once",
+                                self.at(first)
+                            ),
+                        );
+                    }
+                    listed.insert(name.to_owned(), l.span().start);
+                }
                 self.light(l)?;
             }
         }
