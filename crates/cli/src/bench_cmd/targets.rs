@@ -38,6 +38,10 @@ pub(super) struct TargetsArgs {
     /// Where the patched copies of the book's code, the builds and the images go.
     #[arg(long, default_value = "target/bench-compare")]
     scratch: PathBuf,
+    /// Also write the verdicts as a Markdown section (the processor, the date, the command, one row
+    /// a target and tier) to this file, for `book/src/figures/render-speed.md`.
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<PathBuf>,
 }
 
 /// Issue 16's targets.
@@ -327,7 +331,40 @@ fn summary(cpu: &str, outcomes: &[Outcome]) -> Vec<String> {
     lines
 }
 
+/// The verdicts as a Markdown section: a heading with the processor and `date`, the `command`, and
+/// a table of one row a target and tier.
+fn markdown(cpu: &str, date: &str, command: &str, outcomes: &[Outcome]) -> String {
+    let mut out = format!(
+        "### `rtl bench targets` on {cpu}, {date}\n\n```sh\n{command}\n```\n\n\
+         | target | rtl | median (lowest-highest) | goal | verdict |\n|---|---|---|---|---|\n"
+    );
+    for o in outcomes {
+        let (t, s) = (o.target, &o.spread);
+        out += &format!(
+            "| {} | `{}` | {} ({}-{}) | {} | {} |\n",
+            t.what(),
+            o.renderer,
+            t.show(s.median),
+            t.show(s.lowest),
+            t.show(s.highest),
+            t.goal_text(),
+            o.verdict.words()
+        );
+    }
+    out
+}
+
 pub(super) fn run(a: TargetsArgs) -> Result<()> {
+    if let Some(path) = &a.markdown {
+        // Found before 17 minutes of measuring, not after.
+        let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
+        if dir.is_some_and(|d| !d.is_dir()) || path.is_dir() {
+            anyhow::bail!(
+                "--markdown {}: not a file in a directory that exists",
+                path.display()
+            );
+        }
+    }
     let planned = plan(&a, HitTier::detected())?;
     let cpu = cpu_model();
     let mut all = Vec::new();
@@ -344,8 +381,22 @@ pub(super) fn run(a: TargetsArgs) -> Result<()> {
         all.extend(outcomes(target, &measured, cores));
         println!();
     }
-    for line in summary(&format!("{cpu} ({} logical cores)", num_cores()), &all) {
+    let machine = format!("{cpu} ({} logical cores)", num_cores());
+    for line in summary(&machine, &all) {
         println!("{line}");
+    }
+    if let Some(path) = &a.markdown {
+        let command: Vec<String> = std::env::args().collect();
+        let date = std::process::Command::new("date")
+            .args(["-u", "+%Y-%m-%d %H:%M UTC"])
+            .output()
+            .ok()
+            .and_then(|o| String::from_utf8(o.stdout).ok())
+            .map(|s| s.trim().to_string())
+            .unwrap_or_default();
+        std::fs::write(path, markdown(&machine, &date, &command.join(" "), &all))
+            .with_context(|| format!("writing {}", path.display()))?;
+        println!("wrote {}", path.display());
     }
     Ok(())
 }
@@ -390,6 +441,35 @@ mod tests {
             spp: 64,
             note: String::new(),
         }
+    }
+
+    #[test]
+    fn the_markdown_section_names_the_machine_the_command_and_each_verdict() {
+        let o = Outcome {
+            target: Target::Mixture,
+            renderer: "rtl mixture (--hit-tier avx2)".into(),
+            spread: spread(&[3.9, 4.1, 4.2]),
+            verdict: Verdict::InTheMedian,
+        };
+        let md = markdown(
+            "AMD EPYC, AuthenticAMD family 25 model 1, AVX2",
+            "2026-12-05 10:00 UTC",
+            "rtl bench targets --book /b",
+            &[o],
+        );
+        assert!(md.starts_with(
+            "### `rtl bench targets` on AMD EPYC, AuthenticAMD family 25 model 1, AVX2, 2026-12-05"
+        ));
+        assert!(
+            md.contains("```sh\nrtl bench targets --book /b\n```"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| `rtl mixture (--hit-tier avx2)` | 4.10x (3.90x-4.20x) | >= 4.00x | met in the median only"),
+            "{md}"
+        );
+        // a header, its rule and one row
+        assert_eq!(md.lines().filter(|l| l.starts_with('|')).count(), 3, "{md}");
     }
 
     #[test]
