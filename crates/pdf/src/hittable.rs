@@ -40,37 +40,6 @@ pub struct HittablePdf<'a, T: ShapeSampler> {
     index: Option<&'a dyn ShapeIndex>,
 }
 
-impl<T: ShapeSampler + std::fmt::Debug> std::fmt::Debug for HittablePdf<'_, T> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("HittablePdf")
-            .field("origin", &self.origin)
-            .field("targets", &self.targets)
-            .field("choice", &self.choice)
-            .field("indexed", &self.index.is_some())
-            .finish()
-    }
-}
-
-/// The most shapes a [`ShapeIndex`] names for one direction; past it the list is walked whole.
-pub const MAX_CANDIDATES: usize = 32;
-
-/// Which shapes of a list a direction from a point may meet: a superset of those whose density is
-/// positive there, so that a long list's density `sum_i p_i pdf_i(d)` adds only their terms (the
-/// others are 0). The terms are added in the list's order, so the sum is the same, to the bit, as
-/// over the whole list. A bounding-volume hierarchy of the shapes is one (pbrt-v4 and Mitsuba use
-/// one for their many lights too, there to choose as well).
-pub trait ShapeIndex {
-    /// Writes into `out`, in increasing order, the indices of every shape that the ray from
-    /// `origin` along `direction` may meet, and returns how many; `None` if they are more than
-    /// [`MAX_CANDIDATES`] (then every shape is evaluated).
-    fn candidates(
-        &self,
-        origin: DVec3,
-        direction: DVec3,
-        out: &mut [u32; MAX_CANDIDATES],
-    ) -> Option<usize>;
-}
-
 /// How a [`HittablePdf`] chooses its shape.
 #[derive(Clone, Copy, Debug)]
 enum Choosing<'a> {
@@ -149,31 +118,6 @@ impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
             choice: Choosing::Pmf(pmf),
             index: None,
         })
-    }
-
-    /// The same density, whose sums over the shapes add only those `index` says a direction may
-    /// meet (`index` must be built over these `targets`): `O(log n)` rather than `O(n)` a direction
-    /// for a long list, with the same result to the bit.
-    #[inline]
-    pub fn with_index(self, index: &'a dyn ShapeIndex) -> HittablePdf<'a, T> {
-        HittablePdf {
-            index: Some(index),
-            ..self
-        }
-    }
-
-    /// `f(j)` for every shape `j` whose density in `direction` may be positive, in increasing order:
-    /// the index's candidates, or every shape.
-    #[inline]
-    fn for_each_candidate(&self, direction: DVec3, mut f: impl FnMut(usize)) {
-        if let Some(index) = self.index {
-            let mut out = [0u32; MAX_CANDIDATES];
-            if let Some(k) = index.candidates(self.origin, direction, &mut out) {
-                out[..k].iter().for_each(|&j| f(j as usize));
-                return;
-            }
-        }
-        (0..self.targets.len()).for_each(f);
     }
 
     /// The point the directions start from.
@@ -262,3 +206,61 @@ impl<T: ShapeSampler> Pdf for HittablePdf<'_, T> {
     }
 }
 // ANCHOR_END: hittable_pdf
+
+impl<T: ShapeSampler + std::fmt::Debug> std::fmt::Debug for HittablePdf<'_, T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("HittablePdf")
+            .field("origin", &self.origin)
+            .field("targets", &self.targets)
+            .field("choice", &self.choice)
+            .field("indexed", &self.index.is_some())
+            .finish()
+    }
+}
+
+/// The most shapes a [`ShapeIndex`] names for one direction; past it the list is walked whole.
+pub const MAX_CANDIDATES: usize = 32;
+
+/// Which shapes of a list a direction from a point may meet: a superset of those whose density is
+/// positive there, so that a long list's density `sum_i p_i pdf_i(d)` adds only their terms (the
+/// others are 0). The terms are added in the list's order, so the sum is the same, to the bit, as
+/// over the whole list. A bounding-volume hierarchy of the shapes is one (pbrt-v4 and Mitsuba use
+/// one for their many lights too, there to choose as well).
+pub trait ShapeIndex {
+    /// Writes into `out`, in increasing order, the indices of every shape that the ray from
+    /// `origin` along `direction` may meet, and returns how many; `None` if they are more than
+    /// [`MAX_CANDIDATES`] (then every shape is evaluated).
+    fn candidates(
+        &self,
+        origin: DVec3,
+        direction: DVec3,
+        out: &mut [u32; MAX_CANDIDATES],
+    ) -> Option<usize>;
+}
+
+impl<'a, T: ShapeSampler> HittablePdf<'a, T> {
+    /// The same density, whose sums over the shapes add only those `index` says a direction may
+    /// meet (`index` must be built over these `targets`): `O(log n)` rather than `O(n)` a direction
+    /// for a long list, with the same result to the bit.
+    #[inline]
+    pub fn with_index(self, index: &'a dyn ShapeIndex) -> HittablePdf<'a, T> {
+        HittablePdf {
+            index: Some(index),
+            ..self
+        }
+    }
+
+    /// `f(j)` for every shape `j` whose density in `direction` may be positive, in increasing order:
+    /// the index's candidates, or every shape.
+    #[inline]
+    fn for_each_candidate(&self, direction: DVec3, mut f: impl FnMut(usize)) {
+        if let Some(index) = self.index {
+            let mut out = [0u32; MAX_CANDIDATES];
+            if let Some(k) = index.candidates(self.origin, direction, &mut out) {
+                out[..k].iter().for_each(|&j| f(j as usize));
+                return;
+            }
+        }
+        (0..self.targets.len()).for_each(f);
+    }
+}
