@@ -142,17 +142,28 @@ fn rtl_under_ulimit(d: &Path, limit: &str, args: &[&str]) -> Output {
 
 #[test]
 fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
-    // 4000 x 4000 pixels need 2.5 GB: the machine may have them, a process under `ulimit -v
-    // 1500000` (or `-d`) has not. Only MemAvailable was asked, and the render aborted on allocation.
+    // 2000 x 2000 pixels need 636 MB: the machine has them, a process under `ulimit -v 400000`
+    // (or `-d`) has not. Only MemAvailable was asked, and the render aborted on allocation. (A
+    // limit this low is surely the least of the limits, so the refusal names it on any machine
+    // a test runs on; two threads keep the pool's stacks within it.)
     let d = dir("ulimit");
-    for (limit, words) in [("-v 1500000", "ulimit -v"), ("-d 1500000", "ulimit -d")] {
+    for (limit, words) in [("-v 400000", "ulimit -v"), ("-d 400000", "ulimit -d")] {
         let args = [
-            "render", "quads", "--width", "4000", "--spp", "1", "-o", "q.png",
+            "render",
+            "quads",
+            "--width",
+            "2000",
+            "--spp",
+            "1",
+            "--threads",
+            "2",
+            "-o",
+            "q.png",
         ];
         let out = rtl_under_ulimit(&d, limit, &args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "ulimit {limit}: {err}");
-        for w in ["--width 4000", "4000x4000", "2.5 GB", words] {
+        for w in ["--width 2000", "2000x2000", words] {
             assert!(err.contains(w), "ulimit {limit}: wanted {w:?} in: {err}");
         }
         assert!(files(&d).is_empty());
@@ -160,9 +171,18 @@ fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
     // within the limit, the same process renders
     let out = rtl_under_ulimit(
         &d,
-        "-v 1500000",
+        "-v 400000",
         &[
-            "render", "quads", "--width", "64", "--spp", "1", "-o", "q.png",
+            "render",
+            "quads",
+            "--width",
+            "64",
+            "--spp",
+            "1",
+            "--threads",
+            "2",
+            "-o",
+            "q.png",
         ],
     );
     assert!(

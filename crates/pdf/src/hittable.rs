@@ -224,8 +224,8 @@ pub const MAX_CANDIDATES: usize = 32;
 /// Which shapes of a list a direction from a point may meet: a superset of those whose density is
 /// positive there, so that a long list's density `sum_i p_i pdf_i(d)` adds only their terms (the
 /// others are 0). The terms are added in the list's order, so the sum is the same, to the bit, as
-/// over the whole list. A bounding-volume hierarchy of the shapes is one (pbrt-v4 and Mitsuba use
-/// one for their many lights too, there to choose as well).
+/// over the whole list. A bounding-volume hierarchy of the shapes is one (pbrt-v4's
+/// `BVHLightSampler` keeps one over its lights, there to choose among them as well).
 pub trait ShapeIndex {
     /// Writes into `out`, in increasing order, the indices of every shape that the ray from
     /// `origin` along `direction` may meet, and returns how many; `None` if they are more than

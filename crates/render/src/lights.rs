@@ -130,8 +130,8 @@ fn index_of(targets: &[LightTarget]) -> Option<TargetIndex> {
 
 /// The most emitters whose choice is weighed per shading point: their probabilities live in a
 /// fixed-size array on the stack ([`EmitterPmf`]). Scenes with more keep the uniform choice (the
-/// weights would cost `O(n)` per vertex, where the density costs `O(log n)` through
-/// [`TargetIndex`]; a light tree is what such scenes need).
+/// weights would cost `O(n)` per vertex; the density costs `O(n)` too below [`INDEX_FROM`] emitters
+/// and `O(log n)` from there on, through [`TargetIndex`]; a light tree is what such scenes need).
 pub const MAX_WEIGHED_EMITTERS: usize = 16;
 
 /// The share of next-event estimation's choice spread uniformly over the emitters that can

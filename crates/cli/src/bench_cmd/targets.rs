@@ -331,6 +331,26 @@ fn summary(cpu: &str, outcomes: &[Outcome]) -> Vec<String> {
     lines
 }
 
+/// `secs` after the Unix epoch as `2026-12-05 10:49 UTC` (the proleptic Gregorian calendar, from
+/// the count of days: Hinnant's `civil_from_days`).
+fn utc(secs: u64) -> String {
+    let (days, rest) = ((secs / 86_400) as i64, secs % 86_400);
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
+        rest / 3600,
+        rest % 3600 / 60
+    )
+}
+
 /// The verdicts as a Markdown section: a heading with the processor and `date`, the `command`, and
 /// a table of one row a target and tier.
 fn markdown(cpu: &str, date: &str, command: &str, outcomes: &[Outcome]) -> String {
@@ -355,16 +375,14 @@ fn markdown(cpu: &str, date: &str, command: &str, outcomes: &[Outcome]) -> Strin
 }
 
 pub(super) fn run(a: TargetsArgs) -> Result<()> {
-    if let Some(path) = &a.markdown {
-        // Found before 17 minutes of measuring, not after.
-        let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
-        if dir.is_some_and(|d| !d.is_dir()) || path.is_dir() {
-            anyhow::bail!(
-                "--markdown {}: not a file in a directory that exists",
-                path.display()
-            );
-        }
-    }
+    // Opened before 17 minutes of measuring, so that a path that cannot be written is found first.
+    let mut markdown_file = match &a.markdown {
+        Some(path) => Some(
+            std::fs::File::create(path)
+                .with_context(|| format!("--markdown {}: cannot write it", path.display()))?,
+        ),
+        None => None,
+    };
     let planned = plan(&a, HitTier::detected())?;
     let cpu = cpu_model();
     let mut all = Vec::new();
@@ -385,16 +403,13 @@ pub(super) fn run(a: TargetsArgs) -> Result<()> {
     for line in summary(&machine, &all) {
         println!("{line}");
     }
-    if let Some(path) = &a.markdown {
+    if let (Some(path), Some(file)) = (&a.markdown, markdown_file.as_mut()) {
+        use std::io::Write as _;
         let command: Vec<String> = std::env::args().collect();
-        let date = std::process::Command::new("date")
-            .args(["-u", "+%Y-%m-%d %H:%M UTC"])
-            .output()
-            .ok()
-            .and_then(|o| String::from_utf8(o.stdout).ok())
-            .map(|s| s.trim().to_string())
-            .unwrap_or_default();
-        std::fs::write(path, markdown(&machine, &date, &command.join(" "), &all))
+        let now = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs());
+        file.write_all(markdown(&machine, &utc(now), &command.join(" "), &all).as_bytes())
             .with_context(|| format!("writing {}", path.display()))?;
         println!("wrote {}", path.display());
     }
@@ -441,6 +456,15 @@ mod tests {
             spp: 64,
             note: String::new(),
         }
+    }
+
+    #[test]
+    fn dates_are_the_calendars() {
+        assert_eq!(utc(0), "1970-01-01 00:00 UTC");
+        assert_eq!(utc(1_796_467_740), "2026-12-05 10:49 UTC");
+        assert_eq!(utc(951_868_740), "2000-02-29 23:59 UTC");
+        // a wrong calendar (no leap day in 2000) would put the next minute on 2000-03-01 00:00
+        assert_eq!(utc(951_868_800), "2000-03-01 00:00 UTC");
     }
 
     #[test]

@@ -518,7 +518,9 @@ mod tests {
             let want = heat(k as f64 / (HEAT_STEPS - 1) as f64);
             assert_eq!(c, &json!(want), "step {k}");
         }
-        assert_eq!(colours[0], json!(heat(0.0)));
-        assert_eq!(colours[HEAT_STEPS - 1], json!(heat(1.0)));
+        // The colour map's own stops, written out: dark blue, the green at 0.6, pale yellow.
+        assert_eq!(colours[0], json!([12, 7, 63]));
+        assert_eq!(colours[153], json!([25, 178, 127]));
+        assert_eq!(colours[HEAT_STEPS - 1], json!([255, 255, 229]));
     }
 }
