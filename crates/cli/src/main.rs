@@ -3,6 +3,7 @@
 //! chapter exercises.
 
 mod bench_cmd;
+mod calendar;
 mod csv;
 mod exercises_cmd;
 mod lab;

@@ -331,19 +331,10 @@ fn summary(cpu: &str, outcomes: &[Outcome]) -> Vec<String> {
     lines
 }
 
-/// `secs` after the Unix epoch as `2026-12-05 10:49 UTC` (the proleptic Gregorian calendar, from
-/// the count of days: Hinnant's `civil_from_days`).
+/// `secs` after the Unix epoch as `2026-12-05 10:49 UTC`.
 fn utc(secs: u64) -> String {
-    let (days, rest) = ((secs / 86_400) as i64, secs % 86_400);
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
+    let (year, month, day) = crate::calendar::civil_from_days((secs / 86_400) as i64);
+    let rest = secs % 86_400;
     format!(
         "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
         rest / 3600,
