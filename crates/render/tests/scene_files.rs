@@ -691,6 +691,14 @@ fn a_sphere_too_large_to_place_for_the_camera_is_an_error() {
         .replace("lookfrom = [0, 0, 5]", "lookfrom = [0, 0, 5e20]")
         .replace("radius = 1\n", "radius = 1e20\n");
     load(&far).unwrap();
+    // The scale is where the camera stands, not only where it looks: a lookat 1e-13 ahead of a
+    // camera 5 from a unit ball is fine, and so is the 1e17 floor seen from 1e16 above it (looking 1
+    // ahead).
+    load(&BASE.replace("lookat = [0, 0, 0]", "lookat = [0, 0, 4.9999999999999]")).unwrap();
+    let high = floor("1e17")
+        .replace("lookfrom = [0, 0, 5]", "lookfrom = [0, 1e16, 5]")
+        .replace("lookat = [0, 0, 0]", "lookat = [1, 1e16, 5]");
+    load(&high).unwrap();
 }
 
 #[test]

@@ -60,25 +60,33 @@ impl Loader<'_> {
 
     /// Refuses a sphere whose surface doubles cannot place finely enough for the camera: the
     /// spacing of doubles at its farthest coordinate (a world-space `centers`' largest plus the
-    /// radius `r`) more than 1/1024 of the camera's distance to what it looks at. Its hits would be
-    /// off by about that much (a floor of radius 1e17 seen from 10 away rendered black).
+    /// radius `r`) more than 1/1024 of the scale the camera sees it at, the larger of its distance to
+    /// `lookat` and its distance to the sphere's surface. Its hits would be off by about that much (a
+    /// floor of radius 1e17 seen from 10 away rendered black); seen from far enough, the same sphere
+    /// renders.
     fn placeable(&self, centers: &[Point3], r: f64, radius: &Spanned<Real>) -> Result<(), Fail> {
         let c = &self.b.camera;
         let view = (c.lookfrom - c.lookat).length();
+        let surface = centers
+            .iter()
+            .map(|p| ((c.lookfrom - *p).length() - r).abs())
+            .fold(f64::INFINITY, f64::min);
+        let scale = view.max(surface);
         let far = centers
             .iter()
             .map(|p| p.abs().max_element())
             .fold(0.0, f64::max)
             + r;
         let spacing = far.next_up() - far;
-        if spacing > view / 1024.0 {
+        if spacing > scale / 1024.0 {
             return fail(
                 radius.span(),
                 format!(
                     "a sphere reaching {far:.3e} from the origin cannot be placed finely enough for \
                      this camera: doubles there are {spacing:.3e} apart, more than 1/1024 of the \
-                     camera's distance to lookat ({view:.3e}), so its hits would be that far off; \
-                     a floor this large is better a quad"
+                     distance it is seen at ({scale:.3e}, the larger of the camera's to lookat and \
+                     to the sphere's surface), so its hits would be that far off; a floor this \
+                     large is better a quad"
                 ),
             );
         }
