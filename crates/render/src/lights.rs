@@ -24,7 +24,9 @@ use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, 
 use crate::target_index::{INDEX_FROM, TargetIndex};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
-use rtl_pdf::{DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeSampler, SphereTarget};
+use rtl_pdf::{
+    DirectionSample, HittablePdf, Pdf, QuadTarget, Selection, ShapeSampler, SphereTarget,
+};
 use std::collections::HashSet;
 use std::f64::consts::TAU;
 
@@ -105,6 +107,10 @@ pub struct Lights {
     pub manifold: Manifold,
     /// A hierarchy over `emitters` when they are [`INDEX_FROM`] or more.
     pub emitter_index: Option<TargetIndex>,
+    /// Next-event estimation's choice among more than [`MAX_WEIGHED_EMITTERS`] emitters: in
+    /// proportion to each one's power ([`EmitterWeight::power`]), mixed with [`UNIFORM_SHARE`]
+    /// spread uniformly.
+    pub emitter_selection: Option<Selection>,
     /// A hierarchy over `all` when it holds [`INDEX_FROM`] targets or more.
     pub all_index: Option<TargetIndex>,
 }
@@ -123,15 +129,36 @@ fn uniform<'a>(
     })
 }
 
+/// The choice among more than [`MAX_WEIGHED_EMITTERS`] emitters of `weights`: `p_i = (1 - a)
+/// Phi_i / sum_j Phi_j + a / n` with `Phi_i` the emitter's power and `a` = [`UNIFORM_SHARE`] (pbrt-v4's
+/// `PowerLightSampler`, with the same defensive share as the choice per shading point). `None` for
+/// fewer emitters, or if the powers do not make a distribution (then the choice is uniform).
+fn by_power(weights: &[EmitterWeight]) -> Option<Selection> {
+    if weights.len() <= MAX_WEIGHED_EMITTERS {
+        return None;
+    }
+    let total: f64 = weights.iter().map(EmitterWeight::power).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return None;
+    }
+    let floor = UNIFORM_SHARE / weights.len() as f64;
+    let p: Vec<f64> = weights
+        .iter()
+        .map(|w| (1.0 - UNIFORM_SHARE) * w.power() / total + floor)
+        .collect();
+    Selection::from_weights(&p).ok()
+}
+
 /// A hierarchy over `targets` if the list is long enough to need one.
 fn index_of(targets: &[LightTarget]) -> Option<TargetIndex> {
     (targets.len() >= INDEX_FROM).then(|| TargetIndex::new(targets))
 }
 
 /// The most emitters whose choice is weighed per shading point: their probabilities live in a
-/// fixed-size array on the stack ([`EmitterPmf`]). Scenes with more keep the uniform choice (the
-/// weights would cost `O(n)` per vertex; the density costs `O(n)` too below [`INDEX_FROM`] emitters
-/// and `O(log n)` from there on, through [`TargetIndex`]; a light tree is what such scenes need).
+/// fixed-size array on the stack ([`EmitterPmf`]). Scenes with more choose by power, the same at
+/// every point ([`Lights::emitter_selection`]: weights per point would cost `O(n)` a vertex; the
+/// density costs `O(n)` below [`INDEX_FROM`] emitters and `O(log n)` from there on, through
+/// [`TargetIndex`]; a light tree would weigh per point in `O(log n)`).
 pub const MAX_WEIGHED_EMITTERS: usize = 16;
 
 /// The share of next-event estimation's choice spread uniformly over the emitters that can
@@ -184,6 +211,20 @@ impl EmitterWeight {
                 radiance,
                 one_sided: *one_sided,
             },
+        }
+    }
+
+    /// The power the emitter sends out, up to the constant factor `pi` all share: its radiance times
+    /// its emitting area (`4 pi r^2` for a sphere; a quad's area, twice for a two-sided one).
+    pub fn power(&self) -> f64 {
+        match *self {
+            EmitterWeight::Sphere { r2, radiance, .. } => radiance * 2.0 * TAU * r2,
+            EmitterWeight::Quad {
+                area,
+                radiance,
+                one_sided,
+                ..
+            } => radiance * area * if one_sided { 1.0 } else { 2.0 },
         }
     }
 
@@ -316,8 +357,24 @@ impl Lights {
                 .push(EmitterWeight::new(&target, radiance));
         }
         lights.emitter_index = index_of(&lights.emitters);
+        lights.emitter_selection = by_power(&lights.emitter_weights);
         lights.all_index = index_of(&lights.all);
         lights
+    }
+
+    /// The emitters seen from `x` where the choice does not change from point to point: one emitter,
+    /// or more than [`MAX_WEIGHED_EMITTERS`] chosen by power ([`Lights::emitter_selection`]), the
+    /// densities through the hierarchy if there is one. `None` without emitters.
+    #[inline]
+    fn by_table(&self, x: Point3) -> Option<HittablePdf<'_, LightTarget>> {
+        let h = match &self.emitter_selection {
+            Some(s) => HittablePdf::with_selection(x, &self.emitters, s).ok()?,
+            None => HittablePdf::new(x, &self.emitters)?,
+        };
+        Some(match &self.emitter_index {
+            Some(i) => h.with_index(i),
+            None => h,
+        })
     }
 
     /// The book's list seen from `x`, each target chosen with probability `1 / n` (`None` if the
@@ -347,7 +404,8 @@ impl Lights {
     /// so they use the same probabilities.
     ///
     /// `pmf` is where the probabilities are kept (on the caller's stack). One emitter, or more than
-    /// [`MAX_WEIGHED_EMITTERS`]: the uniform choice, as [`HittablePdf::new`] makes it. `None` without
+    /// [`MAX_WEIGHED_EMITTERS`]: the choice by power of [`Lights::emitter_selection`] (uniform if
+    /// the powers make no distribution). `None` without
     /// emitters, or where none can contribute (every sample would fail and the density is 0).
     #[inline]
     pub fn towards_emitters<'a>(
@@ -356,7 +414,7 @@ impl Lights {
         pmf: &'a mut EmitterPmf,
     ) -> Option<HittablePdf<'a, LightTarget>> {
         if !self.weighs_emitters() {
-            return uniform(x, &self.emitters, &self.emitter_index);
+            return self.by_table(x);
         }
         let n = self.emitters.len();
         let pmf = &mut pmf[..n];
@@ -400,7 +458,7 @@ impl Lights {
             self.sample_weighed(x, u)
         } else {
             // (no probabilities to keep: the common case of one emitter pays nothing for them)
-            uniform(x, &self.emitters, &self.emitter_index)?.sample(u)
+            self.by_table(x)?.sample(u)
         }
     }
 
@@ -411,7 +469,7 @@ impl Lights {
         if self.weighs_emitters() {
             self.pdf_weighed(x, direction)
         } else {
-            uniform(x, &self.emitters, &self.emitter_index).map_or(0.0, |h| h.pdf(direction))
+            self.by_table(x).map_or(0.0, |h| h.pdf(direction))
         }
     }
 
@@ -442,13 +500,24 @@ impl Lights {
                  subtends there ({:.0}% spread uniformly)",
                 100.0 * UNIFORM_SHARE
             )
-        } else if self.emitter_index.is_some() {
-            format!(
-                ", chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters); a direction's \
-                 density adds only the emitters a hierarchy over them says it may meet"
-            )
         } else {
-            format!(", chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters)")
+            let choice = if self.emitter_selection.is_some() {
+                format!(
+                    ", chosen in proportion to their power (more than {MAX_WEIGHED_EMITTERS} \
+                     emitters; {:.0}% spread uniformly)",
+                    100.0 * UNIFORM_SHARE
+                )
+            } else {
+                format!(", chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters)")
+            };
+            if self.emitter_index.is_some() {
+                format!(
+                    "{choice}; a direction's density adds only the emitters a hierarchy over them \
+                     says it may meet"
+                )
+            } else {
+                choice
+            }
         };
         match n {
             0 => "none (no emitter in the scene)".into(),

@@ -589,11 +589,22 @@ fn one_emitter_or_more_than_the_stack_holds_keep_the_uniform_choice() {
     assert!(!lights.weighs_emitters());
     let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
     let h = lights.towards_emitters(Point3::ZERO, &mut pmf).unwrap();
+    // Above MAX_WEIGHED_EMITTERS, by power (radiance 1 + i, the same size): 0.9 L_i / sum L + 0.1 / n,
+    // the same at every point.
+    let total: f64 = (0..n).map(|i| 1.0 + i as f64).sum();
     for i in 0..n {
-        assert_eq!(h.pmf(i), 1.0 / n as f64);
+        let want = 0.9 * (1.0 + i as f64) / total + 0.1 / n as f64;
+        assert!((h.pmf(i) - want).abs() < 1e-12, "{i}: {} {want}", h.pmf(i));
     }
+    let here = h.pmf(3);
+    let mut pmf2 = [0.0; MAX_WEIGHED_EMITTERS];
+    let elsewhere = lights
+        .towards_emitters(Point3::new(5.0, 1.0, 2.0), &mut pmf2)
+        .unwrap();
+    assert_eq!(elsewhere.pmf(3), here);
     assert!(lights.describe_emitters().ends_with(&format!(
-        "chosen uniformly (more than {MAX_WEIGHED_EMITTERS} emitters)"
+        "chosen in proportion to their power (more than {MAX_WEIGHED_EMITTERS} emitters; 10% spread \
+         uniformly)"
     )));
     // The Cornell box's one light: no weights, the description as before.
     let cornell =

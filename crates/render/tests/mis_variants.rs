@@ -14,6 +14,8 @@
 //!   treated as a specular bounce;
 //! - a wide bright lamp and a dim ball: next-event estimation chooses the emitter per shading point
 //!   (wrong: the emission met by material sampling weighted by the uniform choice's density);
+//! - 24 emitters of powers 600 times apart: next-event estimation chooses by power (wrong: the
+//!   uniform choice's density again);
 //! - a glass ball listed as a target under a light, beside a second lamp seen mostly from behind:
 //!   material sampling draws `OTHERS_SHARE` of its
 //!   directions towards the ball (wrong: divided by the density of the book's even mixture).
@@ -292,6 +294,85 @@ fn emitters_chosen_per_point_agree_and_a_uniform_weight_is_caught() {
     let scene = bright_lamp_and_dim_ball();
     let lights = rtl_render::lights::Lights::new(&scene, false);
     assert!(lights.weighs_emitters(), "two emitters: weighed per point");
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let wrong =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongUniformLightWeight));
+    assert!(
+        !disagreements(&cosine, &wrong).is_empty(),
+        "the uniform choice's density in the MIS weight went unnoticed"
+    );
+}
+
+/// A floor and a back wall under 24 emitting spheres and quads whose powers span a factor of 600
+/// (radii 0.04 to 0.4, radiance 1 to 6, some quads one-sided): more than
+/// `MAX_WEIGHED_EMITTERS`, so next-event estimation chooses by power, the same at every point.
+pub fn many_emitters_of_unequal_power() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    b.quad(
+        w,
+        Point3::new(-5.0, 0.0, 3.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -7.0),
+        white,
+    )
+    .unwrap();
+    b.quad(
+        w,
+        Point3::new(-5.0, 0.0, -4.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(0.0, 5.0, 0.0),
+        white,
+    )
+    .unwrap();
+    for i in 0..24 {
+        let emit = 1.0 + (i % 6) as f64;
+        let m = b.material(Material::DiffuseLight {
+            emit: Albedo::Constant(Color::splat(emit)),
+            two_sided: i % 4 != 1,
+        });
+        let (x, z) = (-4.0 + 0.35 * i as f64, -3.0 + 0.2 * (i % 7) as f64);
+        let size = 0.04 * (1.0 + (i * 7 % 10) as f64);
+        if i % 3 == 0 {
+            // faces down (u x v = (0, -1, 0)), one-sided for some
+            b.quad(
+                w,
+                Point3::new(x, 3.5, z),
+                Vec3::new(2.0 * size, 0.0, 0.0),
+                Vec3::new(0.0, 0.0, 2.0 * size),
+                m,
+            )
+            .unwrap();
+        } else {
+            b.sphere(w, Point3::new(x, 1.0 + 0.1 * i as f64, z), size, m)
+                .unwrap();
+        }
+    }
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 2.0, 7.0),
+        lookat: Point3::new(0.0, 1.5, 0.0),
+        vfov: 60.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ZERO);
+    b.max_depth = 50;
+    b.build().unwrap()
+}
+
+#[test]
+fn many_emitters_chosen_by_power_agree_and_a_uniform_weight_is_caught() {
+    let scene = many_emitters_of_unequal_power();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(lights.emitters.len(), 24);
+    assert!(
+        lights.emitter_selection.is_some(),
+        "24 emitters: chosen by power"
+    );
+    assert!(lights.describe_emitters().contains("power"));
     let cosine = cosine_means(&scene);
     let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
     let d = disagreements(&cosine, &mis);
