@@ -147,20 +147,22 @@ fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
     // limit this low is surely the least of the limits, so the refusal names it on any machine
     // a test runs on; two threads keep the pool's stacks within it.)
     let d = dir("ulimit");
-    for (limit, words) in [("-v 400000", "ulimit -v"), ("-d 400000", "ulimit -d")] {
-        let args = [
+    let quads = |width: &'static str| {
+        [
             "render",
             "quads",
             "--width",
-            "2000",
+            width,
             "--spp",
             "1",
             "--threads",
             "2",
             "-o",
             "q.png",
-        ];
-        let out = rtl_under_ulimit(&d, limit, &args);
+        ]
+    };
+    for (limit, words) in [("-v 400000", "ulimit -v"), ("-d 400000", "ulimit -d")] {
+        let out = rtl_under_ulimit(&d, limit, &quads("2000"));
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "ulimit {limit}: {err}");
         for w in ["--width 2000", "2000x2000", words] {
@@ -169,22 +171,7 @@ fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
         assert!(files(&d).is_empty());
     }
     // within the limit, the same process renders
-    let out = rtl_under_ulimit(
-        &d,
-        "-v 400000",
-        &[
-            "render",
-            "quads",
-            "--width",
-            "64",
-            "--spp",
-            "1",
-            "--threads",
-            "2",
-            "-o",
-            "q.png",
-        ],
-    );
+    let out = rtl_under_ulimit(&d, "-v 400000", &quads("64"));
     assert!(
         out.status.success(),
         "{}",
