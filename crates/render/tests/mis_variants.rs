@@ -312,61 +312,55 @@ fn agrees_and_the_uniform_weight_is_caught(scene: &Scene) {
     );
 }
 
-/// A floor and a back wall under 24 emitting spheres and quads whose powers span a factor of 600
-/// (radii 0.04 to 0.4, radiance 1 to 6, some quads one-sided): more than
-/// `MAX_WEIGHED_EMITTERS`, so next-event estimation chooses by power, the same at every point.
+/// The floor and a back wall under 24 emitting spheres and quads whose powers span a factor of 600
+/// (sizes 0.04 to 0.4, radiance 1 to 6): more than `MAX_WEIGHED_EMITTERS`, so next-event estimation
+/// chooses by power, the same at every point. Two of the quads are one-sided and face up: the
+/// floor sees them from behind, where their density is 0.
 pub fn many_emitters_of_unequal_power() -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let white = b.material(Material::lambertian(Color::splat(0.7)));
+    floor(&mut b, w, white);
     b.quad(
         w,
-        Point3::new(-5.0, 0.0, 3.0),
-        Vec3::new(10.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, -7.0),
-        white,
-    )
-    .unwrap();
-    b.quad(
-        w,
-        Point3::new(-5.0, 0.0, -4.0),
-        Vec3::new(10.0, 0.0, 0.0),
+        Point3::new(-4.0, 0.0, -3.0),
+        Vec3::new(8.0, 0.0, 0.0),
         Vec3::new(0.0, 5.0, 0.0),
         white,
     )
     .unwrap();
     for i in 0..24 {
         let emit = 1.0 + (i % 6) as f64;
-        let m = b.material(Material::DiffuseLight {
-            emit: Albedo::Constant(Color::splat(emit)),
-            two_sided: i % 4 != 1,
+        let one_sided = i % 4 == 1;
+        let m = b.material(if one_sided {
+            one_sided_lamp(emit)
+        } else {
+            Material::DiffuseLight {
+                emit: Albedo::Constant(Color::splat(emit)),
+                two_sided: true,
+            }
         });
-        let (x, z) = (-4.0 + 0.35 * i as f64, -3.0 + 0.2 * (i % 7) as f64);
+        let (x, z) = (-3.8 + 0.33 * i as f64, -2.8 + 0.2 * (i % 7) as f64);
         let size = 0.04 * (1.0 + (i * 7 % 10) as f64);
         if i % 3 == 0 {
-            // faces down (u x v = (0, -1, 0)), one-sided for some
-            b.quad(
-                w,
-                Point3::new(x, 3.5, z),
+            // u x v = (0, -1, 0), down; the one-sided ones (i = 9, 21) the other way, up
+            let (u, v) = (
                 Vec3::new(2.0 * size, 0.0, 0.0),
                 Vec3::new(0.0, 0.0, 2.0 * size),
-                m,
-            )
-            .unwrap();
+            );
+            let (u, v) = if one_sided { (v, u) } else { (u, v) };
+            b.quad(w, Point3::new(x, 3.5, z), u, v, m).unwrap();
         } else {
             b.sphere(w, Point3::new(x, 1.0 + 0.1 * i as f64, z), size, m)
                 .unwrap();
         }
     }
-    b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 2.0, 7.0),
-        lookat: Point3::new(0.0, 1.5, 0.0),
-        vfov: 60.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ZERO);
-    b.max_depth = 50;
-    b.build().unwrap()
+    framed(
+        b,
+        Point3::new(0.0, 2.0, 7.0),
+        Point3::new(0.0, 1.5, 0.0),
+        60.0,
+    )
 }
 
 #[test]
