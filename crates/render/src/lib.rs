@@ -41,6 +41,7 @@ pub mod hit;
 pub mod ids;
 pub mod integrator;
 pub mod lanes;
+pub mod light_tree;
 pub mod lights;
 pub mod limits;
 pub mod manifold;

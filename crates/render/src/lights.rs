@@ -17,6 +17,7 @@
 //! angle it subtends ([`EmitterWeight::at`]; pbrt-v4's light samplers, Conty Estevez and Kulla 2018),
 //! mixed with a uniform share so that no emitter that can contribute is left out.
 
+use crate::light_tree::LightTree;
 use crate::limits::{MAX_NESTING, WalkBudget};
 use crate::manifold::{FoundShape, Manifold};
 use crate::material::{Albedo, Material};
@@ -25,7 +26,7 @@ use crate::target_index::{INDEX_FROM, TargetIndex};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
 use rtl_pdf::{
-    DirectionSample, HittablePdf, Pdf, QuadTarget, Selection, ShapeSampler, SphereTarget,
+    DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeIndex, ShapeSampler, SphereTarget,
 };
 use std::collections::HashSet;
 use std::f64::consts::TAU;
@@ -107,10 +108,10 @@ pub struct Lights {
     pub manifold: Manifold,
     /// A hierarchy over `emitters` when they are [`INDEX_FROM`] or more.
     pub emitter_index: Option<TargetIndex>,
-    /// Next-event estimation's choice among more than [`MAX_WEIGHED_EMITTERS`] emitters: in
-    /// proportion to each one's power ([`EmitterWeight::power`]), mixed with [`UNIFORM_SHARE`]
-    /// spread uniformly.
-    pub emitter_selection: Option<Selection>,
+    /// Next-event estimation's choice among more than [`MAX_WEIGHED_EMITTERS`] emitters: a light
+    /// tree, weighed per shading point in `O(log n)` by the emitters' power and distance, mixed with
+    /// [`UNIFORM_SHARE`] spread uniformly.
+    pub emitter_tree: Option<LightTree>,
     /// A hierarchy over `all` when it holds [`INDEX_FROM`] targets or more.
     pub all_index: Option<TargetIndex>,
 }
@@ -129,24 +130,13 @@ fn uniform<'a>(
     })
 }
 
-/// The choice among more than [`MAX_WEIGHED_EMITTERS`] emitters of `weights`: `p_i = (1 - a)
-/// Phi_i / sum_j Phi_j + a / n` with `Phi_i` the emitter's power and `a` = [`UNIFORM_SHARE`] (pbrt-v4's
-/// `PowerLightSampler`, with the same defensive share as the choice per shading point). `None` for
-/// fewer emitters, or if the powers do not make a distribution (then the choice is uniform).
-fn by_power(weights: &[EmitterWeight]) -> Option<Selection> {
-    if weights.len() <= MAX_WEIGHED_EMITTERS {
+/// The light tree over more than [`MAX_WEIGHED_EMITTERS`] emitters; `None` for fewer, or if the
+/// powers make no distribution (then the choice is uniform).
+fn tree_of(emitters: &[LightTarget], weights: &[EmitterWeight]) -> Option<LightTree> {
+    if emitters.len() <= MAX_WEIGHED_EMITTERS {
         return None;
     }
-    let total: f64 = weights.iter().map(EmitterWeight::power).sum();
-    if !(total > 0.0 && total.is_finite()) {
-        return None;
-    }
-    let floor = UNIFORM_SHARE / weights.len() as f64;
-    let p: Vec<f64> = weights
-        .iter()
-        .map(|w| (1.0 - UNIFORM_SHARE) * w.power() / total + floor)
-        .collect();
-    Selection::from_weights(&p).ok()
+    LightTree::new(emitters, weights)
 }
 
 /// A hierarchy over `targets` if the list is long enough to need one.
@@ -155,10 +145,10 @@ fn index_of(targets: &[LightTarget]) -> Option<TargetIndex> {
 }
 
 /// The most emitters whose choice is weighed per shading point: their probabilities live in a
-/// fixed-size array on the stack ([`EmitterPmf`]). Scenes with more choose by power, the same at
-/// every point ([`Lights::emitter_selection`]: weights per point would cost `O(n)` a vertex; the
-/// density costs `O(n)` below [`INDEX_FROM`] emitters and `O(log n)` from there on, through
-/// [`TargetIndex`]; a light tree would weigh per point in `O(log n)`).
+/// fixed-size array on the stack ([`EmitterPmf`]), each weighed at `O(1)`, `O(n)` a vertex. Scenes
+/// with more choose through a light tree ([`Lights::emitter_tree`]), weighed per point in
+/// `O(log n)`; a direction's density costs `O(n)` below [`INDEX_FROM`] emitters and about
+/// `O(log n)` from there on, through [`TargetIndex`].
 pub const MAX_WEIGHED_EMITTERS: usize = 16;
 
 /// The share of next-event estimation's choice spread uniformly over the emitters that can
@@ -357,24 +347,17 @@ impl Lights {
                 .push(EmitterWeight::new(&target, radiance));
         }
         lights.emitter_index = index_of(&lights.emitters);
-        lights.emitter_selection = by_power(&lights.emitter_weights);
+        lights.emitter_tree = tree_of(&lights.emitters, &lights.emitter_weights);
         lights.all_index = index_of(&lights.all);
         lights
     }
 
-    /// The emitters seen from `x` where the choice does not change from point to point: one emitter,
-    /// or more than [`MAX_WEIGHED_EMITTERS`] chosen by power ([`Lights::emitter_selection`]), the
-    /// densities through the hierarchy if there is one. `None` without emitters.
+    /// The emitters seen from `x` chosen uniformly: one emitter, or more than
+    /// [`MAX_WEIGHED_EMITTERS`] whose powers make no light tree, the densities through the hierarchy
+    /// if there is one. `None` without emitters.
     #[inline]
-    fn by_table(&self, x: Point3) -> Option<HittablePdf<'_, LightTarget>> {
-        let h = match &self.emitter_selection {
-            Some(s) => HittablePdf::with_selection(x, &self.emitters, s).ok()?,
-            None => HittablePdf::new(x, &self.emitters)?,
-        };
-        Some(match &self.emitter_index {
-            Some(i) => h.with_index(i),
-            None => h,
-        })
+    fn uniformly(&self, x: Point3) -> Option<HittablePdf<'_, LightTarget>> {
+        uniform(x, &self.emitters, &self.emitter_index)
     }
 
     /// The book's list seen from `x`, each target chosen with probability `1 / n` (`None` if the
@@ -403,10 +386,11 @@ impl Lights {
     /// sample at `x` and the MIS weight of emission met from `x` by material sampling both call this,
     /// so they use the same probabilities.
     ///
-    /// `pmf` is where the probabilities are kept (on the caller's stack). One emitter, or more than
-    /// [`MAX_WEIGHED_EMITTERS`]: the choice by power of [`Lights::emitter_selection`] (uniform if
-    /// the powers make no distribution). `None` without
-    /// emitters, or where none can contribute (every sample would fail and the density is 0).
+    /// `pmf` is where the probabilities are kept (on the caller's stack). One emitter: that one.
+    /// More than [`MAX_WEIGHED_EMITTERS`]: the light tree's choice ([`Lights::emitter_tree`]), which
+    /// a [`HittablePdf`] does not express: `None` then (use [`Lights::sample_emitters`] and
+    /// [`Lights::emitters_pdf`], which cover every case). `None` also without emitters, or where
+    /// none can contribute (every sample would fail and the density is 0).
     #[inline]
     pub fn towards_emitters<'a>(
         &'a self,
@@ -414,7 +398,10 @@ impl Lights {
         pmf: &'a mut EmitterPmf,
     ) -> Option<HittablePdf<'a, LightTarget>> {
         if !self.weighs_emitters() {
-            return self.by_table(x);
+            return match self.emitter_tree {
+                Some(_) => None,
+                None => self.uniformly(x),
+            };
         }
         let n = self.emitters.len();
         let pmf = &mut pmf[..n];
@@ -449,16 +436,24 @@ impl Lights {
     }
     // ANCHOR_END: towards_emitters
 
+    /// The hierarchy over the emitters, as the densities' index.
+    #[inline]
+    fn index(&self) -> Option<&dyn ShapeIndex> {
+        self.emitter_index.as_ref().map(|i| i as &dyn ShapeIndex)
+    }
+
     /// One direction of next-event estimation from `x` for the uniform numbers `u`, drawn by
-    /// [`Lights::towards_emitters`], with its density; `None` without emitters or where the drawn
+    /// [`Lights::towards_emitters`] (or the light tree), with its density; `None` without emitters or where the drawn
     /// emitter has no direction from `x`.
     #[inline]
     pub fn sample_emitters(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
         if self.weighs_emitters() {
             self.sample_weighed(x, u)
+        } else if let Some(tree) = &self.emitter_tree {
+            tree.sample(x, u, &self.emitters, self.index())
         } else {
             // (no probabilities to keep: the common case of one emitter pays nothing for them)
-            self.by_table(x)?.sample(u)
+            self.uniformly(x)?.sample(u)
         }
     }
 
@@ -468,8 +463,10 @@ impl Lights {
     pub fn emitters_pdf(&self, x: Point3, direction: Vec3) -> f64 {
         if self.weighs_emitters() {
             self.pdf_weighed(x, direction)
+        } else if let Some(tree) = &self.emitter_tree {
+            tree.pdf(x, direction, &self.emitters, self.index(), None)
         } else {
-            self.by_table(x).map_or(0.0, |h| h.pdf(direction))
+            self.uniformly(x).map_or(0.0, |h| h.pdf(direction))
         }
     }
 
@@ -501,10 +498,10 @@ impl Lights {
                 100.0 * UNIFORM_SHARE
             )
         } else {
-            let choice = if self.emitter_selection.is_some() {
+            let choice = if self.emitter_tree.is_some() {
                 format!(
-                    ", chosen in proportion to their power (more than {MAX_WEIGHED_EMITTERS} \
-                     emitters; {:.0}% spread uniformly)",
+                    ", chosen per shading point through a light tree by their power and distance \
+                     (more than {MAX_WEIGHED_EMITTERS} emitters; {:.0}% spread uniformly)",
                     100.0 * UNIFORM_SHARE
                 )
             } else {

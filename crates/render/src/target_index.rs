@@ -43,6 +43,8 @@ pub struct TargetIndex {
     nodes: Vec<Node>,
     /// The targets' indices in the list, in the leaves' order.
     order: Vec<u32>,
+    /// Their boxes, in the same order: a leaf names only the targets whose own box the ray meets.
+    boxes: Vec<Aabb>,
 }
 
 /// The box that holds every direction `t`'s density is positive in, seen from anywhere, with room
@@ -82,7 +84,12 @@ impl TargetIndex {
         let mut order: Vec<u32> = (0..targets.len() as u32).collect();
         let mut nodes = Vec::with_capacity(2 * targets.len().div_ceil(LEAF));
         build(&boxes, &mut order, 0, &mut nodes);
-        TargetIndex { nodes, order }
+        let boxes = order.iter().map(|&i| boxes[i as usize]).collect();
+        TargetIndex {
+            nodes,
+            order,
+            boxes,
+        }
     }
 }
 
@@ -144,9 +151,11 @@ impl ShapeIndex for TargetIndex {
             }
             if node.count > 0 {
                 let (a, n) = (node.first as usize, node.count as usize);
-                for &i in &self.order[a..a + n] {
-                    *out.get_mut(k)? = i;
-                    k += 1;
+                for (&i, b) in self.order[a..a + n].iter().zip(&self.boxes[a..a + n]) {
+                    if b.hit(origin, inv, 0.0, f64::INFINITY).is_some() {
+                        *out.get_mut(k)? = i;
+                        k += 1;
+                    }
                 }
             } else {
                 if top + 2 > MAX_DEPTH {

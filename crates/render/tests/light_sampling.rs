@@ -11,15 +11,16 @@
 use glam::{DVec2, DVec3};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use rtl_pdf::chi2::{Chi2Report, ChiSquareTest, SphereDomain, sidak_alpha};
+use rtl_pdf::chi2::{Chi2Failure, Chi2Report, ChiSquareTest, SphereDomain, sidak_alpha};
 use rtl_pdf::{
     DirectionSample, HittablePdf, Onb, Pdf, QuadTarget, Selection, ShapeSampler, SphereTarget,
 };
-use rtl_render::lights::{LightTarget, Lights, MAX_WEIGHED_EMITTERS, UNIFORM_SHARE};
+use rtl_render::light_tree::LightTree;
+use rtl_render::lights::{EmitterWeight, LightTarget, Lights, MAX_WEIGHED_EMITTERS, UNIFORM_SHARE};
 
 const N: usize = 100_000;
 /// Tests of a correct sampler in this file's run (for the Sidak correction).
-const TESTS: usize = 3;
+const TESTS: usize = 7;
 
 /// The origin is (0, 0, 0); the lights around it.
 fn lights(spherical_rectangles: bool) -> [LightTarget; 4] {
@@ -129,6 +130,123 @@ fn several_lights_weighted_selection_draw_what_their_pdf_says() {
     let pdf = HittablePdf::with_selection(DVec3::ZERO, &targets, &table).unwrap();
     let r = test(|d| pdf.pdf(d), 0.2, 3, |u| pdf.sample(u));
     assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{r:?}");
+}
+
+/// The light tree over the four lights of [`lights`] (radiance 1 to 4).
+fn tree_over(targets: &[LightTarget]) -> LightTree {
+    let weights: Vec<EmitterWeight> = targets
+        .iter()
+        .enumerate()
+        .map(|(i, t)| EmitterWeight::new(t, 1.0 + i as f64))
+        .collect();
+    LightTree::new(targets, &weights).unwrap()
+}
+
+#[test]
+fn the_light_tree_draws_what_its_density_says() {
+    let targets = lights(false);
+    let tree = tree_over(&targets);
+    let x = DVec3::ZERO;
+    // the light seen from behind (1) fails its samples: its probability is the failure cell's
+    let p_fail = 1.0 - [0, 2, 3].iter().map(|&i| tree.pmf(x, i)).sum::<f64>();
+    assert!(
+        p_fail > 0.99 * UNIFORM_SHARE / 4.0 && p_fail < 0.5,
+        "{p_fail}"
+    );
+    let r = test(
+        |d| tree.pdf(x, d, &targets, None, None),
+        p_fail,
+        4,
+        |u| tree.sample(x, u, &targets, None),
+    );
+    assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{r:?}");
+}
+
+/// Forty lights of sizes, radiances and orientations drawn at random around the origin, a third of
+/// them one-sided quads.
+fn forty_lights() -> (Vec<LightTarget>, Vec<EmitterWeight>) {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(40);
+    let mut point = |scale: f64| {
+        DVec3::new(rng.random(), rng.random(), rng.random()) * 2.0 * scale - DVec3::splat(scale)
+    };
+    let (mut targets, mut weights) = (Vec::new(), Vec::new());
+    for i in 0..40 {
+        let c = point(10.0);
+        let t = if i % 3 == 0 {
+            LightTarget::Quad {
+                quad: QuadTarget::new(c, point(1.0), point(1.0)),
+                one_sided: true,
+            }
+        } else {
+            LightTarget::Sphere(SphereTarget::new(c, 0.05 + 0.1 * (i % 5) as f64))
+        };
+        targets.push(t);
+        weights.push(EmitterWeight::new(&t, 1.0 + (i % 7) as f64));
+    }
+    (targets, weights)
+}
+
+/// The chi-square test of how often `tree` chooses each light at `x` in `N` draws against `pmf`,
+/// with a cell for draws that choose nothing (an error if a light `pmf` gives 0 is chosen).
+fn choices(
+    tree: &LightTree,
+    x: DVec3,
+    seed: u64,
+    pmf: impl Fn(usize) -> f64,
+) -> Result<Chi2Report, Chi2Failure> {
+    let n = tree.len();
+    let mut observed = vec![0u64; n + 1];
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    for _ in 0..N {
+        match tree.choose(x, rng.random()) {
+            Some((i, u)) => {
+                assert!((0.0..1.0).contains(&u), "{u}");
+                observed[i] += 1;
+            }
+            None => observed[n] += 1,
+        }
+    }
+    let mut expected: Vec<f64> = (0..n).map(|i| N as f64 * pmf(i)).collect();
+    expected.push((N as f64 - expected.iter().sum::<f64>()).max(0.0));
+    ChiSquareTest::new(n + 1, 1).statistic(&observed, &expected, N)
+}
+
+#[test]
+fn the_light_tree_chooses_each_light_as_often_as_its_probability_says() {
+    let (targets, weights) = forty_lights();
+    let tree = LightTree::new(&targets, &weights).unwrap();
+    let alpha = sidak_alpha(0.01, TESTS);
+    for (k, x) in [
+        DVec3::ZERO,
+        DVec3::new(8.0, -9.0, 3.0),
+        DVec3::new(40.0, 0.0, 0.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let sum: f64 = (0..tree.len()).map(|i| tree.pmf(x, i)).sum();
+        assert!(sum <= 1.0 + 1e-12 && sum > 0.9, "{sum}");
+        let r = choices(&tree, x, 10 + k as u64, |i| tree.pmf(x, i)).unwrap();
+        assert!(r.p_value >= alpha, "at {x}: {r:?}");
+        // The checker catches probabilities that forget the uniform share.
+        let forgetful = |i| (tree.pmf(x, i) - UNIFORM_SHARE / 40.0) / (1.0 - UNIFORM_SHARE);
+        // (a light seen from behind is chosen by its uniform share alone: outside the support)
+        let wrong = choices(&tree, x, 10 + k as u64, forgetful);
+        assert!(
+            wrong.as_ref().map_or(true, |r| r.p_value < alpha),
+            "at {x}: {wrong:?}"
+        );
+    }
+    // Numbers at the ends of [0, 1) and beyond, and a point that is not a number: a light or none,
+    // never a panic; probabilities that are numbers.
+    for u in [0.0, rtl_pdf::ONE_MINUS_EPSILON, 1.0, f64::NAN, -1.0] {
+        for x in [DVec3::ZERO, DVec3::splat(f64::NAN), DVec3::splat(1e300)] {
+            if let Some((i, v)) = tree.choose(x, u) {
+                assert!(i < 40 && (0.0..1.0).contains(&v), "{u} {x}: {i} {v}");
+            }
+            assert!((0..40).all(|i| tree.pmf(x, i).is_finite() && tree.pmf(x, i) > 0.0));
+        }
+    }
 }
 
 /// main's light: from behind a one-sided quad it still sampled towards the quad, while its pdf said 0.
@@ -569,14 +687,14 @@ fn the_light_sample_and_the_mis_weight_use_the_same_density() {
 }
 
 #[test]
-fn one_emitter_or_more_than_the_stack_holds_keep_the_uniform_choice() {
+fn one_emitter_keeps_the_uniform_choice_and_more_than_the_stack_holds_take_the_tree() {
     let light = |b: &mut SceneBuilder, c: f64| {
         b.material(Material::DiffuseLight {
             emit: Albedo::Constant(Color::splat(c)),
             two_sided: false,
         })
     };
-    // More emitters than MAX_WEIGHED_EMITTERS: 1 / n each, wherever the point is.
+    // More emitters than MAX_WEIGHED_EMITTERS: chosen through the light tree, per point.
     let mut b = SceneBuilder::new();
     let w = b.world();
     let n = MAX_WEIGHED_EMITTERS + 1;
@@ -587,24 +705,25 @@ fn one_emitter_or_more_than_the_stack_holds_keep_the_uniform_choice() {
     }
     let lights = Lights::new(&b.build().unwrap(), false);
     assert!(!lights.weighs_emitters());
+    let tree = lights.emitter_tree.as_ref().unwrap();
     let mut pmf = [0.0; MAX_WEIGHED_EMITTERS];
-    let h = lights.towards_emitters(Point3::ZERO, &mut pmf).unwrap();
-    // Above MAX_WEIGHED_EMITTERS, by power (radiance 1 + i, the same size): 0.9 L_i / sum L + 0.1 / n,
-    // the same at every point.
-    let total: f64 = (0..n).map(|i| 1.0 + i as f64).sum();
-    for i in 0..n {
-        let want = 0.9 * (1.0 + i as f64) / total + 0.1 / n as f64;
-        assert!((h.pmf(i) - want).abs() < 1e-12, "{i}: {} {want}", h.pmf(i));
+    assert!(
+        lights.towards_emitters(Point3::ZERO, &mut pmf).is_none(),
+        "a HittablePdf cannot express the tree's choice"
+    );
+    // Every emitter keeps at least its uniform share; the probabilities add up to 1; an emitter is
+    // far likelier under it than 16 units away.
+    let under = |k: usize| Point3::new(2.0 * k as f64, 0.0, 0.0);
+    for k in [0, 8, 16] {
+        let p: Vec<f64> = (0..n).map(|i| tree.pmf(under(k), i)).collect();
+        assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{p:?}");
+        assert!(p.iter().all(|&p| p >= UNIFORM_SHARE / n as f64), "{p:?}");
+        let away = under((k + 8) % 16);
+        assert!(p[k] > 3.0 * tree.pmf(away, k), "{k}: {p:?}");
     }
-    let here = h.pmf(3);
-    let mut pmf2 = [0.0; MAX_WEIGHED_EMITTERS];
-    let elsewhere = lights
-        .towards_emitters(Point3::new(5.0, 1.0, 2.0), &mut pmf2)
-        .unwrap();
-    assert_eq!(elsewhere.pmf(3), here);
     assert!(lights.describe_emitters().ends_with(&format!(
-        "chosen in proportion to their power (more than {MAX_WEIGHED_EMITTERS} emitters; 10% spread \
-         uniformly)"
+        "chosen per shading point through a light tree by their power and distance (more than \
+         {MAX_WEIGHED_EMITTERS} emitters; 10% spread uniformly)"
     )));
     // The Cornell box's one light: no weights, the description as before.
     let cornell =

@@ -14,8 +14,8 @@
 //!   treated as a specular bounce;
 //! - a wide bright lamp and a dim ball: next-event estimation chooses the emitter per shading point
 //!   (wrong: the emission met by material sampling weighted by the uniform choice's density);
-//! - 24 emitters of powers 600 times apart: next-event estimation chooses by power (wrong: the
-//!   uniform choice's density again);
+//! - 24 emitters of powers 600 times apart: next-event estimation chooses through the light tree
+//!   (wrong: the uniform choice's density again);
 //! - a glass ball listed as a target under a light, beside a second lamp seen mostly from behind:
 //!   material sampling draws `OTHERS_SHARE` of its
 //!   directions towards the ball (wrong: divided by the density of the book's even mixture).
@@ -314,7 +314,7 @@ fn agrees_and_the_uniform_weight_is_caught(scene: &Scene) {
 
 /// The floor and a back wall under 24 emitting spheres and quads whose powers span a factor of 600
 /// (sizes 0.04 to 0.4, radiance 1 to 6): more than `MAX_WEIGHED_EMITTERS`, so next-event estimation
-/// chooses by power, the same at every point. Two of the quads are one-sided and face up: the
+/// chooses through the light tree, by power and distance at each point. Two of the quads are one-sided and face up: the
 /// floor sees them from behind, where their density is 0.
 pub fn many_emitters_of_unequal_power() -> Scene {
     let mut b = SceneBuilder::new();
@@ -364,15 +364,15 @@ pub fn many_emitters_of_unequal_power() -> Scene {
 }
 
 #[test]
-fn many_emitters_chosen_by_power_agree_and_a_uniform_weight_is_caught() {
+fn many_emitters_chosen_through_the_light_tree_agree_and_a_uniform_weight_is_caught() {
     let scene = many_emitters_of_unequal_power();
     let lights = rtl_render::lights::Lights::new(&scene, false);
     assert_eq!(lights.emitters.len(), 24);
     assert!(
-        lights.emitter_selection.is_some(),
-        "24 emitters: chosen by power"
+        lights.emitter_tree.is_some(),
+        "24 emitters: chosen through the light tree"
     );
-    assert!(lights.describe_emitters().contains("power"));
+    assert!(lights.describe_emitters().contains("light tree"));
     agrees_and_the_uniform_weight_is_caught(&scene);
 }
 

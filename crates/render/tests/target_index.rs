@@ -203,10 +203,10 @@ fn a_scene_with_many_emitters_gets_an_index_and_the_same_densities() {
     assert!(lights.describe_emitters().contains("hierarchy"));
     // Next-event estimation's density from the floor, towards the lamps and elsewhere: the whole
     // list's, bit for bit.
-    // (the whole list chosen as next-event estimation chooses: by power, above 16 emitters)
+    // (the whole list chosen as next-event estimation chooses: through the light tree, above 16
+    // emitters)
     let x = DVec3::new(0.3, 0.0, 0.1);
-    let selection = lights.emitter_selection.as_ref().unwrap();
-    let whole = HittablePdf::with_selection(x, &lights.emitters, selection).unwrap();
+    let tree = lights.emitter_tree.as_ref().unwrap();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
     let mut positive = 0;
     for _ in 0..2000 {
@@ -215,7 +215,8 @@ fn a_scene_with_many_emitters_gets_an_index_and_the_same_densities() {
             .sample_emitters(x, u)
             .map(|s| s.direction)
             .unwrap_or(DVec3::Y);
-        let (a, b) = (whole.pdf(d), lights.emitters_pdf(x, d));
+        let whole = tree.pdf(x, d, &lights.emitters, None, None);
+        let (a, b) = (whole, lights.emitters_pdf(x, d));
         assert_eq!(a.to_bits(), b.to_bits(), "{d}");
         positive += usize::from(a > 0.0);
     }

@@ -1,0 +1,299 @@
+//! A light tree: next-event estimation's choice among many emitters, weighed per shading point in
+//! `O(log n)` (Conty Estevez and Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree
+//! Splitting"; pbrt-v4's `BVHLightSampler`, here without its cones of normals).
+//!
+//! A binary hierarchy over the emitters, split at the median of the longest axis of their centres.
+//! Each inner node keeps the total power `Phi` of its emitters (radiance x emitting area, up to the
+//! factor `pi` all share) and a sphere `(c, R)` around them. Seen from `x`, its importance is
+//!
+//! `I(x) = Phi / (4 max(|x - c|^2, R^2))`,
+//!
+//! the irradiance its emitters would give at `x` if they sent their power equally in every
+//! direction from `c`, never more than from the surface of its sphere. A leaf's importance is its
+//! emitter's own estimate `L Omega(x)` ([`EmitterWeight::at`]: 0 behind a one-sided quad), which
+//! far away agrees with the formula above. From the root, each child is taken with probability
+//! `I_child(x) / (I_left(x) + I_right(x))`; emitter `i`'s probability `T_i(x)` is the product along
+//! its trail, and next-event estimation chooses it with
+//!
+//! `P_i(x) = a / n + (1 - a) T_i(x)`  (`a` = [`UNIFORM_SHARE`]),
+//!
+//! so every emitter keeps a probability of at least `a / n` wherever the estimates are poor: any
+//! importance that is 0 where the emitter does contribute costs noise, never bias. Where both
+//! children of a node have importance 0 the descent stops without a sample and `T_i = 0` under it.
+
+use crate::lights::{EmitterWeight, LightTarget, UNIFORM_SHARE};
+use crate::vec::{Point3, Vec3};
+use glam::DVec2;
+use rtl_pdf::{DirectionSample, MAX_CANDIDATES, ONE_MINUS_EPSILON, ShapeIndex, ShapeSampler};
+
+/// A node: a leaf names its emitter; an inner node its two children, its emitters' power and a
+/// sphere around them.
+#[derive(Clone, Copy, Debug)]
+enum Node {
+    Leaf {
+        emitter: u32,
+    },
+    Inner {
+        left: u32,
+        right: u32,
+        centre: Point3,
+        /// The sphere's radius, squared.
+        r2: f64,
+        power: f64,
+    },
+}
+
+/// The tree over one scene's emitters (built once per scene).
+#[derive(Clone, Debug)]
+pub struct LightTree {
+    nodes: Vec<Node>,
+    /// Per emitter, what its leaf's importance needs.
+    weights: Vec<EmitterWeight>,
+    /// Per emitter, its trail from the root: bit `k` set where level `k` goes right; and its depth
+    /// (a median split halves each level: at most 31 levels below 2^31 emitters).
+    trails: Vec<(u64, u8)>,
+}
+
+/// An emitter's box: the sphere's, or the quad's four corners.
+fn bounds(t: &LightTarget) -> (Point3, Point3) {
+    match t {
+        LightTarget::Sphere(s) => {
+            let r = Vec3::splat(s.radius());
+            (s.center() - r, s.center() + r)
+        }
+        LightTarget::Quad { quad, .. } => {
+            let (q, u, v) = (quad.q(), quad.u(), quad.v());
+            let corners = [q + u, q + v, q + u + v];
+            corners
+                .iter()
+                .fold((q, q), |(lo, hi), &c| (lo.min(c), hi.max(c)))
+        }
+    }
+}
+
+impl LightTree {
+    /// The tree over `emitters`, whose weights are `weights` (one each); `None` for fewer than two
+    /// emitters, or if their powers do not add up to a positive finite number (then the choice stays
+    /// uniform).
+    pub fn new(emitters: &[LightTarget], weights: &[EmitterWeight]) -> Option<LightTree> {
+        let n = emitters.len();
+        if n < 2 || weights.len() != n || n >= 1 << 31 {
+            return None;
+        }
+        let total: f64 = weights.iter().map(EmitterWeight::power).sum();
+        if !(total > 0.0 && total.is_finite()) {
+            return None;
+        }
+        let boxes: Vec<(Point3, Point3)> = emitters.iter().map(bounds).collect();
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        let mut tree = LightTree {
+            nodes: Vec::with_capacity(2 * n),
+            weights: weights.to_vec(),
+            trails: vec![(0, 0); n],
+        };
+        tree.build(&boxes, &mut order, 0, 0);
+        Some(tree)
+    }
+
+    /// Builds the node over `order`, at depth `depth` on trail `trail`, and returns its index.
+    fn build(
+        &mut self,
+        boxes: &[(Point3, Point3)],
+        order: &mut [u32],
+        trail: u64,
+        depth: usize,
+    ) -> u32 {
+        let at = self.nodes.len() as u32;
+        if let [only] = order {
+            self.nodes.push(Node::Leaf { emitter: *only });
+            self.trails[*only as usize] = (trail, depth as u8);
+            return at;
+        }
+        let (lo, hi) = order.iter().fold(
+            (
+                Point3::splat(f64::INFINITY),
+                Point3::splat(f64::NEG_INFINITY),
+            ),
+            |(lo, hi), &i| {
+                let (a, b) = boxes[i as usize];
+                (lo.min(a), hi.max(b))
+            },
+        );
+        let power = order
+            .iter()
+            .map(|&i| self.weights[i as usize].power())
+            .sum();
+        let centre = 0.5 * (lo + hi);
+        let r2 = (0.5 * (hi - lo)).length_squared();
+        let (clo, chi) = order.iter().fold(
+            (
+                Point3::splat(f64::INFINITY),
+                Point3::splat(f64::NEG_INFINITY),
+            ),
+            |(lo, hi), &i| {
+                let (a, b) = boxes[i as usize];
+                let c = 0.5 * (a + b);
+                (lo.min(c), hi.max(c))
+            },
+        );
+        let axis = (chi - clo).max_position();
+        let mid = order.len() / 2;
+        order.select_nth_unstable_by(mid, |&a, &b| {
+            let ca = boxes[a as usize].0[axis] + boxes[a as usize].1[axis];
+            let cb = boxes[b as usize].0[axis] + boxes[b as usize].1[axis];
+            ca.total_cmp(&cb)
+        });
+        self.nodes.push(Node::Leaf { emitter: 0 });
+        let (l, r) = order.split_at_mut(mid);
+        let left = self.build(boxes, l, trail, depth + 1);
+        let right = self.build(boxes, r, trail | 1 << depth, depth + 1);
+        self.nodes[at as usize] = Node::Inner {
+            left,
+            right,
+            centre,
+            r2,
+            power,
+        };
+        at
+    }
+
+    /// Node `k`'s importance seen from `x` (see the module's documentation).
+    #[inline]
+    fn importance(&self, k: u32, x: Point3) -> f64 {
+        match self.nodes[k as usize] {
+            Node::Leaf { emitter } => self.weights[emitter as usize].at(x).unwrap_or(0.0),
+            Node::Inner {
+                centre, r2, power, ..
+            } => power / (4.0 * (centre - x).length_squared().max(r2)),
+        }
+    }
+
+    /// The probability of the left child of inner node `(left, right)` seen from `x`; `None` where
+    /// neither child has a positive finite importance (the descent stops there).
+    #[inline]
+    fn left_share(&self, left: u32, right: u32, x: Point3) -> Option<f64> {
+        let (il, ir) = (self.importance(left, x), self.importance(right, x));
+        let sum = il + ir;
+        (sum > 0.0 && sum.is_finite()).then(|| il / sum)
+    }
+
+    /// How many emitters the tree chooses among.
+    pub fn len(&self) -> usize {
+        self.weights.len()
+    }
+
+    /// Always false: a tree holds two emitters or more.
+    pub fn is_empty(&self) -> bool {
+        self.weights.is_empty()
+    }
+
+    /// The emitter chosen at `x` for the uniform number `u`, with `u` remapped to `[0, 1)` for its
+    /// direction; `None` where the descent stops (two children of importance 0).
+    #[inline]
+    pub fn choose(&self, x: Point3, u: f64) -> Option<(usize, f64)> {
+        let n = self.len();
+        let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        if u < UNIFORM_SHARE || u.is_nan() {
+            let u = if u.is_nan() { 0.0 } else { u / UNIFORM_SHARE };
+            let scaled = u * n as f64;
+            let i = (scaled as usize).min(n - 1);
+            return Some((i, (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON)));
+        }
+        let mut u = ((u - UNIFORM_SHARE) / (1.0 - UNIFORM_SHARE)).min(ONE_MINUS_EPSILON);
+        let mut k = 0u32;
+        loop {
+            match self.nodes[k as usize] {
+                Node::Leaf { emitter } => return Some((emitter as usize, u)),
+                Node::Inner { left, right, .. } => {
+                    let p = self.left_share(left, right, x)?;
+                    (k, u) = if u < p {
+                        (left, u / p)
+                    } else {
+                        (right, (u - p) / (1.0 - p))
+                    };
+                    u = u.clamp(0.0, ONE_MINUS_EPSILON);
+                }
+            }
+        }
+    }
+
+    /// `P_i(x)`: the probability that [`LightTree::choose`] at `x` chooses emitter `i`.
+    #[inline]
+    pub fn pmf(&self, x: Point3, i: usize) -> f64 {
+        let uniform = UNIFORM_SHARE / self.len() as f64;
+        let (trail, depth) = self.trails[i];
+        let (mut k, mut t) = (0u32, 1.0);
+        for level in 0..depth as usize {
+            let Node::Inner { left, right, .. } = self.nodes[k as usize] else {
+                break;
+            };
+            let Some(p) = self.left_share(left, right, x) else {
+                return uniform;
+            };
+            (k, t) = if trail >> level & 1 == 1 {
+                (right, t * (1.0 - p))
+            } else {
+                (left, t * p)
+            };
+        }
+        uniform + (1.0 - UNIFORM_SHARE) * t
+    }
+
+    /// Next-event estimation's density of `direction` from `x`, per unit solid angle:
+    /// `sum_i P_i(x) pdf_i(direction | x)`, over the emitters `index` says the ray may meet (every
+    /// emitter without one), in their order; `pdf_i` is taken as `chosen.1` for emitter `chosen.0`
+    /// (the density its sample came with).
+    #[inline]
+    pub fn pdf(
+        &self,
+        x: Point3,
+        direction: Vec3,
+        emitters: &[LightTarget],
+        index: Option<&dyn ShapeIndex>,
+        chosen: Option<(usize, f64)>,
+    ) -> f64 {
+        let mut sum = 0.0;
+        let mut term = |j: usize| {
+            let p = match chosen {
+                Some((i, p)) if i == j => p,
+                _ => emitters[j].pdf(x, direction),
+            };
+            // (the trail only where the direction can meet the emitter)
+            if p > 0.0 {
+                sum += self.pmf(x, j) * p;
+            }
+        };
+        let mut out = [0u32; MAX_CANDIDATES];
+        match index.and_then(|ix| ix.candidates(x, direction, &mut out)) {
+            Some(k) => {
+                let mut met_chosen = false;
+                for &j in &out[..k] {
+                    met_chosen |= chosen.is_some_and(|(i, _)| i == j as usize);
+                    term(j as usize);
+                }
+                // (a conservative index names the chosen emitter; should it not, its term still counts)
+                if let Some((i, _)) = chosen.filter(|_| !met_chosen) {
+                    term(i);
+                }
+            }
+            None => (0..emitters.len()).for_each(term),
+        }
+        sum
+    }
+
+    /// One direction from `x` towards the emitters for the uniform numbers `u`, with its density
+    /// [`LightTree::pdf`]; `None` where the descent stops or the chosen emitter offers no direction.
+    #[inline]
+    pub fn sample(
+        &self,
+        x: Point3,
+        u: DVec2,
+        emitters: &[LightTarget],
+        index: Option<&dyn ShapeIndex>,
+    ) -> Option<DirectionSample> {
+        let (i, u0) = self.choose(x, u.x)?;
+        let s = emitters[i].sample(x, DVec2::new(u0, u.y))?;
+        let pdf = self.pdf(x, s.direction, emitters, index, Some((i, s.pdf)));
+        DirectionSample::new(s.direction, pdf)
+    }
+}
