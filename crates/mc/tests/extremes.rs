@@ -112,6 +112,110 @@ fn student_t_quantile_never_panics() {
     assert!(student_t_quantile(0.975, 0) > 12.0); // taken as 1 degree of freedom
     assert!(student_t_quantile(1.5, 3).is_nan());
     assert!(student_t_quantile(f64::NAN, 3).is_nan());
+    assert_eq!(student_t_quantile(0.0, 3), f64::NEG_INFINITY);
+    assert_eq!(student_t_quantile(1.0, 3), f64::INFINITY);
+    // statrs alone panicked below p = 1e-150 or so, and did not return for 10^8 degrees of freedom
+    // or more; every p from the smallest subnormal up, and every count up to u64::MAX, now returns
+    // a number, monotone in p and antisymmetric about 1/2
+    let ps = [5e-324, 1e-300, 1e-150, 1e-30, 1e-20, 1e-10, 0.025, 0.4, 0.5];
+    for dof in [
+        0,
+        1,
+        2,
+        3,
+        10,
+        1000,
+        10_000,
+        10_001,
+        30_000,
+        10_000_000,
+        1 << 40,
+        u64::MAX,
+    ] {
+        let mut last = f64::NEG_INFINITY;
+        for p in ps {
+            let t = student_t_quantile(p, dof);
+            assert!(
+                !t.is_nan() && t >= last,
+                "t({p:e}, {dof}) = {t} after {last}"
+            );
+            assert!(t.is_finite() || p == 5e-324, "t({p:e}, {dof}) = {t}");
+            // antisymmetric: the quantile of 1 - p is minus that of 1 - (1 - p), which is p
+            // to within 2^-53 (p itself where 1 - p is exact)
+            let mirror = student_t_quantile(1.0 - p, dof);
+            let back = student_t_quantile(1.0 - (1.0 - p), dof);
+            assert_eq!(mirror, -back, "t({p:e}, {dof}) = {t}");
+            last = t;
+        }
+    }
+}
+
+/// The t quantile where statrs' inverse alone is wrong, against values checked independently: the
+/// closed form for 1 degree of freedom, the tail `F(t) ~ K nu^((nu - 1)/2) |t|^-nu` (exact to 1e-19
+/// relative at t = 1e10, nu = 3), mpmath's incomplete beta function (50 digits: F(-54.29138855305176)
+/// = 1.0e-300 at 1000 degrees of freedom), and for many degrees of freedom the normal quantile `z`
+/// moved by the first term `z (z^2 + 1) / (4 nu)` of its expansion, within 0.1% of that term.
+#[test]
+fn student_t_quantile_is_right_where_statrs_alone_is_not() {
+    let close = |got: f64, want: f64, rel: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= rel * want.abs(),
+            "{what}: {got} vs {want}"
+        );
+    };
+    close(
+        student_t_quantile(1e-150, 1),
+        -1.0 / (std::f64::consts::PI * 1e-150),
+        1e-14,
+        "Cauchy",
+    );
+    close(
+        student_t_quantile(1e-30, 3),
+        -1.033110836044646e10,
+        1e-9,
+        "3 dof, 1e-30",
+    );
+    close(
+        student_t_quantile(1e-300, 1000),
+        -54.29138855305176,
+        1e-9,
+        "1000 dof, 1e-300",
+    );
+    let z = -1.959963984540054; // the normal quantile of 0.025
+    for dof in [30_000u64, 1_000_000, 10_000_000, 100_000_000, 1 << 40] {
+        let nu = dof as f64;
+        let first = z * (z * z + 1.0) / (4.0 * nu);
+        let t = student_t_quantile(0.025, dof);
+        close(t - z, first, 1e-3, &format!("{dof} dof"));
+    }
+    // the deliberately wrong answer, statrs' inverse alone at 10^7 degrees of freedom, fails it
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    let wrong = StudentsT::new(0.0, 1.0, 1e7).unwrap().inverse_cdf(0.025);
+    let first = z * (z * z + 1.0) / 4e7;
+    assert!(
+        (wrong - z - first).abs() > 1e-3 * first.abs(),
+        "statrs: {wrong}"
+    );
+}
+
+/// A confidence interval over 2^33 values (merged, as threads merge theirs) returns at once with
+/// the normal quantile: statrs' inverse did not return at all from 10^8 degrees of freedom on.
+#[test]
+fn confidence_interval_of_billions_of_values_returns() {
+    let mut s = stats(&[1.0, 3.0]);
+    for _ in 0..32 {
+        s = s.merge(&s);
+    }
+    assert_eq!(s.count(), 1 << 33);
+    let (lo, hi) = s.confidence_interval(0.95).unwrap();
+    let se = s.std_error().unwrap();
+    // t = z + z (z^2 + 1) / (4 nu) is 2.8e-10 above z, and the ends are rounded to ulps of 2
+    // (4e-11 standard errors)
+    assert!(
+        (hi - 2.0 - 1.959963984540054 * se).abs() <= 1e-9 * se,
+        "{lo} {hi} {se}"
+    );
+    assert!((2.0 - lo - (hi - 2.0)).abs() <= 1e-9 * se);
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Mixture densities (book 3, chapter 10): pick a part at random, sample it; the density is the
 //! weighted sum of the parts' densities.
 
-use crate::selection::{Selection, SelectionError, remap};
+use crate::selection::{Selection, SelectionError, below_one, remap};
 use crate::{DirectionSample, Pdf};
 use glam::{DVec2, DVec3};
 
@@ -109,8 +109,12 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
     #[inline(always)]
     fn sample(&self, u: DVec2) -> Option<DirectionSample> {
         let wa = self.weight_a;
-        let pdf = if u.x < wa {
-            let s = self.a.sample(DVec2::new(remap(u.x, 0.0, wa), u.y))?;
+        // u.x in [0, 1 - 2^-53], a NaN as 0 (as `Selection` takes it): a part of weight 0 is
+        // then never chosen, not even by u.x = NaN or 1 (which `u.x < 1` would send to `b` with
+        // a weight of 0, and a density of 0 where `a` does not reach)
+        let ux = below_one(u.x);
+        let pdf = if ux < wa {
+            let s = self.a.sample(DVec2::new(remap(ux, 0.0, wa), u.y))?;
             let vb = if wa < 1.0 {
                 (1.0 - wa) * self.b.pdf(s.direction)
             } else {
@@ -118,7 +122,7 @@ impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
             };
             (s.direction, wa * s.pdf + vb)
         } else {
-            let s = self.b.sample(DVec2::new(remap(u.x, wa, 1.0 - wa), u.y))?;
+            let s = self.b.sample(DVec2::new(remap(ux, wa, 1.0 - wa), u.y))?;
             let va = if wa > 0.0 {
                 wa * self.a.pdf(s.direction)
             } else {

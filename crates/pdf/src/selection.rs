@@ -38,7 +38,7 @@ pub struct Choice {
 /// `x` in `[0, 1)`: clamped to `[0, 1 - 2^-53]`, and a NaN to 0 (which `f64::clamp` would keep).
 #[inline]
 #[allow(clippy::manual_clamp)]
-fn below_one(x: f64) -> f64 {
+pub(crate) fn below_one(x: f64) -> f64 {
     x.max(0.0).min(ONE_MINUS_EPSILON)
 }
 

@@ -98,9 +98,7 @@ impl SphereTarget {
     /// `1 - cos theta_max = sin^2 / (1 + cos)` (no cancellation for far or small spheres).
     #[inline]
     pub fn view(&self, origin: DVec3) -> SphereView {
-        let to_center = self.center - origin;
-        let d2 = to_center.length_squared();
-        let r2 = self.radius * self.radius;
+        let (to_center, d2, r2) = self.relative(origin);
         if d2 <= r2 || d2 == 0.0 || d2.is_nan() {
             return SphereView::Surrounding;
         }
@@ -109,33 +107,54 @@ impl SphereTarget {
             one_minus_cos_max: warp::cone_one_minus_cos(r2 / d2),
         }
     }
+
+    /// `(c - o, |c - o|^2, r^2)` for the centre `c` seen from `o`, in a unit in which the squares
+    /// neither overflow nor underflow. Everything the cone needs is homogeneous in that unit (the
+    /// ratio `r^2 / d^2`, the axis, the sign of a dot product, `|(c - o) x d|^2` against `r^2`), so
+    /// the usual case is the plain computation, and only where `d^2` overflows (a sphere more than
+    /// 1.3e154 away, whose axis would be the zero vector) or `r^2` leaves the normal range (a radius
+    /// below 1.5e-154, whose `r^2 / d^2` would lose its digits or vanish) are both divided by the
+    /// largest coordinate of `c - o` first.
+    #[inline]
+    fn relative(&self, origin: DVec3) -> (DVec3, f64, f64) {
+        let to_center = self.center - origin;
+        let d2 = to_center.length_squared();
+        let r2 = self.radius * self.radius;
+        if d2 <= f64::MAX && r2 >= f64::MIN_POSITIVE {
+            return (to_center, d2, r2);
+        }
+        let m = to_center.abs().max_element();
+        if !positive_finite(m) {
+            return (to_center, d2, r2); // the origin at the centre, or not finite
+        }
+        // (a radius far beyond |c - o| may overflow to r^2 = inf here: the origin is inside)
+        let (to_center, r) = (to_center / m, self.radius / m);
+        (to_center, to_center.length_squared(), r * r)
+    }
     // ANCHOR_END: sphere_view
 }
 
 // ANCHOR: sphere_target
 impl ShapeSampler for SphereTarget {
-    /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside. "Inside the cone" is
-    /// the same as "the ray hits the sphere": the ray points towards the centre `c` and passes within
-    /// `r` of it, `|(c - o) x d|^2 <= r^2` (a cross product, so no cancellation near the axis, and no
-    /// square root or division before a hit). From inside the sphere: `1 / (4 pi)`.
+    /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside (and 0 where that
+    /// density is not a finite number: a sphere too small to see, which `sample` never draws).
+    /// "Inside the cone" is the same as "the ray hits the sphere": the ray points towards the centre
+    /// `c` and passes within `r` of it, `|(c - o) x d|^2 <= r^2` (a cross product, so no cancellation
+    /// near the axis, and no square root or division before a hit). From inside the sphere:
+    /// `1 / (4 pi)`.
     #[inline]
     fn pdf(&self, origin: DVec3, direction: DVec3) -> f64 {
-        let to_center = self.center - origin;
-        let d2 = to_center.length_squared();
-        let r2 = self.radius * self.radius;
+        let (to_center, d2, r2) = self.relative(origin);
         if d2 <= r2 || d2 == 0.0 || d2.is_nan() {
             return warp::uniform_sphere_pdf();
         }
         if to_center.dot(direction) <= 0.0 || to_center.cross(direction).length_squared() > r2 {
             return 0.0;
         }
-        let one_minus_cos_max = warp::cone_one_minus_cos(r2 / d2);
-        // a sphere too small to see (1 - cos theta_max underflowed to 0) is never hit
-        if one_minus_cos_max > 0.0 {
-            warp::uniform_cone_pdf(one_minus_cos_max)
-        } else {
-            0.0
-        }
+        let pdf = warp::uniform_cone_pdf(warp::cone_one_minus_cos(r2 / d2));
+        // a sphere too small to see (1 - cos theta_max underflowed to 0, or so small that its
+        // density overflows) is never sampled, so never hit: `sample` gives `None` there
+        if positive_finite(pdf) { pdf } else { 0.0 }
     }
 
     /// Uniform in the cone the sphere subtends (`None` for a sphere too small to see from `origin`),

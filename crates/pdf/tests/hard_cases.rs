@@ -223,6 +223,82 @@ fn sphere_light_far_away_solid_angle_without_cancellation() {
     }
 }
 
+/// A sphere more than 1.3e154 away (where `|c - o|^2` overflows) or less than 1.5e-154 across
+/// (where `r^2` leaves the normal range) is the same cone as the scene scaled to ordinary sizes:
+/// the axis was the zero vector (a panic in `Onb::new` in debug builds, no sample in release) and
+/// a tiny scene's `r^2 / d^2` was computed from subnormals (a 2e-3 wrong density, or none).
+#[test]
+fn sphere_light_beyond_the_squares_of_f64_is_the_scaled_cone() {
+    // (origin, centre, radius) at ordinary scale, and the factor each is seen at
+    let ordinary = [
+        (DVec3::new(0.3, -0.4, 0.2), DVec3::new(1.0, 2.0, 1e5), 1.0),
+        (DVec3::new(1e-10, 0.0, 0.0), DVec3::new(0.0, 0.0, 1.0), 0.1),
+        (DVec3::new(0.5, 0.5, 0.5), DVec3::new(-3.0, 2.0, 4.0), 2.0),
+    ];
+    let top = 1.0 - f64::EPSILON / 2.0;
+    let us = [
+        DVec2::ZERO,
+        DVec2::new(0.3, 0.7),
+        DVec2::new(top, 0.25),
+        DVec2::new(top, top),
+    ];
+    for (o, c, r) in ordinary {
+        let plain = SphereTarget::new(c, r);
+        for k in [1e150, 1e-160, 1e-300] {
+            let scaled = SphereTarget::new(c * k, r * k);
+            let what = format!("scale {k:e}, centre {c}, radius {r}");
+            for u in us {
+                let want = plain.sample(o, u).unwrap();
+                let got = scaled
+                    .sample(o * k, u)
+                    .unwrap_or_else(|| panic!("{what}: no sample"));
+                assert_unit(got.direction, &what);
+                assert!(
+                    (got.direction - want.direction).length() < 1e-12,
+                    "{what} at {u}: {} vs {}",
+                    got.direction,
+                    want.direction
+                );
+                assert!(
+                    (got.pdf - want.pdf).abs() <= 1e-12 * want.pdf,
+                    "{what} at {u}: pdf {} vs {}",
+                    got.pdf,
+                    want.pdf
+                );
+                let value = scaled.pdf(o * k, got.direction);
+                assert!(
+                    (value - got.pdf).abs() <= 1e-12 * got.pdf,
+                    "{what} at {u}: pdf {value} of a sample that carries {}",
+                    got.pdf
+                );
+            }
+        }
+    }
+}
+
+/// A sphere so small that its density overflows (radius 1e-160 seen from 1): `sample` gives no
+/// direction, so `pdf` must be 0 for every direction, also straight at its centre (it was `inf`).
+#[test]
+fn sphere_light_too_small_to_weigh_has_pdf_zero_where_it_gives_no_sample() {
+    for r in [1e-160, 1e-170, 0.0] {
+        let s = SphereTarget::new(DVec3::Z, r);
+        for u in [DVec2::ZERO, DVec2::splat(0.5)] {
+            assert!(s.sample(DVec3::ZERO, u).is_none(), "radius {r}");
+        }
+        for d in [DVec3::Z, DVec3::new(1e-170, 0.0, 1.0), -DVec3::Z] {
+            assert_eq!(s.pdf(DVec3::ZERO, d), 0.0, "radius {r} towards {d}");
+        }
+        let list = [s];
+        let h = HittablePdf::new(DVec3::ZERO, &list).unwrap();
+        assert_eq!(h.pdf(DVec3::Z), 0.0);
+        assert!(h.sample(DVec2::ZERO).is_none());
+    }
+    // still seen (and weighed) where the density fits: radius 1e-153 from 1, density 3e305
+    let s = SphereTarget::new(DVec3::Z, 1e-153);
+    let sample = s.sample(DVec3::ZERO, DVec2::splat(0.5)).unwrap();
+    assert_eq!(s.pdf(DVec3::ZERO, DVec3::Z), sample.pdf);
+}
+
 // ---------------------------------------------------------------- quad light
 
 fn unit_quad() -> QuadTarget {
@@ -462,6 +538,43 @@ fn mixture_pdf_given_the_second_density_is_the_same_number() {
         differed > 4000,
         "a wrong density for b went unnoticed: {differed}"
     );
+}
+
+/// A part of weight 0 is never sampled, for any `u.x` the mixture may be handed: `u.x = NaN` or
+/// `1` (outside `[0, 1)`) used to choose the second part of a weight-1 mixture, and report the
+/// first part's density there, 0 where the first part does not reach.
+#[test]
+fn mixture_never_samples_a_part_of_weight_zero_even_for_u_nan_or_one() {
+    let quad = [QuadTarget::new(
+        DVec3::new(-1.0, -1.0, 3.0),
+        DVec3::X * 2.0,
+        DVec3::Y * 2.0,
+    )];
+    let towards = HittablePdf::new(DVec3::ZERO, &quad).unwrap();
+    let away = CosinePdf::new(-DVec3::Z); // never towards the quad
+    for ux in [f64::NAN, 1.0, 2.0, f64::INFINITY, -1.0, -0.0] {
+        let u = DVec2::new(ux, 0.5);
+        for (w, a_only) in [(1.0, true), (0.0, false)] {
+            let m = MixturePdf::with_weight(towards, away, w).unwrap();
+            let s = m.sample(u).unwrap();
+            assert!(
+                s.pdf > 0.0 && s.pdf.is_finite(),
+                "weight {w}, u.x = {ux}: pdf {}",
+                s.pdf
+            );
+            assert_eq!(s.pdf, m.pdf(s.direction), "weight {w}, u.x = {ux}");
+            assert_eq!(s.direction.z > 0.0, a_only, "weight {w}, u.x = {ux}");
+        }
+        // and as the choice among parts takes it: NaN as 0, the rest below 1
+        let m = MixturePdf::new(towards, away);
+        let clamped = if ux.is_nan() || ux <= 0.0 {
+            0.0
+        } else {
+            1.0 - f64::EPSILON / 2.0
+        };
+        let want = m.sample(DVec2::new(clamped, 0.5)).unwrap();
+        assert_eq!(m.sample(u).unwrap(), want, "u.x = {ux}");
+    }
 }
 
 #[test]
