@@ -34,7 +34,7 @@ enum Command {
     Study(study::StudyArgs),
     /// Merge partial renders (disjoint sample ranges of one scene) into one image.
     Merge(merge_cmd::MergeArgs),
-    /// Compare rtl with the book's C++ and Mitsuba 3 on this machine (`rtl bench compare`), or measure two renders' noise (`rtl bench noise`).
+    /// Compare rtl with the book's C++ and Mitsuba 3 on this machine (`rtl bench compare`), measure issue 16's three speed targets (`rtl bench targets`), or two renders' noise (`rtl bench noise`).
     Bench(bench_cmd::BenchArgs),
     /// A local web page: watch estimators, samplers and the Cornell box converge, switch strategies live.
     Lab(lab::LabArgs),
