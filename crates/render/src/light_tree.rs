@@ -191,25 +191,36 @@ impl LightTree {
     /// direction; `None` where the descent stops (two children of importance 0).
     #[inline]
     pub fn choose(&self, x: Point3, u: f64) -> Option<(usize, f64)> {
+        self.choose_with_pmf(x, u).map(|(i, u, _)| (i, u))
+    }
+
+    /// [`LightTree::choose`] with the chosen emitter's [`LightTree::pmf`] (the same number: the
+    /// descent multiplies the same shares in the same order as the walk down a trail).
+    #[inline]
+    fn choose_with_pmf(&self, x: Point3, u: f64) -> Option<(usize, f64, f64)> {
         let n = self.len();
         let u = u.clamp(0.0, ONE_MINUS_EPSILON);
         if u < UNIFORM_SHARE || u.is_nan() {
             let u = if u.is_nan() { 0.0 } else { u / UNIFORM_SHARE };
             let scaled = u * n as f64;
             let i = (scaled as usize).min(n - 1);
-            return Some((i, (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON)));
+            let u = (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON);
+            return Some((i, u, self.pmf(x, i)));
         }
         let mut u = ((u - UNIFORM_SHARE) / (1.0 - UNIFORM_SHARE)).min(ONE_MINUS_EPSILON);
-        let mut k = 0u32;
+        let (mut k, mut t) = (0u32, 1.0);
         loop {
             match self.nodes[k as usize] {
-                Node::Leaf { emitter } => return Some((emitter as usize, u)),
+                Node::Leaf { emitter } => {
+                    let pmf = UNIFORM_SHARE / n as f64 + (1.0 - UNIFORM_SHARE) * t;
+                    return Some((emitter as usize, u, pmf));
+                }
                 Node::Inner { left, right, .. } => {
                     let p = self.left_share(left, right, x)?;
-                    (k, u) = if u < p {
-                        (left, u / p)
+                    (k, u, t) = if u < p {
+                        (left, u / p, t * p)
                     } else {
-                        (right, (u - p) / (1.0 - p))
+                        (right, (u - p) / (1.0 - p), t * (1.0 - p))
                     };
                     u = u.clamp(0.0, ONE_MINUS_EPSILON);
                 }
@@ -241,8 +252,8 @@ impl LightTree {
 
     /// Next-event estimation's density of `direction` from `x`, per unit solid angle:
     /// `sum_i P_i(x) pdf_i(direction | x)`, over the emitters `index` says the ray may meet (every
-    /// emitter without one), in their order; `pdf_i` is taken as `chosen.1` for emitter `chosen.0`
-    /// (the density its sample came with).
+    /// emitter without one), in their order; for emitter `chosen.0`, `pdf_i` is taken as `chosen.1`
+    /// (the density its sample came with) and `P_i` as `chosen.2`.
     #[inline]
     pub fn pdf(
         &self,
@@ -250,17 +261,17 @@ impl LightTree {
         direction: Vec3,
         emitters: &[LightTarget],
         index: Option<&dyn ShapeIndex>,
-        chosen: Option<(usize, f64)>,
+        chosen: Option<(usize, f64, f64)>,
     ) -> f64 {
         let mut sum = 0.0;
-        let mut term = |j: usize| {
-            let p = match chosen {
-                Some((i, p)) if i == j => p,
-                _ => emitters[j].pdf(x, direction),
-            };
-            // (the trail only where the direction can meet the emitter)
-            if p > 0.0 {
-                sum += self.pmf(x, j) * p;
+        let mut term = |j: usize| match chosen {
+            Some((i, p, pmf)) if i == j => sum += pmf * p,
+            _ => {
+                let p = emitters[j].pdf(x, direction);
+                // (the trail only where the direction can meet the emitter)
+                if p > 0.0 {
+                    sum += self.pmf(x, j) * p;
+                }
             }
         };
         let mut out = [0u32; MAX_CANDIDATES];
@@ -268,11 +279,11 @@ impl LightTree {
             Some(k) => {
                 let mut met_chosen = false;
                 for &j in &out[..k] {
-                    met_chosen |= chosen.is_some_and(|(i, _)| i == j as usize);
+                    met_chosen |= chosen.is_some_and(|(i, ..)| i == j as usize);
                     term(j as usize);
                 }
                 // (a conservative index names the chosen emitter; should it not, its term still counts)
-                if let Some((i, _)) = chosen.filter(|_| !met_chosen) {
+                if let Some((i, ..)) = chosen.filter(|_| !met_chosen) {
                     term(i);
                 }
             }
@@ -291,9 +302,43 @@ impl LightTree {
         emitters: &[LightTarget],
         index: Option<&dyn ShapeIndex>,
     ) -> Option<DirectionSample> {
-        let (i, u0) = self.choose(x, u.x)?;
+        let (i, u0, pmf) = self.choose_with_pmf(x, u.x)?;
         let s = emitters[i].sample(x, DVec2::new(u0, u.y))?;
-        let pdf = self.pdf(x, s.direction, emitters, index, Some((i, s.pdf)));
+        let pdf = self.pdf(x, s.direction, emitters, index, Some((i, s.pdf, pmf)));
         DirectionSample::new(s.direction, pdf)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rtl_pdf::SphereTarget;
+
+    /// The probability the descent hands on is the one the walk down the chosen emitter's trail
+    /// gives, to the bit (the MIS weight of the emission met by material sampling uses the latter).
+    #[test]
+    fn the_descent_and_the_trail_give_the_same_probability() {
+        let emitters: Vec<LightTarget> = (0..37)
+            .map(|i| {
+                let c = Point3::new((i % 6) as f64, (i / 6) as f64 * 0.7, (i * 7 % 5) as f64);
+                LightTarget::Sphere(SphereTarget::new(c, 0.05 + 0.01 * (i % 4) as f64))
+            })
+            .collect();
+        let weights: Vec<EmitterWeight> = emitters
+            .iter()
+            .enumerate()
+            .map(|(i, t)| EmitterWeight::new(t, 1.0 + (i % 3) as f64))
+            .collect();
+        let tree = LightTree::new(&emitters, &weights).unwrap();
+        let mut chosen = vec![false; emitters.len()];
+        for k in 0..4000 {
+            let u = (k as f64 + 0.5) / 4000.0;
+            let x = Point3::new(u * 9.0 - 2.0, -1.0 + (k % 7) as f64, 2.5 - (k % 3) as f64);
+            let (i, v, pmf) = tree.choose_with_pmf(x, u).unwrap();
+            assert!((0.0..1.0).contains(&v));
+            assert_eq!(pmf.to_bits(), tree.pmf(x, i).to_bits(), "{x} {u}");
+            chosen[i] = true;
+        }
+        assert!(chosen.iter().all(|&c| c), "every emitter chosen somewhere");
     }
 }
