@@ -8,9 +8,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 use rtl_render::checkpoint::{Checkpoint, merge};
 use rtl_render::limits;
-use rtl_render::output::{
-    OutputFile, OutputKind, Transfer, check_outputs, write_linear, write_png,
-};
+use rtl_render::output::{OutputFile, OutputKind, Transfer, write_linear, write_png};
 use std::path::PathBuf;
 
 #[derive(Args)]
@@ -64,7 +62,7 @@ fn check_merge_outputs(args: &MergeArgs) -> Result<()> {
         .iter()
         .map(|p| (format!("the part {}", p.display()), p.clone()))
         .collect();
-    check_outputs(&outputs, &inputs)?;
+    crate::render_cmd::check_output_files(&outputs, &inputs)?;
     Ok(())
 }
 

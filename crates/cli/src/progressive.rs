@@ -43,8 +43,18 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
     if t.is_empty() {
         return Err(err());
     }
-    // A positive time shorter than the nanosecond a `Duration` counts in would read as 0.
-    let positive = |d: Duration, secs: f64| {
+    // A positive time shorter than the nanosecond a `Duration` counts in would read as 0; one longer
+    // than the longest `Duration` (about 5.8e11 years) is that, no deadline at all, as a budget past
+    // the end of time is.
+    let positive = |secs: f64| {
+        if secs < 0.0 {
+            return Err(format!("'{s}' is negative: a time is at least 0"));
+        }
+        let d = match Duration::try_from_secs_f64(secs) {
+            Ok(d) => d,
+            Err(_) if secs.is_finite() => Duration::MAX,
+            Err(_) => return Err(err()),
+        };
         if d.is_zero() && secs > 0.0 {
             Err(format!(
                 "'{s}' is shorter than a nanosecond, the shortest time there is here"
@@ -54,8 +64,7 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
         }
     };
     if let Ok(secs) = t.parse::<f64>() {
-        let d = Duration::try_from_secs_f64(secs).map_err(|_| err())?;
-        return positive(d, secs);
+        return positive(secs);
     }
     let mut total = 0.0;
     let mut rest = t;
@@ -85,8 +94,7 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
         total += value * scale;
         rest = &rest[unit_end..];
     }
-    let d = Duration::try_from_secs_f64(total).map_err(|_| err())?;
-    positive(d, total)
+    positive(total)
 }
 
 /// How the loop ended.
@@ -249,8 +257,21 @@ mod tests {
         assert_eq!(s("1h30m"), Duration::from_secs(5400));
         assert_eq!(s("1.5s"), Duration::from_millis(1500));
         assert_eq!(s("250ms"), Duration::from_millis(250));
-        for bad in ["", "s", "5x", "-3", "1h-", "inf"] {
+        for bad in ["", "s", "5x", "-3", "1h-", "inf", "nan", "1e400"] {
             assert!(parse_duration(bad).is_err(), "{bad}");
+        }
+        let e = parse_duration("-3").unwrap_err();
+        assert!(e.contains("'-3' is negative"), "{e}");
+        // longer than a `Duration` holds (u64::MAX seconds, written as plain seconds or in days) is
+        // the longest one, no deadline, as shorter budgets past the end of time are; it had been
+        // refused as "not a duration"
+        for long in [
+            "18446744073709551615",
+            "1e30",
+            "1000000000000000d",
+            "99999999999999999999h",
+        ] {
+            assert_eq!(s(long), Duration::MAX, "{long}");
         }
         // zero is zero (the callers refuse it by name); a positive time is never read as zero
         assert_eq!(s("0"), Duration::ZERO);

@@ -152,20 +152,37 @@ struct Loaded {
     built: Built,
     width: usize,
     spp: u64,
+    /// The image files a scene file's textures were read from (inputs no output may overwrite).
+    texture_files: Vec<PathBuf>,
+}
+
+/// Whether the scene argument names a scene file rather than a built-in scene: one ending in
+/// `.toml`, or a file that is not named as a built-in is. A built-in's bare name is the built-in even
+/// if a file of that name is in the directory (say the checkpoint of `rtl render cornell --checkpoint
+/// cornell`, which `--resume cornell` then read as a scene file); `./cornell` names the file.
+fn names_a_file(arg: &str) -> bool {
+    arg.ends_with(".toml") || (find(arg).is_err() && Path::new(arg).is_file())
 }
 
 fn load(arg: &str, opts: &SceneOptions) -> Result<Loaded> {
-    if arg.ends_with(".toml") || Path::new(arg).is_file() {
+    if names_a_file(arg) {
         return load_file(Path::new(arg));
     }
     let b: &BuiltIn = find(arg).map_err(anyhow::Error::msg)?;
-    let built = (b.build)(opts).map_err(|e| anyhow::anyhow!("scene {}: {e}", b.name))?;
+    // (a built-in fails to build only on the image of `--texture`, which its error names first)
+    let flag = if opts.texture.is_some() {
+        "--texture "
+    } else {
+        ""
+    };
+    let built = (b.build)(opts).map_err(|e| anyhow::anyhow!("scene {}: {flag}{e}", b.name))?;
     Ok(Loaded {
         name: b.name.into(),
         description: b.description.into(),
         built,
         width: b.width,
         spp: b.spp,
+        texture_files: Vec::new(),
     })
 }
 
@@ -185,6 +202,7 @@ fn load_file(path: &Path) -> Result<Loaded> {
         built: file.built,
         width: file.width.unwrap_or(400),
         spp: file.spp.unwrap_or(100),
+        texture_files: file.texture_files,
     })
 }
 
@@ -448,9 +466,8 @@ struct Job {
 /// naming the flag, the value and the limit.
 fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
     if let Some(t) = &args.texture {
-        let is_file = scene_arg.ends_with(".toml") || Path::new(scene_arg).is_file();
-        let takes =
-            !is_file && matches!(find(scene_arg).map(|b| b.name), Ok("earth" | "book2-final"));
+        let takes = !names_a_file(scene_arg)
+            && matches!(find(scene_arg).map(|b| b.name), Ok("earth" | "book2-final"));
         if !takes {
             bail!(
                 "--texture {}: only the built-in scenes `earth` and `book2-final` take an image (for \
@@ -476,6 +493,14 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
     let opts = SceneOptions {
         texture: args.texture.clone(),
     };
+    let file = Path::new(scene_arg);
+    let ours = [&args.resume, &args.checkpoint].contains(&&Some(file.to_path_buf()));
+    if !names_a_file(scene_arg) && file.is_file() && !ours {
+        eprintln!(
+            "note: '{scene_arg}' is the built-in scene; to render the file of that name here, \
+             write ./{scene_arg}"
+        );
+    }
     let loaded = load(scene_arg, &opts)?;
     let scene = &loaded.built.scene;
     let width = args.width.unwrap_or(loaded.width);
@@ -600,8 +625,11 @@ fn check_job_outputs(args: &RenderArgs, job: &Job, scene_arg: &str) -> Result<()
         });
     }
     let mut inputs = Vec::new();
-    if Path::new(scene_arg).is_file() {
+    if names_a_file(scene_arg) {
         inputs.push(("the scene file".to_string(), PathBuf::from(scene_arg)));
+    }
+    for t in &job.loaded.texture_files {
+        inputs.push((format!("the scene's texture {}", t.display()), t.clone()));
     }
     if let Some(t) = &args.texture {
         inputs.push(("--texture".to_string(), t.clone()));
@@ -611,7 +639,7 @@ fn check_job_outputs(args: &RenderArgs, job: &Job, scene_arg: &str) -> Result<()
     {
         inputs.push(("--resume".to_string(), r.clone()));
     }
-    check_outputs(&outputs, &inputs)?;
+    check_output_files(&outputs, &inputs)?;
     if let Some(c) = &args.checkpoint
         && c.exists()
         && args.resume.as_ref() != Some(c)
@@ -621,6 +649,31 @@ fn check_job_outputs(args: &RenderArgs, job: &Job, scene_arg: &str) -> Result<()
             c.display()
         );
     }
+    Ok(())
+}
+
+/// [`check_outputs`], and first that no output's name ends in a `/`: `-o out.png/` passed its checks
+/// (its file name is `out.png`) and failed only at the end, on renaming the image into place, the
+/// render's work lost (and with `--linear out.pfm/` the PNG written, the PFM not).
+pub(crate) fn check_output_files(
+    outputs: &[OutputFile],
+    inputs: &[(String, PathBuf)],
+) -> Result<()> {
+    for o in outputs {
+        let text = o.path.as_os_str().as_encoded_bytes();
+        if text
+            .last()
+            .is_some_and(|b| std::path::is_separator(char::from(*b)))
+        {
+            bail!(
+                "{} {}: a file's name cannot end in `{}` (that names a directory)",
+                o.flag,
+                o.path.display(),
+                std::path::MAIN_SEPARATOR
+            );
+        }
+    }
+    check_outputs(outputs, inputs)?;
     Ok(())
 }
 
@@ -914,16 +967,17 @@ fn report(
             .unwrap_or_default()
     );
     if args.stats {
+        // (a resume of a finished render renders no sample: 0 per sample, not NaN)
         println!("samples              {}", stats.samples);
         println!(
             "rays                 {} ({:.2} per sample)",
             stats.rays,
-            stats.rays as f64 / samples
+            stats.rays as f64 / samples.max(1.0)
         );
         println!(
             "random numbers       {} ({:.2} per sample)",
             stats.random_numbers,
-            stats.random_numbers as f64 / samples
+            stats.random_numbers as f64 / samples.max(1.0)
         );
         println!("lens samples         {}", stats.lens_samples);
         println!("time samples         {}", stats.time_samples);

@@ -82,7 +82,7 @@ pub use span::{Field, Place, SceneFileError, line_col};
 
 use crate::scenes::Built;
 use loader::Loader;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 
 /// A scene read from a file, with the render defaults the file asks for.
@@ -94,6 +94,9 @@ pub struct SceneFile {
     pub spp: Option<u64>,
     /// The top-level `description`, if given.
     pub description: Option<String>,
+    /// The image files its textures were read from, as found (relative to the scene file's
+    /// directory): inputs, which a render's outputs must not overwrite.
+    pub texture_files: Vec<PathBuf>,
 }
 
 /// Load the scene in the file at `path`, with its render defaults; image textures are found relative to

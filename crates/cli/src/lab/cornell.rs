@@ -455,7 +455,9 @@ impl Bench {
                 .as_ref()
                 .map_err(|e| anyhow::anyhow!("{e:#}"))
                 .and_then(|pool| {
-                    std::fs::create_dir_all(dir)?;
+                    std::fs::create_dir_all(dir).map_err(|e| {
+                        anyhow::anyhow!("cannot create the directory {}: {e}", dir.display())
+                    })?;
                     pool.install(|| reference_until(dir, glue::SCENE, &scene, width, spp, &stop))
                 });
             let mut ready = None;

@@ -31,7 +31,7 @@ mod server;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr, TcpListener};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 #[derive(Args)]
@@ -83,9 +83,41 @@ pub enum LabError {
         port: u16,
         source: std::io::Error,
     },
+    /// `--reference-dir` is (or lies under) something other than a directory: the lab had started,
+    /// rendered a reference for the page and then shown `no reference: File exists (os error 17)`.
+    #[error(
+        "--reference-dir {}: {} is not a directory (the lab reads and caches its references there)",
+        dir.display(),
+        file.display()
+    )]
+    ReferenceDir { dir: PathBuf, file: PathBuf },
+}
+
+/// Refuse a `--reference-dir` that is, or lies under, a file (or a device): it could never be
+/// created, and a reference rendered for it could not be cached. One that does not exist yet is
+/// created when the first reference is.
+fn check_reference_dir(dir: &Path) -> Result<(), LabError> {
+    let mut p = dir;
+    loop {
+        if p.exists() {
+            return if p.is_dir() {
+                Ok(())
+            } else {
+                Err(LabError::ReferenceDir {
+                    dir: dir.to_path_buf(),
+                    file: p.to_path_buf(),
+                })
+            };
+        }
+        match p.parent() {
+            Some(q) if !q.as_os_str().is_empty() => p = q,
+            _ => return Ok(()),
+        }
+    }
 }
 
 pub fn run(args: LabArgs) -> Result<()> {
+    check_reference_dir(&args.reference_dir)?;
     let listener = TcpListener::bind(SocketAddr::new(args.bind, args.port)).map_err(|e| {
         if e.kind() == std::io::ErrorKind::AddrInUse {
             LabError::PortInUse {

@@ -16,7 +16,7 @@
 
 use crate::csv::CsvTable;
 use crate::plot::{Panel, Series, image_grid, loglog};
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Args;
 use rayon::prelude::*;
 use rtl_mc::RunningStats;
@@ -142,10 +142,26 @@ fn settings(width: usize, scene: &Scene, seed: u64, strategy: Strategy) -> Rende
 /// The largest reference PFM read: 3 floats a pixel, 2^26 pixels (a render of 8192 x 8192).
 const MAX_PFM_BYTES: u64 = 12 << 26;
 
-/// Read a colour PFM as written by `write_linear` (rows bottom to top, little-endian).
+/// Read a colour PFM as written by `write_linear` (rows bottom to top, little-endian): refused, naming
+/// the file and what is wrong with it, unless its header is whole (a positive width and height whose
+/// pixels fit in the file, a negative scale: little-endian), and every value is radiance (finite and
+/// never negative). A cached reference is trusted for every curve measured against it: one with a NaN
+/// gave every RMSE as NaN (the lab's curves stayed empty, without a word), and a header of
+/// 2147483648 x 2147483648 pixels panicked on allocation.
 fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
     let bytes = rtl_render::limits::read_regular_file(path, "reference image", MAX_PFM_BYTES)
         .map_err(anyhow::Error::msg)?;
+    parse_pfm(&bytes).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: {e} (a damaged reference: remove it, and `rtl study render` or a restarted `rtl \
+             lab` renders it again)",
+            path.display()
+        )
+    })
+}
+
+/// [`read_pfm`]'s reading of the file's `bytes`.
+fn parse_pfm(bytes: &[u8]) -> std::result::Result<(usize, usize, Vec<Color>), String> {
     let mut fields = Vec::new();
     let mut pos = 0;
     while fields.len() < 4 {
@@ -157,19 +173,43 @@ fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
             pos += 1;
         }
         if start == pos {
-            bail!("{}: truncated PFM header", path.display());
+            return Err("truncated PFM header".into());
         }
         fields.push(String::from_utf8_lossy(&bytes[start..pos]).into_owned());
     }
     pos += 1;
     if fields[0] != "PF" {
-        bail!("{}: not a colour PFM", path.display());
+        return Err("not a colour PFM (it does not start with PF)".into());
     }
-    let w: usize = fields[1].parse().context("PFM width")?;
-    let h: usize = fields[2].parse().context("PFM height")?;
-    let data = &bytes[pos..];
-    if data.len() < w * h * 12 {
-        bail!("{}: PFM data too short", path.display());
+    let side = |f: &str, what: &str| match f.parse::<usize>() {
+        Ok(n) if n > 0 => Ok(n),
+        _ => Err(format!(
+            "PFM header field `{what}`: expected a positive integer, got {f:?}"
+        )),
+    };
+    let w = side(&fields[1], "width")?;
+    let h = side(&fields[2], "height")?;
+    match fields[3].parse::<f64>() {
+        Ok(scale) if scale < 0.0 && scale.is_finite() => {}
+        _ => {
+            return Err(format!(
+                "PFM header field `scale`: expected a negative number (little-endian, as rtl \
+                 writes), got {:?}",
+                fields[3]
+            ));
+        }
+    }
+    let data = bytes.get(pos..).unwrap_or_default();
+    let values = w.checked_mul(h).and_then(|n| n.checked_mul(3));
+    if values.and_then(|n| n.checked_mul(4)) != Some(data.len()) {
+        return Err(format!(
+            "{} bytes of pixel data where {w} x {h} pixels take {}",
+            data.len(),
+            values.map_or("more than there are".to_string(), |n| format!(
+                "{}",
+                n as u128 * 4
+            ))
+        ));
     }
     let f = |i: usize| f32::from_le_bytes(data[4 * i..4 * i + 4].try_into().unwrap()) as f64;
     let mut px = vec![Color::ZERO; w * h];
@@ -177,7 +217,13 @@ fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
         let j = h - 1 - row;
         for i in 0..w {
             let k = 3 * (row * w + i);
-            px[j * w + i] = Color::new(f(k), f(k + 1), f(k + 2));
+            let c = [f(k), f(k + 1), f(k + 2)];
+            if let Some(v) = c.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+                return Err(format!(
+                    "pixel (x {i}, y {j}) is {v}: radiance is finite and never negative"
+                ));
+            }
+            px[j * w + i] = Color::new(c[0], c[1], c[2]);
         }
     }
     Ok((w, h, px))
@@ -790,4 +836,66 @@ fn figures(
     std::fs::write(out_dir.join("render-600.csv"), table)?;
     eprintln!("wrote {}", out_dir.display());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_pfm;
+    use rtl_render::output::write_linear;
+
+    fn pfm(header: &str, values: &[f32]) -> Vec<u8> {
+        let mut b = header.as_bytes().to_vec();
+        for v in values {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b
+    }
+
+    #[test]
+    fn a_reference_as_written_is_read_back() {
+        let dir = std::env::temp_dir().join(format!("rtl-read-pfm-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("r.pfm");
+        let img: Vec<rtl_render::Color> = (0..6)
+            .map(|i| rtl_render::Color::new(i as f64, 0.5, 0.25))
+            .collect();
+        write_linear(&path, 3, 2, &img).unwrap();
+        let (w, h, px) = super::read_pfm(&path).unwrap();
+        assert_eq!((w, h), (3, 2));
+        assert_eq!(px, img);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A damaged reference is refused, saying what is wrong, rather than trusted (a NaN made every
+    /// RMSE NaN) or allocated (a header of 2^31 x 2^31 pixels panicked on a capacity overflow).
+    #[test]
+    fn a_damaged_reference_is_refused_not_trusted_nor_allocated() {
+        let ok = [0.5f32; 12];
+        assert!(parse_pfm(&pfm("PF\n2 2\n-1.0\n", &ok)).is_ok());
+        for (bytes, words) in [
+            (pfm("PF\n2147483648 2147483648\n-1.0\n", &[]), "pixel data"),
+            (pfm("PF\n4294967296 4294967296\n-1.0\n", &[]), "pixel data"),
+            (pfm("PF\n0 2\n-1.0\n", &[]), "`width`"),
+            (pfm("PF\n2 -2\n-1.0\n", &ok), "`height`"),
+            (pfm("PF\n2 2\n1.0\n", &ok), "`scale`"),
+            (pfm("PF\n2 2\nnan\n", &ok), "`scale`"),
+            (pfm("PF\n2 2\n-1.0\n", &ok[..11]), "pixel data"),
+            (pfm("PF\n2 2\n-1.0\n", &[0.5; 13]), "pixel data"),
+            (pfm("Pf\n2 2\n-1.0\n", &ok), "not a colour PFM"),
+            (pfm("PF\n2 2", &[]), "truncated"),
+        ] {
+            let e = parse_pfm(&bytes).unwrap_err();
+            assert!(e.contains(words), "{e}");
+        }
+        for bad in [f32::NAN, f32::INFINITY, -1.0] {
+            let mut v = ok;
+            v[7] = bad;
+            let e = parse_pfm(&pfm("PF\n2 2\n-1.0\n", &v)).unwrap_err();
+            // value 7 is pixel 2 of the file's rows (bottom to top): x 0 of the top row
+            assert!(
+                e.contains("pixel (x 0, y 0)") && e.contains("finite"),
+                "{e}"
+            );
+        }
+    }
 }

@@ -27,7 +27,15 @@ pub(super) struct Typed<'i> {
 pub(super) fn typed<'i>(v: Val<'i>, what: &str, kinds: &[&'static str]) -> Result<Typed<'i>, Fail> {
     let span = v.span();
     let DeValue::Table(mut table) = v.into_inner() else {
-        return fail(span, format!("expected a table with a `type` (a {what})"));
+        let article = if what.starts_with(['a', 'e', 'i', 'o', 'u']) {
+            "an"
+        } else {
+            "a"
+        };
+        return fail(
+            span,
+            format!("expected a table with a `type` ({article} {what})"),
+        );
     };
     let Some(ty) = table.remove("type") else {
         return fail(span, "missing field `type`");

@@ -69,6 +69,8 @@ pub(super) struct Loader<'t> {
     pub(super) sizes: Vec<GroupSize>,
     /// Per group the file writes (a `group`, a `box`, a medium's boundary), how messages name it.
     pub(super) labels: HashMap<u32, String>,
+    /// The image files the textures were read from (inputs a render must not overwrite).
+    pub(super) texture_files: Vec<PathBuf>,
 }
 
 impl<'t> Loader<'t> {
@@ -85,6 +87,7 @@ impl<'t> Loader<'t> {
             shutter: (0.0, 1.0),
             sizes: Vec::new(),
             labels: HashMap::new(),
+            texture_files: Vec::new(),
         }
     }
 
@@ -262,14 +265,25 @@ impl<'t> Loader<'t> {
             span: 0..0,
             msg: format!("invalid scene: {e}"),
         })?;
+        // Not an error (a scene may be a study of shadows in progress), but a black image with no
+        // word of why looks like a bug of the renderer's.
+        let mut notices = Vec::new();
+        if scene.features.emitters == 0
+            && matches!(scene.background, Background::Solid(c) if c == Vec3::ZERO)
+        {
+            notices.push(
+                "the scene has no light: no sphere or quad is of a `light` material and the \
+                 background is black, so the image is black (give an object a `light` material, \
+                 or [render] background = \"sky\")"
+                    .to_string(),
+            );
+        }
         Ok(SceneFile {
-            built: Built {
-                scene,
-                notices: Vec::new(),
-            },
+            built: Built { scene, notices },
             width,
             spp,
             description,
+            texture_files: self.texture_files,
         })
     }
 
@@ -414,7 +428,7 @@ impl<'t> Loader<'t> {
         Ok(())
     }
 
-    pub(super) fn texture(&self, v: Val<'_>) -> Result<Texture, Fail> {
+    pub(super) fn texture(&mut self, v: Val<'_>) -> Result<Texture, Fail> {
         let Typed { kind, table, span } = typed(v, "texture", TEXTURE_TYPES)?;
         Ok(match kind {
             "solid" => Texture::Solid(de_table::<SolidDoc>(table, &span)?.color.0),
@@ -429,6 +443,9 @@ impl<'t> Loader<'t> {
             }
             "image" => {
                 let d: ImageDoc = de_table(table, &span)?;
+                if d.file.get_ref().is_empty() {
+                    return fail(d.file.span(), "the texture file's name is empty");
+                }
                 let file = self.dir.join(d.file.get_ref());
                 if !file.exists() {
                     return fail(
@@ -440,6 +457,7 @@ impl<'t> Loader<'t> {
                     );
                 }
                 let img = ImageData::load(&file).or_else(|e| fail(d.file.span(), e))?;
+                self.texture_files.push(file);
                 Texture::Image(Box::new(img))
             }
             _ => unreachable!("typed() returns one of TEXTURE_TYPES"),

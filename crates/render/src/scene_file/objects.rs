@@ -11,9 +11,9 @@ use super::values::{Num, Real, Step};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::shapes::{Quad, Sphere};
-use crate::vec::Point3;
+use crate::vec::{Point3, Vec3};
 use toml::Spanned;
-use toml::de::DeTable;
+use toml::de::{DeTable, DeValue};
 
 impl Loader<'_> {
     /// Build the object `v` into group `into`; `to_world` maps the group's space to world space.
@@ -93,6 +93,56 @@ impl Loader<'_> {
         Ok(())
     }
 
+    /// Refuse a quad (corner `q`, edges `u`, `v`, placed by `to_world`; the object at `span`) whose
+    /// edges cannot be placed finely enough for the camera, as [`Self::placeable`] a sphere: a hit
+    /// is inside the quad by its coordinates relative to `q`, which carry the rounding of the largest
+    /// coordinate of the quad (its corners, its edges' lengths, before and after its transform), so
+    /// an edge is off by the spacing of doubles there. A floor with `q = [-1e20, 0, 1e20]` whose
+    /// edge at x = 0 passed 2 from the camera had that edge 16,000 away from its place, the image
+    /// silently another (at 1e16, 2 off). Refused when that spacing is more than 1/1024 of the
+    /// distance the nearest edge is seen at (the larger of the camera's distance to `lookat` and to
+    /// that edge); a large quad whose edges are far away (a floor centred in view) is not.
+    fn edges_placeable(
+        &self,
+        q: Point3,
+        u: Vec3,
+        v: Vec3,
+        to_world: Transform,
+        span: &Span,
+    ) -> Result<(), Fail> {
+        let corners = |q: Point3, u: Vec3, v: Vec3| [q, q + u, q + v, q + u + v];
+        let largest = |q: Point3, u: Vec3, v: Vec3| {
+            corners(q, u, v)
+                .iter()
+                .chain(&[u, v])
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f64::max)
+        };
+        let (wq, wu, wv) = (to_world.point(q), to_world.vector(u), to_world.vector(v));
+        let far = largest(q, u, v).max(largest(wq, wu, wv));
+        let c = &self.b.camera;
+        let [a, b, cc, d] = corners(wq, wu, wv);
+        let edge = [(a, b), (a, cc), (b, d), (cc, d)]
+            .iter()
+            .map(|&(s, e)| segment_distance(c.lookfrom, s, e))
+            .fold(f64::INFINITY, f64::min);
+        let scale = (c.lookfrom - c.lookat).length().max(edge);
+        let spacing = far.next_up() - far;
+        if spacing > scale / 1024.0 {
+            return fail(
+                span.clone(),
+                format!(
+                    "a quad reaching {far:.3e} from the origin cannot have its edges placed finely \
+                     enough for this camera: doubles there are {spacing:.3e} apart, more than 1/1024 \
+                     of the distance its nearest edge is seen at ({scale:.3e}, the larger of the \
+                     camera's to lookat and to the edge), so its edges would be that far off; make \
+                     the quad smaller, or keep its corners nearer the origin"
+                ),
+            );
+        }
+        Ok(())
+    }
+
     /// `moving_sphere`: `center0` at time 0, `center1` at time 1, `radius`.
     fn moving_sphere(
         &mut self,
@@ -132,6 +182,7 @@ impl Loader<'_> {
         let (q, u, v) = (d.q.0, d.u.get_ref().0, d.v.get_ref().0);
         check_quad(u, v, &d.u, &d.v)?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
+        self.edges_placeable(q, u, v, p.to_world, &span)?;
         self.count(p.group, None, &span, "this quad")?;
         self.b
             .quad(p.group, q, u, v, m)
@@ -250,6 +301,19 @@ impl Loader<'_> {
         let Some(boundary) = take(&mut table, "boundary") else {
             return fail(span, "missing field `boundary`");
         };
+        // A quad bounds no volume: a ray enters it and never leaves, so the medium was invisible
+        // without a word.
+        if let DeValue::Table(b) = boundary.get_ref()
+            && let Some(t) = b.get("type")
+            && t.get_ref().as_str() == Some("quad")
+        {
+            return fail(
+                t.span(),
+                "a medium's boundary must enclose a volume (a sphere, a moving sphere, a box, or a \
+                 group or instance of them); a quad encloses none, and the medium inside it would \
+                 be invisible",
+            );
+        }
         let d: MediumDoc = de_table(table, &span)?;
         let density = positive(&d.density, "density")?;
         let albedo = self.reflectance(&d.albedo)?;
@@ -346,4 +410,16 @@ impl Loader<'_> {
             }
         }
     }
+}
+
+/// The distance from `p` to the segment from `a` to `b`.
+fn segment_distance(p: Point3, a: Point3, b: Point3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 && len2.is_finite() {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + ab * t)).length()
 }
