@@ -181,13 +181,30 @@ fn noise_of(a: &NoiseArgs) -> Result<String> {
     if a.spp == 0 {
         bail!("--spp must be positive");
     }
+    let (pa, pb) = (&a.images[0], &a.images[1]);
+    if let (Ok(ca), Ok(cb)) = (pa.canonicalize(), pb.canonicalize())
+        && ca == cb
+    {
+        bail!(
+            "{} and {}: the same file twice; its noise against itself is 0 (give two renders of \
+             one scene with different seeds)",
+            pa.display(),
+            pb.display()
+        );
+    }
     let load = |path: &PathBuf| -> Result<DisplayImage> {
         Ok(parse_image(&read(path)?, &path.display().to_string())?)
     };
-    let (x, y) = (load(&a.images[0])?, load(&a.images[1])?);
+    let (x, y) = (load(pa)?, load(pb)?);
     let (c, _) = pair_constant(&x, &y, a.spp)?;
+    // (equal images are two renders with the same seed, or of a scene without noise)
+    let same = if c == 0.0 {
+        " (the two images are equal: the same seed twice, or a scene without noise?)"
+    } else {
+        ""
+    };
     Ok(format!(
-        "{}x{}, {} spp: per-pixel RMSE {:.5}, c {:.4}, mean display values {:.4} and {:.4}",
+        "{}x{}, {} spp: per-pixel RMSE {:.5}, c {:.4}, mean display values {:.4} and {:.4}{same}",
         x.width,
         x.height,
         a.spp,

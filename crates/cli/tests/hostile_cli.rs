@@ -312,3 +312,31 @@ fn the_lab_refuses_a_reference_dir_that_is_a_file() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `rtl bench noise` given one render twice measured its noise against itself: c = 0, as if the
+/// renderer had none. The same file is refused; two equal files are measured, with a note.
+#[test]
+fn bench_noise_refuses_one_render_twice() {
+    let d = dir("noise");
+    ok(
+        &d,
+        &[
+            "render", "cornell", "--width", "8", "--spp", "2", "-o", "a.png", "--linear", "a.pfm",
+        ],
+    );
+    refused_with(
+        &d,
+        1,
+        &["bench", "noise", "--spp", "2", "a.pfm", "./a.pfm"],
+        &["a.pfm", "the same file twice"],
+    );
+    std::fs::copy(d.join("a.pfm"), d.join("b.pfm")).unwrap();
+    let out = rtl(&d, &["bench", "noise", "--spp", "2", "a.pfm", "b.pfm"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("c 0.0000") && text.contains("equal"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
