@@ -1045,7 +1045,8 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
 /// integrator). At every diffuse vertex two directions are drawn:
 /// - towards the emitters (`p_l`), every emitter of the scene, listed or not, each chosen with a
 ///   probability that depends on the vertex (its radiance times the solid angle it subtends there,
-///   [`Lights::towards_emitters`]): a shadow ray, whose
+///   [`Lights::towards_emitters`]; above 16 emitters through a light tree by power and distance,
+///   [`Lights::sample_emitters`]): a shadow ray, whose
 ///   emission, times the transmittance of the media it crosses, counts with weight
 ///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
 /// - from the material's density mixed with the non-emitting targets by [`OTHERS_SHARE`] (`p_m`):

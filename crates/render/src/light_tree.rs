@@ -1,6 +1,7 @@
 //! A light tree: next-event estimation's choice among many emitters, weighed per shading point in
 //! `O(log n)` (Conty Estevez and Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree
-//! Splitting"; pbrt-v4's `BVHLightSampler`, here without its cones of normals).
+//! Splitting"; pbrt-v4's `BVHLightSampler`, its cones of normals for clusters of one-sided quads
+//! only, and without the cosine at the shading point).
 //!
 //! A binary hierarchy over the emitters, split at the median of the longest axis of their centres.
 //! Each inner node keeps the total power `Phi` of its emitters (radiance x emitting area, up to the
@@ -9,17 +10,28 @@
 //! `I(x) = Phi / (4 max(|x - c|^2, R^2))`,
 //!
 //! the irradiance its emitters would give at `x` if they sent their power equally in every
-//! direction from `c`, never more than from the surface of its sphere. A leaf's importance is its
-//! emitter's own estimate `L Omega(x)` ([`EmitterWeight::at`]: 0 behind a one-sided quad), which
-//! far away agrees with the formula above. From the root, each child is taken with probability
+//! direction from `c`, never more than from the surface of its sphere. A node whose emitters are all
+//! one-sided quads also keeps a cone `(w, theta_o)` around their normals (pbrt-v4's `LightBounds`):
+//! they send light only within 90 degrees of a normal, so from `x`, at angle `theta_w` from `w` seen
+//! from `c` and with the sphere subtending `theta_b`, the least angle to any normal is `theta' =
+//! max(0, theta_w - theta_o - theta_b)`, and
+//!
+//! `I(x) = Phi cos(theta') / max(|x - c|^2, R^2)`, 0 where `theta' >= 90 degrees`
+//!
+//! (a quad's intensity along its normal is `Phi`, four times the average over all directions). A
+//! leaf's importance is its emitter's own estimate `L Omega(x)` ([`EmitterWeight::at`]: 0 behind a
+//! one-sided quad), which far away agrees with these; near, the two may differ by a few times (a
+//! sphere's leaf gives up to `2 pi L` at its surface, its cluster's bound `pi L`), which costs noise,
+//! not bias. From the root, each child is taken with probability
 //! `I_child(x) / (I_left(x) + I_right(x))`; emitter `i`'s probability `T_i(x)` is the product along
 //! its trail, and next-event estimation chooses it with
 //!
 //! `P_i(x) = a / n + (1 - a) T_i(x)`  (`a` = [`UNIFORM_SHARE`]),
 //!
 //! so every emitter keeps a probability of at least `a / n` wherever the estimates are poor: any
-//! importance that is 0 where the emitter does contribute costs noise, never bias. Where both
-//! children of a node have importance 0 the descent stops without a sample and `T_i = 0` under it.
+//! importance that is 0 where the emitter does contribute costs noise, never bias. Where the two
+//! children's importances do not add up to a positive finite number (both 0, or an overflow) the
+//! descent stops without a sample and `T_i = 0` under it.
 
 use crate::lights::{EmitterWeight, LightTarget, UNIFORM_SHARE};
 use crate::vec::{Point3, Vec3};
@@ -40,7 +52,70 @@ enum Node {
         /// The sphere's radius, squared.
         r2: f64,
         power: f64,
+        /// The cone of its emitters' normals, if all are one-sided quads.
+        normals: Option<NormalCone>,
     },
+}
+
+/// A cone of directions around the unit axis `w`: every one-sided emitter's normal under a node
+/// makes an angle of at most `theta_o` with `w`.
+#[derive(Clone, Copy, Debug)]
+struct NormalCone {
+    w: Vec3,
+    cos_o: f64,
+    sin_o: f64,
+    /// The least `w . p` over the node's box: no emitter point lies further back along `w`.
+    lowest: f64,
+}
+
+/// `cos(max(0, a - b))` and `sin(max(0, a - b))` from the sines and cosines of `a` and `b` in
+/// `[0, pi]` (pbrt-v4's `CosSubClamped` and `SinSubClamped`).
+#[inline]
+fn sub_clamped(sin_a: f64, cos_a: f64, sin_b: f64, cos_b: f64) -> (f64, f64) {
+    if cos_a > cos_b {
+        (1.0, 0.0)
+    } else {
+        (
+            cos_a * cos_b + sin_a * sin_b,
+            (sin_a * cos_b - cos_a * sin_b).max(0.0),
+        )
+    }
+}
+
+/// The cone around the normals of the emitters `order` names, whose box is `(lo, hi)`, if every one
+/// is a one-sided quad (`None` otherwise, or where the normals spread over more than a hemisphere).
+fn normal_cone(
+    emitters: &[LightTarget],
+    order: &[u32],
+    (lo, hi): (Point3, Point3),
+) -> Option<NormalCone> {
+    let mut sum = Vec3::ZERO;
+    for &i in order {
+        match emitters[i as usize] {
+            LightTarget::Quad {
+                quad,
+                one_sided: true,
+            } if quad.normal().is_normalized() => sum += quad.normal(),
+            _ => return None,
+        }
+    }
+    let w = sum.try_normalize()?;
+    let cos_o = order
+        .iter()
+        .map(|&i| match emitters[i as usize] {
+            LightTarget::Quad { quad, .. } => w.dot(quad.normal()),
+            LightTarget::Sphere(_) => -1.0,
+        })
+        .fold(1.0f64, f64::min);
+    // (a hair wider than the normals, against the rounding of the dot products)
+    let cos_o = (cos_o - 1e-9).clamp(-1.0, 1.0);
+    let lowest = (w * lo).min(w * hi).element_sum();
+    (cos_o > 0.0 && lowest.is_finite()).then(|| NormalCone {
+        w,
+        cos_o,
+        sin_o: (1.0 - cos_o * cos_o).max(0.0).sqrt(),
+        lowest,
+    })
 }
 
 /// The tree over one scene's emitters (built once per scene).
@@ -76,6 +151,17 @@ impl LightTree {
     /// emitters, or if their powers do not add up to a positive finite number (then the choice stays
     /// uniform).
     pub fn new(emitters: &[LightTarget], weights: &[EmitterWeight]) -> Option<LightTree> {
+        Self::build_over(emitters, weights, true)
+    }
+
+    /// [`LightTree::new`] with the cones of normals (`cones`) or without them, for the tests that
+    /// compare the two.
+    #[doc(hidden)]
+    pub fn build_over(
+        emitters: &[LightTarget],
+        weights: &[EmitterWeight],
+        cones: bool,
+    ) -> Option<LightTree> {
         let n = emitters.len();
         if n < 2 || weights.len() != n || n >= 1 << 31 {
             return None;
@@ -91,13 +177,14 @@ impl LightTree {
             weights: weights.to_vec(),
             trails: vec![(0, 0); n],
         };
-        tree.build(&boxes, &mut order, 0, 0);
+        tree.build(cones.then_some(emitters), &boxes, &mut order, 0, 0);
         Some(tree)
     }
 
     /// Builds the node over `order`, at depth `depth` on trail `trail`, and returns its index.
     fn build(
         &mut self,
+        emitters: Option<&[LightTarget]>,
         boxes: &[(Point3, Point3)],
         order: &mut [u32],
         trail: u64,
@@ -143,16 +230,18 @@ impl LightTree {
             let cb = boxes[b as usize].0[axis] + boxes[b as usize].1[axis];
             ca.total_cmp(&cb)
         });
+        let normals = emitters.and_then(|e| normal_cone(e, order, (lo, hi)));
         self.nodes.push(Node::Leaf { emitter: 0 });
         let (l, r) = order.split_at_mut(mid);
-        let left = self.build(boxes, l, trail, depth + 1);
-        let right = self.build(boxes, r, trail | 1 << depth, depth + 1);
+        let left = self.build(emitters, boxes, l, trail, depth + 1);
+        let right = self.build(emitters, boxes, r, trail | 1 << depth, depth + 1);
         self.nodes[at as usize] = Node::Inner {
             left,
             right,
             centre,
             r2,
             power,
+            normals,
         };
         at
     }
@@ -163,13 +252,41 @@ impl LightTree {
         match self.nodes[k as usize] {
             Node::Leaf { emitter } => self.weights[emitter as usize].at(x).unwrap_or(0.0),
             Node::Inner {
-                centre, r2, power, ..
-            } => power / (4.0 * (centre - x).length_squared().max(r2)),
+                centre,
+                r2,
+                power,
+                normals,
+                ..
+            } => {
+                let d2 = (x - centre).length_squared();
+                let Some(cone) = normals else {
+                    return power / (4.0 * d2.max(r2));
+                };
+                // Behind them all: a normal `n` within `theta_o` of `w` faces `x` from a point `p`
+                // only if `w . (x - p) > -sin(theta_o) |x - p|`, and `|x - p| <= |x - c| + R`.
+                let reach = cone.sin_o * (d2.sqrt() + r2.sqrt());
+                if cone.w.dot(x) - cone.lowest <= -reach {
+                    return 0.0;
+                }
+                if d2 <= r2 || d2.is_nan() {
+                    // (inside the sphere every direction may meet a normal: no bound)
+                    return power / r2;
+                }
+                // theta_w from the cone's axis to x, seen from c; theta_b the sphere, seen from x
+                let cos_w = (cone.w.dot(x - centre) / d2.sqrt()).clamp(-1.0, 1.0);
+                let sin_w = (1.0 - cos_w * cos_w).max(0.0).sqrt();
+                let sin2_b = r2 / d2;
+                let (sin_b, cos_b) = (sin2_b.sqrt(), (1.0 - sin2_b).max(0.0).sqrt());
+                let (sin_x, cos_x) = sub_clamped(sin_w, cos_w, cone.sin_o, cone.cos_o);
+                let (cos_p, _) = sub_clamped(sin_x, cos_x, sin_b, cos_b);
+                if cos_p > 0.0 { power * cos_p / d2 } else { 0.0 }
+            }
         }
     }
 
     /// The probability of the left child of inner node `(left, right)` seen from `x`; `None` where
-    /// neither child has a positive finite importance (the descent stops there).
+    /// the children's importances do not add up to a positive finite number (the descent stops
+    /// there).
     #[inline]
     fn left_share(&self, left: u32, right: u32, x: Point3) -> Option<f64> {
         let (il, ir) = (self.importance(left, x), self.importance(right, x));

@@ -367,9 +367,9 @@ impl Lights {
         uniform(x, &self.all, &self.all_index)
     }
 
-    /// Whether next-event estimation weighs its choice of emitter per shading point: two emitters or
-    /// more, at most [`MAX_WEIGHED_EMITTERS`] (one emitter is always chosen; more keep the uniform
-    /// choice).
+    /// Whether next-event estimation weighs its choice of emitter per shading point one emitter at a
+    /// time: two emitters or more, at most [`MAX_WEIGHED_EMITTERS`] (one emitter is always chosen;
+    /// more go through the light tree, [`Lights::emitter_tree`]).
     pub fn weighs_emitters(&self) -> bool {
         (2..=MAX_WEIGHED_EMITTERS).contains(&self.emitters.len())
     }
@@ -443,8 +443,9 @@ impl Lights {
     }
 
     /// One direction of next-event estimation from `x` for the uniform numbers `u`, drawn by
-    /// [`Lights::towards_emitters`] (or the light tree), with its density; `None` without emitters or where the drawn
-    /// emitter has no direction from `x`.
+    /// [`Lights::towards_emitters`] (or the light tree), with its density; `None` without emitters,
+    /// where the drawn emitter has no direction from `x`, or where the light tree's descent stops
+    /// (two clusters of importance 0).
     #[inline]
     pub fn sample_emitters(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
         if self.weighs_emitters() {

@@ -20,7 +20,7 @@ use rtl_render::lights::{EmitterWeight, LightTarget, Lights, MAX_WEIGHED_EMITTER
 
 const N: usize = 100_000;
 /// Tests of a correct sampler in this file's run (for the Sidak correction).
-const TESTS: usize = 7;
+const TESTS: usize = 8;
 
 /// The origin is (0, 0, 0); the lights around it.
 fn lights(spherical_rectangles: bool) -> [LightTarget; 4] {
@@ -247,6 +247,46 @@ fn the_light_tree_chooses_each_light_as_often_as_its_probability_says() {
             assert!((0..40).all(|i| tree.pmf(x, i).is_finite() && tree.pmf(x, i) > 0.0));
         }
     }
+}
+
+/// Two walls of 12 one-sided panels each, at x = -3 facing +x and at x = 3 facing -x.
+fn facing_walls() -> (Vec<LightTarget>, Vec<EmitterWeight>) {
+    let (mut targets, mut weights) = (Vec::new(), Vec::new());
+    for side in [-1.0, 1.0] {
+        for k in 0..12 {
+            let (y, z) = (0.5 + (k / 4) as f64, -2.0 + (k % 4) as f64);
+            let (u, v) = (DVec3::new(0.0, 0.6, 0.0), DVec3::new(0.0, 0.0, 0.6));
+            // u x v = +x: the wall at -3 faces +x; the other is turned round
+            let (u, v) = if side < 0.0 { (u, v) } else { (v, u) };
+            let t = LightTarget::Quad {
+                quad: QuadTarget::new(DVec3::new(3.0 * side, y, z), u, v),
+                one_sided: true,
+            };
+            targets.push(t);
+            weights.push(EmitterWeight::new(&t, 2.0));
+        }
+    }
+    (targets, weights)
+}
+
+#[test]
+fn the_light_tree_sends_a_point_to_the_panels_that_face_it() {
+    let (targets, weights) = facing_walls();
+    let with = LightTree::new(&targets, &weights).unwrap();
+    let without = LightTree::build_over(&targets, &weights, false).unwrap();
+    // just behind the wall at 3, inside its cluster's bounding sphere, in front of the far wall: the
+    // far wall should take all but the near wall's uniform share, 1 - 0.1 x 12 / 24 (without the
+    // cones, 0.15: the near panels' distance wins and their samples fail)
+    let x = DVec3::new(3.2, 1.5, -0.5);
+    let far: f64 = (0..12).map(|i| with.pmf(x, i)).sum();
+    let far_without: f64 = (0..12).map(|i| without.pmf(x, i)).sum();
+    assert!(far > 0.94, "{far}");
+    assert!(
+        far > far_without + 0.2,
+        "{far} vs {far_without} without the cones"
+    );
+    let r = choices(&with, x, 31, |i| with.pmf(x, i)).unwrap();
+    assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{r:?}");
 }
 
 /// main's light: from behind a one-sided quad it still sampled towards the quad, while its pdf said 0.

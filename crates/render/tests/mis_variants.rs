@@ -16,6 +16,8 @@
 //!   (wrong: the emission met by material sampling weighted by the uniform choice's density);
 //! - 24 emitters of powers 600 times apart: next-event estimation chooses through the light tree
 //!   (wrong: the uniform choice's density again);
+//! - two walls of one-sided panels facing each other: the light tree culls clusters by their cones
+//!   of normals (wrong: the uniform choice's density again);
 //! - a glass ball listed as a target under a light, beside a second lamp seen mostly from behind:
 //!   material sampling draws `OTHERS_SHARE` of its
 //!   directions towards the ball (wrong: divided by the density of the book's even mixture).
@@ -373,6 +375,43 @@ fn many_emitters_chosen_through_the_light_tree_agree_and_a_uniform_weight_is_cau
         "24 emitters: chosen through the light tree"
     );
     assert!(lights.describe_emitters().contains("light tree"));
+    agrees_and_the_uniform_weight_is_caught(&scene);
+}
+
+/// A floor between two walls of 12 one-sided panels each, facing each other across it (x = -3.5
+/// facing +x, x = 3.5 facing -x), with a white block between them: more than `MAX_WEIGHED_EMITTERS`,
+/// so the light tree chooses, and its clusters of panels all one-sided, so it culls by their cones
+/// of normals (from each wall's foot, the panels above it are behind).
+pub fn facing_walls_of_panels() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    floor(&mut b, w, white);
+    b.sphere(w, Point3::new(0.0, 0.8, 0.0), 0.8, white).unwrap();
+    for (i, side) in [-1.0, 1.0].into_iter().enumerate() {
+        for k in 0..12 {
+            let m = b.material(one_sided_lamp(1.0 + ((k + i) % 4) as f64));
+            let (y, z) = (0.3 + 0.7 * (k / 4) as f64, -2.4 + 1.2 * (k % 4) as f64);
+            let (u, v) = (Vec3::new(0.0, 0.5, 0.0), Vec3::new(0.0, 0.0, 0.8));
+            // u x v = +x faces the room from x = -3.5; turned round at x = 3.5
+            let (u, v) = if side < 0.0 { (u, v) } else { (v, u) };
+            b.quad(w, Point3::new(3.5 * side, y, z), u, v, m).unwrap();
+        }
+    }
+    framed(
+        b,
+        Point3::new(0.0, 3.0, 7.0),
+        Point3::new(0.0, 0.8, 0.0),
+        60.0,
+    )
+}
+
+#[test]
+fn facing_walls_of_panels_through_the_cones_agree_and_a_uniform_weight_is_caught() {
+    let scene = facing_walls_of_panels();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(lights.emitters.len(), 24);
+    assert!(lights.emitter_tree.is_some());
     agrees_and_the_uniform_weight_is_caught(&scene);
 }
 
