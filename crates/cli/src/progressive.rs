@@ -46,13 +46,16 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
     // A positive time shorter than the nanosecond a `Duration` counts in would read as 0; one longer
     // than the longest `Duration` (about 5.8e11 years) is that, no deadline at all, as a budget past
     // the end of time is.
+    // (a number written out that is too large for a double, `1e400`, reads as infinity: as long a
+    // time; the words `inf` and `nan` are no durations)
+    let written_out = !t.bytes().any(|b| b"iInN".contains(&b));
     let positive = |secs: f64| {
         if secs < 0.0 {
             return Err(format!("'{s}' is negative: a time is at least 0"));
         }
         let d = match Duration::try_from_secs_f64(secs) {
             Ok(d) => d,
-            Err(_) if secs.is_finite() => Duration::MAX,
+            Err(_) if secs.is_finite() || written_out => Duration::MAX,
             Err(_) => return Err(err()),
         };
         if d.is_zero() && secs > 0.0 {
@@ -65,6 +68,9 @@ pub fn parse_duration(s: &str) -> Result<Duration, String> {
     };
     if let Ok(secs) = t.parse::<f64>() {
         return positive(secs);
+    }
+    if t.starts_with('-') {
+        return Err(format!("'{s}' is negative: a time is at least 0"));
     }
     let mut total = 0.0;
     let mut rest = t;
@@ -257,11 +263,13 @@ mod tests {
         assert_eq!(s("1h30m"), Duration::from_secs(5400));
         assert_eq!(s("1.5s"), Duration::from_millis(1500));
         assert_eq!(s("250ms"), Duration::from_millis(250));
-        for bad in ["", "s", "5x", "-3", "1h-", "inf", "nan", "1e400"] {
+        for bad in ["", "s", "5x", "-3", "1h-", "inf", "nan", "-3s", "+inf"] {
             assert!(parse_duration(bad).is_err(), "{bad}");
         }
-        let e = parse_duration("-3").unwrap_err();
-        assert!(e.contains("'-3' is negative"), "{e}");
+        for negative in ["-3", "-3s", "-1m30s"] {
+            let e = parse_duration(negative).unwrap_err();
+            assert!(e.contains(&format!("'{negative}' is negative")), "{e}");
+        }
         // longer than a `Duration` holds (u64::MAX seconds, written as plain seconds or in days) is
         // the longest one, no deadline, as shorter budgets past the end of time are; it had been
         // refused as "not a duration"
@@ -270,6 +278,7 @@ mod tests {
             "1e30",
             "1000000000000000d",
             "99999999999999999999h",
+            "1e400",
         ] {
             assert_eq!(s(long), Duration::MAX, "{long}");
         }

@@ -494,7 +494,15 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
         texture: args.texture.clone(),
     };
     let file = Path::new(scene_arg);
-    let ours = [&args.resume, &args.checkpoint].contains(&&Some(file.to_path_buf()));
+    // (the checkpoint this render writes or resumes, however its path is written: `./cornell`)
+    let same = |p: &Option<PathBuf>| {
+        p.as_ref()
+            .is_some_and(|p| match (p.canonicalize(), file.canonicalize()) {
+                (Ok(a), Ok(b)) => a == b,
+                _ => p == file,
+            })
+    };
+    let ours = same(&args.resume) || same(&args.checkpoint);
     if !names_a_file(scene_arg) && file.is_file() && !ours {
         eprintln!(
             "note: '{scene_arg}' is the built-in scene; to render the file of that name here, \
@@ -661,12 +669,23 @@ pub(crate) fn check_output_files(
 ) -> Result<()> {
     for o in outputs {
         let text = o.path.as_os_str().as_encoded_bytes();
-        if text
+        let ends_in_separator = text
             .last()
             .is_some_and(|b| std::path::is_separator(char::from(*b)))
-        {
+            || text == b"."
+            || (text.ends_with(b".")
+                && text
+                    .get(text.len().wrapping_sub(2))
+                    .is_some_and(|b| std::path::is_separator(char::from(*b))));
+        // (`out.png/.` and `out.png/..` name directories too, though their file name reads `out.png`)
+        let last_is_a_name = matches!(
+            o.path.components().next_back(),
+            Some(std::path::Component::Normal(_))
+        );
+        if ends_in_separator || !last_is_a_name {
             bail!(
-                "{} {}: a file's name cannot end in `{}` (that names a directory)",
+                "{} {}: that names a directory, not a file (a file's name cannot end in `{}`, `.` or \
+                 `..`)",
                 o.flag,
                 o.path.display(),
                 std::path::MAIN_SEPARATOR

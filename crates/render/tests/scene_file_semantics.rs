@@ -163,3 +163,32 @@ fn a_quad_whose_edges_cannot_be_placed_for_the_camera_is_refused() {
         load(&floor(q, u, v)).unwrap_or_else(|e| panic!("{q} {u} {v}: {e}"));
     }
 }
+
+/// A box is six quads, and its faces are held to the same rule (a review found the face of a box
+/// reaching 1e20 with an edge through the view accepted and its edge 16,000 off); boxes of ordinary
+/// size, and a large one whose faces are all far from the camera, load.
+#[test]
+fn a_box_whose_face_edges_cannot_be_placed_is_refused() {
+    let boxed = |a: &str, b: &str| {
+        format!(
+            "[camera]\nlookfrom = [2, 1, 0]\nlookat = [0, 0, 0]\n[materials]\n\
+             w = {{ type = \"lambertian\", albedo = 0.5 }}\n[[objects]]\ntype = \"box\"\n\
+             a = {a}\nb = {b}\nmaterial = \"w\"\n"
+        )
+    };
+    refused(
+        &boxed("[-1e20, -1, -1e20]", "[0, 0, 1e20]"),
+        &[
+            "some/dir/s.toml:6:1",
+            "box's face",
+            "cannot have its edges placed",
+        ],
+    );
+    for (a, b) in [
+        ("[-10, -1, -10]", "[0, 0, 10]"),
+        ("[-1e12, -1, -1e12]", "[0, 0, 1e12]"),
+        ("[1e29, 1e29, 1e29]", "[2e29, 2e29, 2e29]"),
+    ] {
+        load(&boxed(a, b)).unwrap_or_else(|e| panic!("{a} {b}: {e}"));
+    }
+}

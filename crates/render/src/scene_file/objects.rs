@@ -28,7 +28,7 @@ impl Loader<'_> {
             "sphere" => self.sphere(into, table, span, to_world),
             "moving_sphere" => self.moving_sphere(into, table, span, to_world),
             "quad" => self.quad(into, table, span, to_world),
-            "box" => self.box_(into, table, span),
+            "box" => self.box_(into, table, span, to_world),
             "group" => self.group(into, table, span, to_world),
             "instance" => self.instance(into, table, span),
             "medium" => self.medium(into, table, span, to_world),
@@ -132,7 +132,8 @@ impl Loader<'_> {
             return fail(
                 span.clone(),
                 format!(
-                    "a quad reaching {far:.3e} from the origin cannot have its edges placed finely \
+                    "a quad (or a box's face) reaching {far:.3e} from the origin cannot have its \
+                     edges placed finely \
                      enough for this camera: doubles there are {spacing:.3e} apart, more than 1/1024 \
                      of the distance its nearest edge is seen at ({scale:.3e}, the larger of the \
                      camera's to lookat and to the edge), so its edges would be that far off; make \
@@ -195,7 +196,13 @@ impl Loader<'_> {
     }
 
     /// `box`: opposite corners `a`, `b`; six quads in a group of their own.
-    fn box_(&mut self, into: GroupId, table: DeTable<'_>, span: Span) -> Result<(), Fail> {
+    fn box_(
+        &mut self,
+        into: GroupId,
+        table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
         let d: BoxDoc = de_table(table, &span)?;
         let m = self.material_id(&d.material)?;
         let (a, b) = (d.a.0, d.b.get_ref().0);
@@ -210,6 +217,20 @@ impl Loader<'_> {
                     Num(size.z)
                 ),
             );
+        }
+        // its six faces, each a quad whose edges must be placeable as a quad's are
+        let world = self.compose(&d.transform, &span)?.then(to_world);
+        let (lo, hi) = (a.min(b), a.max(b));
+        let [x, y, z] = [Vec3::X * size.x, Vec3::Y * size.y, Vec3::Z * size.z];
+        for (q, u, v) in [
+            (lo, x, y),
+            (lo, x, z),
+            (lo, y, z),
+            (hi, -x, -y),
+            (hi, -x, -z),
+            (hi, -y, -z),
+        ] {
+            self.edges_placeable(q, u, v, world, &span)?;
         }
         let g = self
             .b
