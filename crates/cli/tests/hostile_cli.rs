@@ -4,52 +4,10 @@
 //! a light, and a damaged cached reference. Each is refused before any work with a message naming the
 //! problem and the place, or rendered, never a panic or a silently destroyed input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-const RTL: &str = env!("CARGO_BIN_EXE_rtl");
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rtl-hostile-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn rtl(d: &Path, args: &[&str]) -> Output {
-    Command::new("timeout")
-        .arg("120")
-        .arg(RTL)
-        .current_dir(d)
-        .args(args)
-        .output()
-        .expect("rtl runs")
-}
-
-#[track_caller]
-fn ok(d: &Path, args: &[&str]) -> String {
-    let out = rtl(d, args);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(out.status.success(), "rtl {args:?} failed: {err}");
-    err
-}
-
-/// Run `rtl` expecting exit code `code` (1: refused by rtl, 2: by the argument parser), no panic,
-/// and a message that holds every one of `words`.
-#[track_caller]
-fn refused_with(d: &Path, code: i32, args: &[&str], words: &[&str]) {
-    let out = rtl(d, args);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(
-        out.status.code(),
-        Some(code),
-        "rtl {args:?} was not refused: {err}"
-    );
-    assert!(!err.contains("panicked"), "rtl {args:?} panicked: {err}");
-    for w in words {
-        assert!(err.contains(w), "rtl {args:?}: wanted {w:?} in: {err}");
-    }
-}
+use common::{dir, ok, refused_with, rtl};
+use std::path::Path;
 
 /// A 2 x 2 PNG of one grey (a texture).
 fn png(path: &Path) {

@@ -4,50 +4,16 @@
 
 use rtl_render::checkpoint::Checkpoint;
 use rtl_render::vec::Color;
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{RTL, dir, ok, refused_with, rtl};
+use std::path::Path;
 use std::process::{Command, Output};
-
-const RTL: &str = env!("CARGO_BIN_EXE_rtl");
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rtl-refuse-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn rtl(d: &Path, args: &[&str]) -> Output {
-    Command::new("timeout")
-        .arg("60")
-        .arg(RTL)
-        .current_dir(d)
-        .args(args)
-        .output()
-        .expect("rtl runs")
-}
-
-#[track_caller]
-fn ok(d: &Path, args: &[&str]) -> String {
-    let out = rtl(d, args);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(out.status.success(), "rtl {args:?} failed: {err}");
-    err
-}
 
 /// Run `rtl` expecting a refusal (exit code 1, no panic) whose message contains every one of `words`.
 #[track_caller]
 fn refused(d: &Path, args: &[&str], words: &[&str]) {
-    let out = rtl(d, args);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(
-        out.status.code(),
-        Some(1),
-        "rtl {args:?} was not refused: {err}"
-    );
-    assert!(!err.contains("panicked"), "rtl {args:?} panicked: {err}");
-    for w in words {
-        assert!(err.contains(w), "rtl {args:?}: wanted {w:?} in: {err}");
-    }
+    refused_with(d, 1, args, words);
 }
 
 fn render<'a>(extra: &[&'a str]) -> Vec<&'a str> {
