@@ -172,6 +172,35 @@ impl SceneBuilder {
     }
 
     /// Place group `inner` by `transform` into group `g`.
+    /// The quads group `g` holds, directly or in groups and instances within it (at most `budget` of
+    /// them, so that instances of instances cannot make the walk long), each with the transform that
+    /// places it in `g`'s space followed by `to`; stops at the first `Err` of `f`.
+    pub fn each_quad<E>(
+        &self,
+        g: GroupId,
+        to: Transform,
+        budget: &mut usize,
+        f: &mut impl FnMut(&Quad, Transform) -> Result<(), E>,
+    ) -> Result<(), E> {
+        for o in self.groups.get(g.0 as usize).into_iter().flatten() {
+            if *budget == 0 {
+                return Ok(());
+            }
+            match o {
+                Object::Quad(q) => {
+                    *budget -= 1;
+                    f(q, to)?;
+                }
+                Object::Group(inner) => self.each_quad(*inner, to, budget, f)?,
+                Object::Instance { transform, group } => {
+                    self.each_quad(*group, transform.then(to), budget, f)?
+                }
+                Object::Sphere(_) | Object::Medium(_) => {}
+            }
+        }
+        Ok(())
+    }
+
     pub fn instance(&mut self, g: GroupId, inner: GroupId, transform: Transform) {
         self.add_to(
             g,

@@ -192,3 +192,31 @@ fn a_box_whose_face_edges_cannot_be_placed_is_refused() {
         load(&boxed(a, b)).unwrap_or_else(|e| panic!("{a} {b}: {e}"));
     }
 }
+
+/// An instance places its group's quads again, and they are held to the same rule where it puts them:
+/// a floor reaching 1e20, accepted in a group placed 1e8 below the camera, is refused where an
+/// instance puts it at the camera's feet; an instance that leaves it far away loads.
+#[test]
+fn an_instance_whose_quads_cannot_be_placed_is_refused() {
+    let scene = |up: &str| {
+        format!(
+            "[camera]\nlookfrom = [2, 1, 0]\nlookat = [0, 0, 0]\n[materials]\n\
+             w = {{ type = \"lambertian\", albedo = 0.5 }}\n\
+             [[objects]]\ntype = \"group\"\nname = \"g\"\n\
+             transform = [{{ translate = [0, -1e8, 0] }}]\n\
+             [[objects.objects]]\ntype = \"quad\"\nq = [-1e20, 0, -1e20]\nu = [1e20, 0, 0]\n\
+             v = [0, 0, 2e20]\nmaterial = \"w\"\n\
+             [[objects]]\ntype = \"instance\"\nof = \"g\"\n\
+             transform = [{{ translate = [0, {up}, 0] }}]\n"
+        )
+    };
+    load(&scene("-2e8")).unwrap_or_else(|e| panic!("{e}"));
+    refused(
+        &scene("0"),
+        &[
+            "some/dir/s.toml:16:1",
+            "objects[1]",
+            "cannot have its edges placed",
+        ],
+    );
+}

@@ -71,6 +71,9 @@ pub(super) struct Loader<'t> {
     pub(super) labels: HashMap<u32, String>,
     /// The image files the textures were read from (inputs a render must not overwrite).
     pub(super) texture_files: Vec<PathBuf>,
+    /// How many more quads placed again by instances the placement rule looks at (a bound on the
+    /// loader's time for instances of instances).
+    pub(super) instance_quad_checks: usize,
 }
 
 impl<'t> Loader<'t> {
@@ -88,6 +91,7 @@ impl<'t> Loader<'t> {
             sizes: Vec::new(),
             labels: HashMap::new(),
             texture_files: Vec::new(),
+            instance_quad_checks: 1 << 20,
         }
     }
 

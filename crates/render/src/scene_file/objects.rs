@@ -30,7 +30,7 @@ impl Loader<'_> {
             "quad" => self.quad(into, table, span, to_world),
             "box" => self.box_(into, table, span, to_world),
             "group" => self.group(into, table, span, to_world),
-            "instance" => self.instance(into, table, span),
+            "instance" => self.instance(into, table, span, to_world),
             "medium" => self.medium(into, table, span, to_world),
             _ => unreachable!("typed() returns one of OBJECT_TYPES"),
         }
@@ -284,7 +284,13 @@ impl Loader<'_> {
     }
 
     /// `instance`: `of` = the name of a group or box defined earlier, placed again.
-    fn instance(&mut self, into: GroupId, table: DeTable<'_>, span: Span) -> Result<(), Fail> {
+    fn instance(
+        &mut self,
+        into: GroupId,
+        table: DeTable<'_>,
+        span: Span,
+        to_world: Transform,
+    ) -> Result<(), Fail> {
         let d: InstanceDoc = de_table(table, &span)?;
         let g = match self.names.get(d.of.get_ref()) {
             Some((_, Named::Group(g))) => *g,
@@ -307,6 +313,14 @@ impl Loader<'_> {
             }
         };
         let what = format!("this instance of `{}`", d.of.get_ref());
+        // Its quads where this instance puts them, held to the quad's placement rule (the group's
+        // own placement was checked where it was defined; a million over the whole file at most).
+        let world = self.compose(&d.transform, &span)?.then(to_world);
+        let mut budget = self.instance_quad_checks;
+        self.b.each_quad(g, world, &mut budget, &mut |q, t| {
+            self.edges_placeable(q.q, q.u, q.v, t, &span)
+        })?;
+        self.instance_quad_checks = budget;
         self.add_placed(into, g, &d.transform, &span, &what)?;
         self.name(d.name, Named::Other("an instance"))
     }
