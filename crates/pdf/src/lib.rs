@@ -50,7 +50,7 @@ pub use onb::Onb;
 pub use pdf::{CosinePdf, DirectionSample, HemispherePdf, Pdf, SpherePdf};
 /// The largest `f64` below 1, `1 - 2^-53`: where a remapped uniform number is kept (from rtl-sampling).
 pub use rtl_sampling::ONE_MINUS_EPSILON;
-pub use selection::{Choice, Selection, SelectionError};
+pub use selection::{Choice, Selection, SelectionError, choose_uniform};
 pub use target::{
     MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE, MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE, QuadSampling,
     QuadTarget, ShapeSampler, SphereTarget, SphereView,

@@ -48,9 +48,10 @@ pub(crate) fn remap(u: f64, lo: f64, p: f64) -> f64 {
     below_one((u - lo) / p)
 }
 
-/// The uniform choice among `n` parts by `u`: `i = floor(n u)` (kept below `n`), and `n u - i`.
+/// The uniform choice among `n >= 1` parts by `u` in `[0, 1)`: `i = floor(n u)` (kept below `n`),
+/// and the rest `n u - i` in `[0, 1)` for a sample of the part (a NaN chooses part 0 with rest 0).
 #[inline]
-pub(crate) fn choose_uniform(n: usize, u: f64) -> (usize, f64) {
+pub fn choose_uniform(n: usize, u: f64) -> (usize, f64) {
     let scaled = u * n as f64;
     let i = (scaled as usize).min(n - 1);
     (i, below_one(scaled - i as f64))

@@ -33,10 +33,14 @@
 //! children's importances do not add up to a positive finite number (both 0, or an overflow) the
 //! descent stops without a sample and `T_i = 0` under it.
 
+use crate::aabb::Aabb;
 use crate::lights::{EmitterWeight, LightTarget, UNIFORM_SHARE};
+use crate::target_index::{TargetIndex, bounds_of, split_at_median, target_bounds};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
-use rtl_pdf::{DirectionSample, MAX_CANDIDATES, ONE_MINUS_EPSILON, ShapeIndex, ShapeSampler};
+use rtl_pdf::{
+    DirectionSample, MAX_CANDIDATES, ONE_MINUS_EPSILON, ShapeIndex, ShapeSampler, choose_uniform,
+};
 
 /// A node: a leaf names its emitter; an inner node its two children, its emitters' power and a
 /// sphere around them.
@@ -82,13 +86,9 @@ fn sub_clamped(sin_a: f64, cos_a: f64, sin_b: f64, cos_b: f64) -> (f64, f64) {
     }
 }
 
-/// The cone around the normals of the emitters `order` names, whose box is `(lo, hi)`, if every one
+/// The cone around the normals of the emitters `order` names, whose box is `bounds`, if every one
 /// is a one-sided quad (`None` otherwise, or where the normals spread over more than a hemisphere).
-fn normal_cone(
-    emitters: &[LightTarget],
-    order: &[u32],
-    (lo, hi): (Point3, Point3),
-) -> Option<NormalCone> {
+fn normal_cone(emitters: &[LightTarget], order: &[u32], bounds: &Aabb) -> Option<NormalCone> {
     let mut sum = Vec3::ZERO;
     for &i in order {
         match emitters[i as usize] {
@@ -109,7 +109,7 @@ fn normal_cone(
         .fold(1.0f64, f64::min);
     // (a hair wider than the normals, against the rounding of the dot products)
     let cos_o = (cos_o - 1e-9).clamp(-1.0, 1.0);
-    let lowest = (w * lo).min(w * hi).element_sum();
+    let lowest = (w * bounds.min).min(w * bounds.max).element_sum();
     (cos_o > 0.0 && lowest.is_finite()).then(|| NormalCone {
         w,
         cos_o,
@@ -127,23 +127,6 @@ pub struct LightTree {
     /// Per emitter, its trail from the root: bit `k` set where level `k` goes right; and its depth
     /// (a median split halves each level: at most 31 levels below 2^31 emitters).
     trails: Vec<(u64, u8)>,
-}
-
-/// An emitter's box: the sphere's, or the quad's four corners.
-fn bounds(t: &LightTarget) -> (Point3, Point3) {
-    match t {
-        LightTarget::Sphere(s) => {
-            let r = Vec3::splat(s.radius());
-            (s.center() - r, s.center() + r)
-        }
-        LightTarget::Quad { quad, .. } => {
-            let (q, u, v) = (quad.q(), quad.u(), quad.v());
-            let corners = [q + u, q + v, q + u + v];
-            corners
-                .iter()
-                .fold((q, q), |(lo, hi), &c| (lo.min(c), hi.max(c)))
-        }
-    }
 }
 
 impl LightTree {
@@ -170,7 +153,8 @@ impl LightTree {
         if !(total > 0.0 && total.is_finite()) {
             return None;
         }
-        let boxes: Vec<(Point3, Point3)> = emitters.iter().map(bounds).collect();
+        // (the boxes of the densities' index: a hair larger than the emitters)
+        let boxes: Vec<Aabb> = emitters.iter().map(target_bounds).collect();
         let mut order: Vec<u32> = (0..n as u32).collect();
         let mut tree = LightTree {
             nodes: Vec::with_capacity(2 * n),
@@ -185,7 +169,7 @@ impl LightTree {
     fn build(
         &mut self,
         emitters: Option<&[LightTarget]>,
-        boxes: &[(Point3, Point3)],
+        boxes: &[Aabb],
         order: &mut [u32],
         trail: u64,
         depth: usize,
@@ -196,41 +180,14 @@ impl LightTree {
             self.trails[*only as usize] = (trail, depth as u8);
             return at;
         }
-        let (lo, hi) = order.iter().fold(
-            (
-                Point3::splat(f64::INFINITY),
-                Point3::splat(f64::NEG_INFINITY),
-            ),
-            |(lo, hi), &i| {
-                let (a, b) = boxes[i as usize];
-                (lo.min(a), hi.max(b))
-            },
-        );
+        let bounds = bounds_of(boxes, order);
         let power = order
             .iter()
             .map(|&i| self.weights[i as usize].power())
             .sum();
-        let centre = 0.5 * (lo + hi);
-        let r2 = (0.5 * (hi - lo)).length_squared();
-        let (clo, chi) = order.iter().fold(
-            (
-                Point3::splat(f64::INFINITY),
-                Point3::splat(f64::NEG_INFINITY),
-            ),
-            |(lo, hi), &i| {
-                let (a, b) = boxes[i as usize];
-                let c = 0.5 * (a + b);
-                (lo.min(c), hi.max(c))
-            },
-        );
-        let axis = (chi - clo).max_position();
-        let mid = order.len() / 2;
-        order.select_nth_unstable_by(mid, |&a, &b| {
-            let ca = boxes[a as usize].0[axis] + boxes[a as usize].1[axis];
-            let cb = boxes[b as usize].0[axis] + boxes[b as usize].1[axis];
-            ca.total_cmp(&cb)
-        });
-        let normals = emitters.and_then(|e| normal_cone(e, order, (lo, hi)));
+        let (centre, r2) = (bounds.centroid(), (0.5 * bounds.extent()).length_squared());
+        let mid = split_at_median(boxes, order);
+        let normals = emitters.and_then(|e| normal_cone(e, order, &bounds));
         self.nodes.push(Node::Leaf { emitter: 0 });
         let (l, r) = order.split_at_mut(mid);
         let left = self.build(emitters, boxes, l, trail, depth + 1);
@@ -317,11 +274,9 @@ impl LightTree {
     fn choose_with_pmf(&self, x: Point3, u: f64) -> Option<(usize, f64, f64)> {
         let n = self.len();
         let u = u.clamp(0.0, ONE_MINUS_EPSILON);
+        // (a NaN goes here too, and chooses emitter 0)
         if u < UNIFORM_SHARE || u.is_nan() {
-            let u = if u.is_nan() { 0.0 } else { u / UNIFORM_SHARE };
-            let scaled = u * n as f64;
-            let i = (scaled as usize).min(n - 1);
-            let u = (scaled - i as f64).clamp(0.0, ONE_MINUS_EPSILON);
+            let (i, u) = choose_uniform(n, u / UNIFORM_SHARE);
             return Some((i, u, self.pmf(x, i)));
         }
         let mut u = ((u - UNIFORM_SHARE) / (1.0 - UNIFORM_SHARE)).min(ONE_MINUS_EPSILON);
@@ -377,7 +332,7 @@ impl LightTree {
         x: Point3,
         direction: Vec3,
         emitters: &[LightTarget],
-        index: Option<&dyn ShapeIndex>,
+        index: Option<&TargetIndex>,
         chosen: Option<(usize, f64, f64)>,
     ) -> f64 {
         let mut sum = 0.0;
@@ -417,7 +372,7 @@ impl LightTree {
         x: Point3,
         u: DVec2,
         emitters: &[LightTarget],
-        index: Option<&dyn ShapeIndex>,
+        index: Option<&TargetIndex>,
     ) -> Option<DirectionSample> {
         let (i, u0, pmf) = self.choose_with_pmf(x, u.x)?;
         let s = emitters[i].sample(x, DVec2::new(u0, u.y))?;

@@ -25,9 +25,7 @@ use crate::scene::{GroupId, ImportanceTarget as SceneShape, MaterialId, Object, 
 use crate::target_index::{INDEX_FROM, TargetIndex};
 use crate::vec::{Point3, Vec3};
 use glam::DVec2;
-use rtl_pdf::{
-    DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeIndex, ShapeSampler, SphereTarget,
-};
+use rtl_pdf::{DirectionSample, HittablePdf, Pdf, QuadTarget, ShapeSampler, SphereTarget};
 use std::collections::HashSet;
 use std::f64::consts::TAU;
 
@@ -436,12 +434,6 @@ impl Lights {
     }
     // ANCHOR_END: towards_emitters
 
-    /// The hierarchy over the emitters, as the densities' index.
-    #[inline]
-    fn index(&self) -> Option<&dyn ShapeIndex> {
-        self.emitter_index.as_ref().map(|i| i as &dyn ShapeIndex)
-    }
-
     /// One direction of next-event estimation from `x` for the uniform numbers `u`, drawn by
     /// [`Lights::towards_emitters`] (or the light tree), with its density; `None` without emitters,
     /// where the drawn emitter has no direction from `x`, or where the light tree's descent stops
@@ -451,7 +443,7 @@ impl Lights {
         if self.weighs_emitters() {
             self.sample_weighed(x, u)
         } else if let Some(tree) = &self.emitter_tree {
-            tree.sample(x, u, &self.emitters, self.index())
+            tree.sample(x, u, &self.emitters, self.emitter_index.as_ref())
         } else {
             // (no probabilities to keep: the common case of one emitter pays nothing for them)
             self.uniformly(x)?.sample(u)
@@ -465,7 +457,13 @@ impl Lights {
         if self.weighs_emitters() {
             self.pdf_weighed(x, direction)
         } else if let Some(tree) = &self.emitter_tree {
-            tree.pdf(x, direction, &self.emitters, self.index(), None)
+            tree.pdf(
+                x,
+                direction,
+                &self.emitters,
+                self.emitter_index.as_ref(),
+                None,
+            )
         } else {
             self.uniformly(x).map_or(0.0, |h| h.pdf(direction))
         }

@@ -93,22 +93,16 @@ impl TargetIndex {
     }
 }
 
-/// Builds the node over `order` (whose first element is `start` in the whole order) and returns its
-/// index in `nodes`.
-fn build(boxes: &[Aabb], order: &mut [u32], start: usize, nodes: &mut Vec<Node>) -> u32 {
-    let bounds = order
+/// The box around the boxes `order` names.
+pub(crate) fn bounds_of(boxes: &[Aabb], order: &[u32]) -> Aabb {
+    order
         .iter()
-        .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]));
-    let at = nodes.len() as u32;
-    nodes.push(Node {
-        bounds,
-        first: start as u32,
-        count: order.len() as u32,
-        second: 0,
-    });
-    if order.len() <= LEAF {
-        return at;
-    }
+        .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]))
+}
+
+/// Reorders `order` so that its first half holds the boxes whose centres lie lowest along the
+/// longest axis of the centres' box (a median split), and returns where the second half starts.
+pub(crate) fn split_at_median(boxes: &[Aabb], order: &mut [u32]) -> usize {
     let centres = order
         .iter()
         .fold(Aabb::EMPTY, |b, &i| b.include(boxes[i as usize].centroid()));
@@ -121,6 +115,24 @@ fn build(boxes: &[Aabb], order: &mut [u32], start: usize, nodes: &mut Vec<Node>)
         );
         ca.total_cmp(&cb)
     });
+    mid
+}
+
+/// Builds the node over `order` (whose first element is `start` in the whole order) and returns its
+/// index in `nodes`.
+fn build(boxes: &[Aabb], order: &mut [u32], start: usize, nodes: &mut Vec<Node>) -> u32 {
+    let bounds = bounds_of(boxes, order);
+    let at = nodes.len() as u32;
+    nodes.push(Node {
+        bounds,
+        first: start as u32,
+        count: order.len() as u32,
+        second: 0,
+    });
+    if order.len() <= LEAF {
+        return at;
+    }
+    let mid = split_at_median(boxes, order);
     let (left, right) = order.split_at_mut(mid);
     let l = build(boxes, left, start, nodes);
     let r = build(boxes, right, start + mid, nodes);
