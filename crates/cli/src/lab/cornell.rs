@@ -93,10 +93,19 @@ pub struct Frame {
 #[derive(Clone)]
 pub enum Reference {
     Rendering,
-    /// The image and its samples per pixel.
-    Ready(Arc<Vec<Color>>, u64),
-    Failed(String),
+    /// The image, its samples per pixel, and why it is not in the cache if it could not be
+    /// written there.
+    Ready(Arc<Vec<Color>>, u64, Option<String>),
+    /// Why there is none, and when that was found: asked for again [`RETRY_FAILED`] later, it is
+    /// tried again (a damaged cached file removed, a directory made writable: seen within seconds,
+    /// without restarting the lab).
+    Failed(String, Instant),
 }
+
+/// How long a failed reference is shown before it is tried again. Every failure that remains
+/// comes before any rendering (reading the cache, making its directory; a render that cannot be
+/// cached is used all the same), so a retry costs next to nothing.
+pub const RETRY_FAILED: Duration = Duration::from_secs(5);
 
 /// The reference's own noise at a width: the RMSE a render would show against it if the render
 /// were exact.
@@ -351,7 +360,7 @@ impl Bench {
         let mut floors: Vec<Floor> = refs
             .iter()
             .filter_map(|(&width, r)| {
-                let Reference::Ready(_, spp) = r else {
+                let Reference::Ready(_, spp, _) = r else {
                     return None;
                 };
                 let n = noise.get(&width)?;
@@ -371,7 +380,7 @@ impl Bench {
     /// The samples per pixel of the reference at `width`: the one in use, or the one that will be.
     pub fn reference_spp(&self, width: usize) -> u64 {
         match self.references.lock().unwrap().get(&width) {
-            Some(Reference::Ready(_, spp)) => *spp,
+            Some(Reference::Ready(_, spp, _)) => *spp,
             _ => cached_reference_spp(&self.reference_dir, width).unwrap_or(self.reference_spp),
         }
     }
@@ -432,8 +441,10 @@ impl Bench {
     /// thread renders references, and none waits.
     pub fn reference(self: &Arc<Self>, scene: &Arc<Scene>, width: usize) -> Reference {
         let mut refs = self.references.lock().unwrap();
-        if let Some(r) = refs.get(&width) {
-            return r.clone();
+        match refs.get(&width) {
+            Some(Reference::Failed(_, at)) if at.elapsed() >= RETRY_FAILED => {}
+            Some(r) => return r.clone(),
+            None => {}
         }
         if self.reference_busy.swap(true, Ordering::SeqCst) {
             return Reference::Rendering;
@@ -465,16 +476,16 @@ impl Bench {
                 let mut refs = me.references.lock().unwrap();
                 match result {
                     Ok(Some(img)) => {
-                        let img = Arc::new(img);
-                        ready = Some(Arc::clone(&img));
-                        refs.insert(width, Reference::Ready(img, spp));
+                        let pixels = Arc::new(img.pixels);
+                        ready = Some(Arc::clone(&pixels));
+                        refs.insert(width, Reference::Ready(pixels, spp, img.not_cached));
                     }
                     // Asked for again (from the start) when the page is back.
                     Ok(None) => {
                         refs.remove(&width);
                     }
                     Err(e) => {
-                        refs.insert(width, Reference::Failed(format!("{e:#}")));
+                        refs.insert(width, Reference::Failed(format!("{e:#}"), Instant::now()));
                     }
                 }
             }
@@ -542,12 +553,18 @@ impl Bench {
                 cached_reference_spp(&self.reference_dir, width).unwrap_or(self.reference_spp),
                 self.reference_dir.display()
             ),
-            Some(Reference::Ready(_, spp)) => format!(
+            Some(Reference::Ready(_, spp, None)) => format!(
                 "a {spp}-spp render with mis (seed 999), {}/render-reference-{}-{width}-{spp}.pfm (rtl study render's)",
                 self.reference_dir.display(),
                 glue::SCENE,
             ),
-            Some(Reference::Failed(e)) => format!("no reference: {e}"),
+            Some(Reference::Ready(_, spp, Some(e))) => format!(
+                "a {spp}-spp render with mis (seed 999), kept in memory only (not cached: {e})"
+            ),
+            Some(Reference::Failed(e, _)) => format!(
+                "no reference: {e} (tried again every {} s)",
+                RETRY_FAILED.as_secs()
+            ),
         }
     }
 }
@@ -654,7 +671,7 @@ fn render_generation(bench: &Arc<Bench>, scene: &Arc<Scene>, generation: u64, s:
         }
         let img = p.acc.image();
         let rmse = match bench.reference(scene, w) {
-            Reference::Ready(reference, spp) if reference.len() == img.len() => {
+            Reference::Ready(reference, spp, _) if reference.len() == img.len() => {
                 let rmse = errors(&img, &reference).0;
                 if twin_at.is_some() && p.acc.samples <= spp {
                     let v = reference_variance(rmse * rmse, p.acc.samples, spp);
@@ -930,6 +947,85 @@ mod tests {
         assert!(bench.references.lock().unwrap().get(&16).is_none());
         let written = std::fs::read_dir(&dir).map_or(0, |d| d.count());
         assert_eq!(written, 0);
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    /// Wait (at most a minute) until the reference at `width` is no longer being rendered.
+    fn settled(bench: &Arc<Bench>, scene: &Arc<Scene>, width: usize) -> Reference {
+        let start = Instant::now();
+        loop {
+            let r = bench.reference(scene, width);
+            if !matches!(r, Reference::Rendering) {
+                return r;
+            }
+            assert!(start.elapsed() < Duration::from_secs(60), "no reference");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    fn tiny_reference_bench(dir: &Path) -> Arc<Bench> {
+        let s = Settings {
+            width: 16,
+            strategy: Strategy::Cosine,
+            seed: 1,
+            max_depth: 50,
+            mixture_weight: 0.5,
+        };
+        let bench = Arc::new(Bench::new(s, dir.to_path_buf(), 1));
+        bench.touch();
+        bench
+    }
+
+    /// A damaged cached reference fails, and is tried again once removed, without restarting the
+    /// lab (it had kept showing the failure until the lab was restarted).
+    #[test]
+    fn a_failed_reference_is_tried_again() {
+        let scene = Arc::new(glue::scene().unwrap());
+        let dir = std::env::temp_dir().join(format!("rtl-lab-retry-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let damaged = dir.join("render-reference-cornell-16-1.pfm");
+        std::fs::write(&damaged, b"PF\n16 16\n-1.0\nshort").unwrap();
+        let bench = tiny_reference_bench(&dir);
+        let Reference::Failed(e, _) = settled(&bench, &scene, 16) else {
+            panic!("a damaged reference was used");
+        };
+        assert!(e.contains("render-reference-cornell-16-1.pfm"), "{e}");
+        assert!(bench.reference_note(16).contains("tried again"));
+        // Shown as it is until RETRY_FAILED has passed, even once the cause is gone.
+        std::fs::remove_file(&damaged).unwrap();
+        assert!(matches!(bench.reference(&scene, 16), Reference::Failed(..)));
+        // Then tried again: rendered (1 spp) and cached.
+        if let Some(Reference::Failed(_, at)) = bench.references.lock().unwrap().get_mut(&16) {
+            *at = Instant::now() - RETRY_FAILED;
+        }
+        let Reference::Ready(img, 1, None) = settled(&bench, &scene, 16) else {
+            panic!("not tried again, or not cached");
+        };
+        assert_eq!(img.len(), 16 * 16);
+        assert!(damaged.is_file());
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    /// A reference that cannot be written to the cache is used all the same, and the page says
+    /// it is in memory only (it had been thrown away after its whole render).
+    #[test]
+    fn a_reference_that_cannot_be_cached_is_used() {
+        let scene = Arc::new(glue::scene().unwrap());
+        let dir = std::env::temp_dir().join(format!("rtl-lab-uncached-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // (a directory where the image's temporary file goes: the write fails, even for root)
+        let temp = format!(
+            ".render-reference-cornell-16-1.pfm.tmp{}",
+            std::process::id()
+        );
+        std::fs::create_dir_all(dir.join(temp).join("x")).unwrap();
+        let bench = tiny_reference_bench(&dir);
+        let Reference::Ready(img, 1, Some(e)) = settled(&bench, &scene, 16) else {
+            panic!("not kept, or said to be cached");
+        };
+        assert_eq!(img.len(), 16 * 16);
+        assert!(e.contains("render-reference-cornell-16-1.pfm"), "{e}");
+        assert!(bench.reference_note(16).contains("memory only"));
         let _ = std::fs::remove_dir_all(dir);
     }
 }

@@ -153,8 +153,8 @@ fn read_pfm(path: &Path) -> Result<(usize, usize, Vec<Color>)> {
         .map_err(anyhow::Error::msg)?;
     parse_pfm(&bytes).map_err(|e| {
         anyhow::anyhow!(
-            "{}: {e} (a damaged reference: remove it, and `rtl study render` or a restarted `rtl \
-             lab` renders it again)",
+            "{}: {e} (a damaged reference: remove it, and `rtl study render` or `rtl lab` renders it \
+             again)",
             path.display()
         )
     })
@@ -238,12 +238,21 @@ pub(crate) fn reference(
     spp: u64,
 ) -> Result<Vec<Color>> {
     Ok(reference_until(dir, name, scene, width, spp, &|| false)?
-        .expect("a reference that is never stopped is made"))
+        .expect("a reference that is never stopped is made")
+        .pixels)
+}
+
+/// A reference image, and why it is not in the cache if it could not be written there.
+pub(crate) struct ReferenceImage {
+    pub pixels: Vec<Color>,
+    /// The reason the render could not be cached (it is used all the same).
+    pub not_cached: Option<String>,
 }
 
 /// [`reference()`] that gives up as soon as `stop()` is true (asked before each pixel of each pass):
 /// then `None`, and nothing is written. Unstopped, the same passes as [`reference()`], so the same
-/// image bit for bit.
+/// image bit for bit. A render that cannot be cached (a full disk, a read-only directory) is
+/// returned all the same, with the reason: minutes of rendering are not thrown away for it.
 pub(crate) fn reference_until(
     dir: &Path,
     name: &str,
@@ -251,14 +260,17 @@ pub(crate) fn reference_until(
     width: usize,
     spp: u64,
     stop: &(dyn Fn() -> bool + Sync),
-) -> Result<Option<Vec<Color>>> {
+) -> Result<Option<ReferenceImage>> {
     let path = dir.join(format!("render-reference-{name}-{width}-{spp}.pfm"));
     if path.exists() {
         let (w, h, px) = read_pfm(&path)?;
         let camera = &Renderer::new(scene, settings(width, scene, 999, Strategy::default())).camera;
         if (w, h) == (camera.width, camera.height) {
             eprintln!("reference: cached {}", path.display());
-            return Ok(Some(px));
+            return Ok(Some(ReferenceImage {
+                pixels: px,
+                not_cached: None,
+            }));
         }
         eprintln!(
             "reference: {} is {w}x{h}, not {}x{}: rendering it again",
@@ -284,8 +296,10 @@ pub(crate) fn reference_until(
     }
     eprintln!();
     let img = acc.image();
-    write_linear(&path, acc.width, acc.height, &img).map_err(anyhow::Error::msg)?;
-    std::fs::write(
+    let not_cached = write_linear(&path, acc.width, acc.height, &img).err();
+    if let Some(e) = &not_cached {
+        eprintln!("reference: not cached ({e}); used all the same");
+    } else if let Err(e) = std::fs::write(
         path.with_extension("txt"),
         format!(
             "Reference for `rtl study render`: `rtl render {name} --width {width} --spp {spp} \
@@ -294,8 +308,16 @@ pub(crate) fn reference_until(
             start.elapsed().as_secs(),
             rayon::current_num_threads()
         ),
-    )?;
-    Ok(Some(img))
+    ) {
+        eprintln!(
+            "reference: its note {} not written: {e}",
+            path.with_extension("txt").display()
+        );
+    }
+    Ok(Some(ReferenceImage {
+        pixels: img,
+        not_cached,
+    }))
 }
 
 /// RMSE and relative MSE (`(x - r)^2 / (r^2 + 0.01)`, pbrt's guard) over every pixel and channel.
