@@ -160,6 +160,77 @@ fn extreme_aspect_ratios_in_a_scene_file_are_refused_with_their_place() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// A medium whose boundary is a group of quads that leaves a gap (three faces of a box) is refused
+/// with the boundary's place before any rendering, and writes nothing; the same group closed by the
+/// other three faces renders.
+#[test]
+fn a_medium_in_an_open_group_of_quads_is_refused_before_rendering() {
+    let d = dir("open-medium");
+    let face = |q: &str, u: &str, v: &str| {
+        format!(
+            "[[objects.boundary.objects]]\ntype = \"quad\"\nq = {q}\nu = {u}\nv = {v}\n\
+             material = \"w\"\n"
+        )
+    };
+    let half = [
+        face("[0, 0, 0]", "[1, 0, 0]", "[0, 1, 0]"),
+        face("[0, 0, 0]", "[0, 0, 1]", "[0, 1, 0]"),
+        face("[0, 0, 0]", "[1, 0, 0]", "[0, 0, 1]"),
+    ]
+    .concat();
+    let other = [
+        face("[1, 1, 1]", "[-1, 0, 0]", "[0, -1, 0]"),
+        face("[1, 1, 1]", "[0, 0, -1]", "[0, -1, 0]"),
+        face("[1, 1, 1]", "[-1, 0, 0]", "[0, 0, -1]"),
+    ]
+    .concat();
+    let file = |faces: &str| {
+        format!(
+            "{}[[objects]]\ntype = \"medium\"\ndensity = 1\nalbedo = 0.5\n[objects.boundary]\n\
+             type = \"group\"\n{faces}",
+            scene("background = \"sky\"")
+        )
+    };
+    std::fs::write(d.join("open.toml"), file(&half)).unwrap();
+    refused(
+        &d,
+        &[
+            "render",
+            "open.toml",
+            "--width",
+            "8",
+            "--spp",
+            "1",
+            "-o",
+            "open.png",
+        ],
+        &[
+            "open.toml:18:8:",
+            "field `objects[1].boundary.type`",
+            "must enclose a volume",
+            "the quad at line 19:1",
+            "no other quad",
+        ],
+    );
+    assert_eq!(files(&d), ["open.toml"]);
+    std::fs::write(d.join("closed.toml"), file(&format!("{half}{other}"))).unwrap();
+    ok(
+        &d,
+        &[
+            "render",
+            "closed.toml",
+            "--width",
+            "8",
+            "--spp",
+            "1",
+            "-o",
+            "closed.png",
+        ],
+    );
+    assert!(d.join("closed.png").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 #[test]
 fn outputs_are_checked_before_any_rendering() {
     let d = dir("outputs");

@@ -176,6 +176,45 @@ fn the_sum_of_the_expansions_is_refused_where_it_crosses_the_limit() {
     assert_eq!(limits::expanded_objects(&file.built.scene), 1025 * 1023);
 }
 
+/// A medium's boundary is checked for a closed surface by walking its quads where its instances put
+/// them: the most a scene may hold, 2^18 quads from instances of instances in one boundary (each
+/// nested group open by itself, so walked again), is refused in well under seconds, naming the quad.
+#[test]
+fn an_open_boundary_of_instances_of_instances_is_refused_quickly() {
+    let mut text = format!(
+        "{HEAD}\n[[objects]]\ntype = \"medium\"\ndensity = 0.5\nalbedo = 0.5\n[objects.boundary]\n\
+         type = \"group\"\n[[objects.boundary.objects]]\ntype = \"group\"\nname = \"g0\"\n\
+         [[objects.boundary.objects.objects]]\ntype = \"quad\"\nq = [0, 0, 0]\nu = [1, 0, 0]\n\
+         v = [0, 1, 0]\nmaterial = \"white\"\n"
+    );
+    for k in 1..=17 {
+        text.push_str(&format!(
+            "[[objects.boundary.objects]]\ntype = \"group\"\nname = \"g{k}\"\n\
+             transform = [{{ translate = [0, 0, 1000] }}]\n\
+             [[objects.boundary.objects.objects]]\ntype = \"instance\"\nof = \"g{}\"\n\
+             [[objects.boundary.objects.objects]]\ntype = \"instance\"\nof = \"g{}\"\n\
+             transform = [{{ translate = [0.001, 0, 0] }}]\n",
+            k - 1,
+            k - 1
+        ));
+    }
+    let start = Instant::now();
+    let err = refused(
+        &text,
+        line_of(&text, "type = \"group\"\n[[objects.boundary.objects]]"),
+        &[
+            "field `objects[0].boundary.type`",
+            &format!(
+                "the edge of the quad at line {}:1",
+                line_of(&text, "type = \"quad\"") - 1
+            ),
+            "is an edge of no other quad",
+        ],
+    );
+    let took = start.elapsed();
+    assert!(took < Duration::from_secs(3), "{took:?}: {err}");
+}
+
 #[test]
 fn groups_nested_past_the_limit_are_refused() {
     // chain(k): g_k nests k + 1 levels in the scene.

@@ -1,8 +1,13 @@
-//! What a scene file means, beyond whether it parses: a medium inside a quad (which bounds no volume),
+//! What a scene file means, beyond whether it parses: a medium inside a quad or a group of quads that
+//! leaves a gap (which bound no volume), boundaries that close (a box written as six quads),
 //! a scene without a light, the image files a scene reads (inputs a render must not overwrite), and
 //! the words of two messages.
 
+use rtl_render::builder::{CLOSE, OpenSurface};
+use rtl_render::material::{Albedo, Material};
+use rtl_render::scene::SceneBuilder;
 use rtl_render::scene_file::{self, SceneFile};
+use rtl_render::vec::{Color, Point3, Vec3};
 use std::path::{Path, PathBuf};
 
 const HEAD: &str = r#"[camera]
@@ -55,6 +60,272 @@ fn a_medium_inside_a_quad_is_refused_and_closed_boundaries_load() {
     ] {
         load(&medium(closed)).unwrap_or_else(|e| panic!("{closed}: {e}"));
     }
+}
+
+/// The six faces of the box from `lo` to `hi` as quads, written the way a `box` builds them (each
+/// corner and edge as a TOML array of the numbers given), `skip` of them left out.
+fn box_faces(lo: [&str; 3], hi: [&str; 3], size: [&str; 3], skip: usize) -> String {
+    let [x0, y0, z0] = lo;
+    let [x1, y1, z1] = hi;
+    let [dx, dy, dz] = size;
+    let faces = [
+        (
+            format!("[{x0}, {y0}, {z1}]"),
+            format!("[{dx}, 0, 0]"),
+            format!("[0, {dy}, 0]"),
+        ),
+        (
+            format!("[{x1}, {y0}, {z1}]"),
+            format!("[0, 0, -{dz}]"),
+            format!("[0, {dy}, 0]"),
+        ),
+        (
+            format!("[{x1}, {y0}, {z0}]"),
+            format!("[-{dx}, 0, 0]"),
+            format!("[0, {dy}, 0]"),
+        ),
+        (
+            format!("[{x0}, {y0}, {z0}]"),
+            format!("[0, 0, {dz}]"),
+            format!("[0, {dy}, 0]"),
+        ),
+        (
+            format!("[{x0}, {y1}, {z1}]"),
+            format!("[{dx}, 0, 0]"),
+            format!("[0, 0, -{dz}]"),
+        ),
+        (
+            format!("[{x0}, {y0}, {z0}]"),
+            format!("[{dx}, 0, 0]"),
+            format!("[0, 0, {dz}]"),
+        ),
+    ];
+    faces[skip..]
+        .iter()
+        .map(|(q, u, v)| {
+            format!(
+                "[[objects.boundary.objects]]\ntype = \"quad\"\nq = {q}\nu = {u}\nv = {v}\nmaterial = \"white\"\n"
+            )
+        })
+        .collect()
+}
+
+/// A medium whose boundary is the group of `objects` (`[[objects.boundary.objects]]` tables),
+/// placed by `transform` (TOML, or empty); its boundary's `type` is at line 13, column 8.
+fn medium_in_group(transform: &str, objects: &str) -> String {
+    format!(
+        "{HEAD}[[objects]]\ntype = \"medium\"\ndensity = 0.5\nalbedo = 0.5\n[objects.boundary]\n\
+         type = \"group\"\n{transform}\n{objects}"
+    )
+}
+
+/// A group of quads that leaves a gap bounds no volume either: a ray leaves through the gap without
+/// a second crossing. Refused at the boundary's `type`, naming the quad and its open edge: one quad
+/// in a group, three faces of a box, five, a sphere with a stray quad, two quads at one place, a
+/// fin on a closed box. Quads that close a surface load: a box written out as six quads (0.1 + 0.7
+/// is not 0.8, so their corners meet only to within rounding), rotated and moved, placed by an
+/// instance, each turned by a transform of its own, one square turned and moved to each face of a
+/// cube; and so do a box, a sphere, a moving sphere, an instance of a rotated box, a group of a
+/// sphere and a box.
+#[test]
+fn a_medium_inside_quads_that_leave_a_gap_is_refused_and_closed_quads_load() {
+    let quad = "[[objects.boundary.objects]]\ntype = \"quad\"\nq = [-1, -1, 0]\nu = [2, 0, 0]\n\
+                v = [0, 2, 0]\nmaterial = \"white\"\n";
+    refused(
+        &medium_in_group("", quad),
+        &[
+            "some/dir/s.toml:13:8:",
+            "field `objects[0].boundary.type`",
+            "must enclose a volume",
+            "the edge of the quad at line 15:1 from [-1, -1, 0] to [1, -1, 0]",
+            "is an edge of no other quad of the boundary: the surface is open there",
+            "invisible or wrong",
+        ],
+    );
+    let (lo, hi, size) = (
+        ["0.1", "0.2", "0.3"],
+        ["0.8", "0.9", "1.1"],
+        ["0.7", "0.7", "0.8"],
+    );
+    // three faces of the box (the first three left out), and five (the first one)
+    refused(
+        &medium_in_group("", &box_faces(lo, hi, size, 3)),
+        &[
+            "some/dir/s.toml:13:8:",
+            "the quad at line 15:1",
+            "no other quad",
+        ],
+    );
+    refused(
+        &medium_in_group("", &box_faces(lo, hi, size, 1)),
+        &[
+            "some/dir/s.toml:13:8:",
+            "the quad at line 15:1",
+            "no other quad",
+        ],
+    );
+    // a sphere and a stray quad: the quad is named (line 20, after the sphere's six lines)
+    let sphere = "[[objects.boundary.objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n\
+                  material = \"white\"\n";
+    refused(
+        &medium_in_group("", &format!("{sphere}{quad}")),
+        &[
+            "some/dir/s.toml:13:8:",
+            "the quad at line 20:1",
+            "no other quad",
+        ],
+    );
+    // two quads at one place share every edge, and enclose nothing
+    refused(
+        &medium_in_group("", &format!("{quad}{quad}")),
+        &[
+            "some/dir/s.toml:13:8:",
+            "the quad at line 21:1 lies where another quad of the boundary does",
+        ],
+    );
+    // a fin on the box's edge: three quads meet there
+    let fin = "[[objects.boundary.objects]]\ntype = \"quad\"\nq = [0.1, 0.2, 1.1]\nu = [0.7, 0, 0]\n\
+               v = [0, -0.5, 0]\nmaterial = \"white\"\n";
+    refused(
+        &medium_in_group("", &format!("{}{fin}", box_faces(lo, hi, size, 0))),
+        &[
+            "some/dir/s.toml:13:8:",
+            "is an edge of 2 other quads of the boundary: a closed surface has two quads meet",
+        ],
+    );
+
+    let closed = box_faces(lo, hi, size, 0);
+    let moved =
+        "transform = [{ rotate_y = 15 }, { rotate_x = -40 }, { translate = [1.3, -0.2, 0.7] }]";
+    for (what, text) in [
+        ("six quads", medium_in_group("", &closed)),
+        ("six quads, rotated", medium_in_group(moved, &closed)),
+        // one unit square six times, each turned and moved to a face of the unit cube by a
+        // transform of its own: they close a surface only where they are placed (cos 90 degrees
+        // is not 0 in doubles)
+        (
+            "six squares turned into a cube",
+            medium_in_group(
+                "",
+                &[
+                    "[]",
+                    "[{ translate = [0, 0, 1] }]",
+                    "[{ rotate_y = -90 }]",
+                    "[{ rotate_y = -90 }, { translate = [1, 0, 0] }]",
+                    "[{ rotate_x = 90 }]",
+                    "[{ rotate_x = 90 }, { translate = [0, 1, 0] }]",
+                ]
+                .map(|t| {
+                    format!(
+                        "[[objects.boundary.objects]]\ntype = \"quad\"\nq = [0, 0, 0]\n\
+                         u = [1, 0, 0]\nv = [0, 1, 0]\nmaterial = \"white\"\ntransform = {t}\n"
+                    )
+                })
+                .concat(),
+            ),
+        ),
+        // each quad turned by its own transform: their corners meet only where they are placed
+        (
+            "six quads, each rotated",
+            medium_in_group(
+                "",
+                &closed.replace(
+                    "material = \"white\"\n",
+                    &format!("material = \"white\"\n{moved}\n"),
+                ),
+            ),
+        ),
+        // the six quads as a named group, placed again by an instance that turns it
+        (
+            "an instance of six quads",
+            format!(
+                "{HEAD}[[objects]]\ntype = \"group\"\nname = \"cube\"\n{}{}",
+                closed.replace("objects.boundary.objects", "objects.objects"),
+                "[[objects]]\ntype = \"medium\"\ndensity = 0.5\nalbedo = 0.5\nboundary = { type = \
+                 \"instance\", of = \"cube\", transform = [{ rotate_z = 33 }, { translate = [0.3, \
+                 0, 2] }] }\n"
+            ),
+        ),
+        (
+            "a sphere and a box",
+            medium_in_group(
+                "",
+                &format!("{sphere}{}", {
+                    "[[objects.boundary.objects]]\ntype = \"box\"\na = [2, 0, 0]\nb = [3, 1, 1]\nmaterial = \"white\"\n"
+                }),
+            ),
+        ),
+    ] {
+        load(&text).unwrap_or_else(|e| panic!("{what}: {e}\n{text}"));
+    }
+    let medium = |boundary: &str| {
+        format!(
+            "{HEAD}[[objects]]\ntype = \"medium\"\ndensity = 0.5\nalbedo = 0.5\nboundary = {boundary}\n"
+        )
+    };
+    for boundary in [
+        "{ type = \"box\", a = [0.1, 0.2, 0.3], b = [0.8, 0.9, 1.1], material = \"white\" }",
+        "{ type = \"box\", a = [0, 0, 0], b = [1, 1, 1], material = \"white\", transform = [{ rotate_y = 15 }, { translate = [0.2, 0, 0.1] }] }",
+        "{ type = \"sphere\", center = [0, 0, 0], radius = 1, material = \"white\" }",
+        "{ type = \"moving_sphere\", center0 = [0, 0, 0], center1 = [0, 1, 0], radius = 1, material = \"white\" }",
+    ] {
+        load(&medium(boundary)).unwrap_or_else(|e| panic!("{boundary}: {e}"));
+    }
+    // an instance of a box, rotated
+    let rotated = format!(
+        "{HEAD}[[objects]]\ntype = \"box\"\nname = \"b\"\na = [0, 0, 0]\nb = [1, 2, 1]\nmaterial = \"white\"\n\
+         [[objects]]\ntype = \"medium\"\ndensity = 0.5\nalbedo = 0.5\nboundary = {{ type = \"instance\", \
+         of = \"b\", transform = [{{ rotate_y = 15 }}, {{ translate = [2, 0, 0] }}] }}\n"
+    );
+    load(&rotated).unwrap_or_else(|e| panic!("{e}"));
+    // the shipped scenes with media
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    for name in ["cornell-smoke.toml", "showcase.toml"] {
+        let file = scene_file::load_file(&scenes.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        assert!(file.built.scene.features.media > 0, "{name}");
+    }
+}
+
+/// Corners a rounding apart are one corner even where a cell of the grid that finds them ends
+/// between them (the grid's cells are 16 CLOSE times the largest coordinate): a box from
+/// [x, 0, 0] to [2, 1, 1] whose face x = x has its corners at x, and the four faces along x theirs
+/// one double below, with x chosen so that the two lie in neighbouring cells, closes; moved off by
+/// 1e-6 (5e-7 of the box's largest coordinate), the face is named.
+#[test]
+fn corners_a_rounding_apart_across_a_cell_of_the_grid_are_one_corner() {
+    let cell = 16.0 * CLOSE * 2.0;
+    let mut x = 1000.0 * cell;
+    while (x / cell).floor() == (x.next_down() / cell).floor() {
+        x = x.next_up();
+    }
+    let below = x.next_down();
+    let faces = |left: f64| {
+        let mut b = SceneBuilder::new();
+        let m = b.material(Material::Lambertian {
+            albedo: Albedo::Constant(Color::splat(0.5)),
+        });
+        let g = b.group();
+        let (w, y, z) = (2.0 - below, Vec3::Y, Vec3::Z);
+        let xw = Vec3::new(w, 0.0, 0.0);
+        for (q, u, v) in [
+            (Point3::new(left, 0.0, 0.0), y, z),
+            (Point3::new(2.0, 0.0, 0.0), y, z),
+            (Point3::new(below, 0.0, 0.0), xw, y),
+            (Point3::new(below, 0.0, 1.0), xw, y),
+            (Point3::new(below, 0.0, 0.0), xw, z),
+            (Point3::new(below, 1.0, 0.0), xw, z),
+        ] {
+            b.quad(g, q, u, v, m).unwrap();
+        }
+        b.open_quad(g)
+    };
+    assert_eq!(faces(x), None);
+    let open = faces(x + 1e-6).expect("open");
+    assert_eq!(open.index, 0, "{open:?}");
+    assert!(
+        matches!(open.problem, OpenSurface::Edge { others: 0, .. }),
+        "{open:?}"
+    );
 }
 
 /// A scene that can only be black (no emitter, a black background) says so; one with a light or the

@@ -74,6 +74,9 @@ pub(super) struct Loader<'t> {
     /// How many more quads placed again by instances the placement rule looks at (a bound on the
     /// loader's time for instances of instances).
     pub(super) instance_quad_checks: usize,
+    /// Where each quad of the file was written, by its group and index among the group's objects
+    /// (a medium's boundary that is open names its quad).
+    pub(super) quad_spans: HashMap<(u32, usize), Span>,
 }
 
 impl<'t> Loader<'t> {
@@ -92,6 +95,7 @@ impl<'t> Loader<'t> {
             labels: HashMap::new(),
             texture_files: Vec::new(),
             instance_quad_checks: 1 << 20,
+            quad_spans: HashMap::new(),
         }
     }
 

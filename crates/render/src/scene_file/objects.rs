@@ -8,6 +8,7 @@ use super::doc::{
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
 use super::values::{Num, Real, Step};
+use crate::builder::{OpenQuad, OpenSurface};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::shapes::{Quad, Sphere};
@@ -185,9 +186,11 @@ impl Loader<'_> {
         let p = self.placement(into, &d.transform, to_world, &span)?;
         self.edges_placeable(q, u, v, p.to_world, &span)?;
         self.count(p.group, None, &span, "this quad")?;
+        let index = self.b.objects(p.group).len();
         self.b
             .quad(p.group, q, u, v, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
+        self.quad_spans.insert((p.group.0, index), span.clone());
         self.place(into, &p, &span, "this quad")?;
         let t = p.to_world;
         let world = Quad::new(t.point(q), t.vector(u), t.vector(v), m)
@@ -336,6 +339,12 @@ impl Loader<'_> {
         let Some(boundary) = take(&mut table, "boundary") else {
             return fail(span, "missing field `boundary`");
         };
+        // The boundary's `type` (or the boundary itself), where a boundary that encloses no volume
+        // is refused.
+        let place = match boundary.get_ref() {
+            DeValue::Table(b) => b.get("type").map_or(boundary.span(), |t| t.span()),
+            _ => boundary.span(),
+        };
         // A quad bounds no volume: a ray enters it and never leaves, so the medium was invisible
         // without a word.
         if let DeValue::Table(b) = boundary.get_ref()
@@ -343,10 +352,10 @@ impl Loader<'_> {
             && t.get_ref().as_str() == Some("quad")
         {
             return fail(
-                t.span(),
-                "a medium's boundary must enclose a volume (a sphere, a moving sphere, a box, or a \
-                 group or instance of them); a quad encloses none, and the medium inside it would \
-                 be invisible",
+                place,
+                format!(
+                    "{ENCLOSE}; a quad encloses none, and the medium inside it would be invisible"
+                ),
             );
         }
         let d: MediumDoc = de_table(table, &span)?;
@@ -359,6 +368,11 @@ impl Loader<'_> {
             format!("the boundary of the medium at {}", self.at(span.start)),
         );
         self.object(bounds, boundary, p.to_world)?;
+        // Nor does a group of quads that leaves a gap: a ray leaves it through the gap without a
+        // second crossing, and the medium found between the two crossings is not the one inside.
+        if let Some(open) = self.b.open_quad(bounds) {
+            return fail(place, self.open_boundary(open));
+        }
         let phase = self.b.material(Material::Isotropic { albedo });
         self.count(p.group, Some(bounds), &span, "this medium")?;
         self.b
@@ -366,6 +380,36 @@ impl Loader<'_> {
             .or_else(|e| fail(span.clone(), e.to_string()))?;
         self.place(into, &p, &span, "this medium")?;
         self.name(d.name, Named::Other("a medium"))
+    }
+
+    /// Why a medium's boundary whose quad `open` keeps it from enclosing a volume is refused.
+    fn open_boundary(&self, open: OpenQuad) -> String {
+        let quad = match self.quad_spans.get(&(open.group.0, open.index)) {
+            Some(s) => format!("the quad at {}", self.at(s.start)),
+            None => "a quad".to_owned(),
+        };
+        let why = match open.problem {
+            OpenSurface::Edge { from, to, others } => {
+                let shared = match others {
+                    0 => "no other quad of the boundary: the surface is open there".to_owned(),
+                    n => format!(
+                        "{n} other quads of the boundary: a closed surface has two quads meet at \
+                         each edge"
+                    ),
+                };
+                format!(
+                    "the edge of {quad} from {} to {} (in the boundary's coordinates) is an edge of \
+                     {shared}, and the medium inside it would be invisible or wrong",
+                    Num::v3(from),
+                    Num::v3(to)
+                )
+            }
+            OpenSurface::Coincident => format!(
+                "{quad} lies where another quad of the boundary does, and the two enclose no volume: \
+                 the medium inside would be invisible"
+            ),
+        };
+        format!("{ENCLOSE}; {why}")
     }
 
     /// Add group `g` to `into`, through an instance if it has a transform (`what`: the object at
@@ -446,6 +490,11 @@ impl Loader<'_> {
         }
     }
 }
+
+/// What a medium's boundary may be.
+const ENCLOSE: &str = "a medium's boundary must enclose a volume (a sphere, a moving sphere, a box, a \
+     group or instance of them, or quads that close a surface: each edge of each quad an edge of \
+     exactly one other)";
 
 /// The distance from `p` to the segment from `a` to `b`.
 fn segment_distance(p: Point3, a: Point3, b: Point3) -> f64 {
