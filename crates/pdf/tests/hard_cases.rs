@@ -363,6 +363,156 @@ fn quad_light_1e_9_above_the_plane_is_finite() {
     }
 }
 
+/// The quads and origins of [`quad_light_samples_on_its_edges_keep_their_density`]: near, far and
+/// grazing origins (on both sides: the target is two-sided) of a unit square, the Cornell box's light
+/// (far from the coordinates' origin) and a slanted parallelogram; each origin with the factor by
+/// which it is ill-conditioned, `distance / height` (at a grazing origin the height, and with it the
+/// cosine at the light, is known to a relative error of about `epsilon distance / height`).
+fn quads_and_origins() -> Vec<(&'static str, QuadTarget, Vec<DVec3>)> {
+    let square = unit_quad();
+    let cornell = QuadTarget::new(
+        DVec3::new(343.0, 554.0, 332.0),
+        DVec3::new(-130.0, 0.0, 0.0),
+        DVec3::new(0.0, 0.0, -105.0),
+    );
+    let slanted = QuadTarget::new(
+        DVec3::new(0.3, 1.7, -2.1),
+        DVec3::new(1.3, 0.2, 0.1),
+        DVec3::new(0.1, -0.7, 0.9),
+    );
+    let mut out = Vec::new();
+    for (name, quad) in [
+        ("square", square),
+        ("cornell", cornell),
+        ("slanted", slanted),
+    ] {
+        let (q, u, v, n) = (quad.q(), quad.u(), quad.v(), quad.normal());
+        let size = u.length().max(v.length());
+        let centre = q + 0.5 * (u + v);
+        let mut origins = Vec::new();
+        for side in [1.0, -1.0] {
+            let up = side * n * size;
+            // near: above the centre, a corner and an edge, and just above the plane inside
+            origins.push(centre + 0.5 * up);
+            origins.push(q + 0.01 * up);
+            origins.push(q + 0.5 * u + 1e-3 * up);
+            origins.push(centre + 1e-6 * up);
+            // off to the side, above and beyond the edges
+            origins.push(q + 1.7 * u + 0.3 * v + 0.2 * up);
+            origins.push(q - 0.8 * u - 0.6 * v + 0.7 * up);
+            // far: 1e3 and 1e6 sizes away
+            origins.push(centre + 1e3 * up + 300.0 * u);
+            origins.push(centre + 1e6 * up);
+            // grazing: beyond an edge, at heights of 1e-3 and 1e-6 of the distance
+            origins.push(q + 3.0 * u + 0.4 * v + 3e-3 * up);
+            origins.push(q - 2.0 * v + 0.5 * u + 2e-6 * up);
+            origins.push(q + 1e3 * u + 1e3 * v + 1.0 * up);
+        }
+        out.push((name, quad, origins));
+        if quad.is_rectangle() {
+            let sr = quad.with_spherical_rectangles(true);
+            let name = if name == "square" {
+                "square, spherical rectangles"
+            } else {
+                "cornell, spherical rectangles"
+            };
+            let origins = out.last().unwrap().2.clone();
+            out.push((name, sr, origins));
+        }
+    }
+    out
+}
+
+/// A point sampled on a quad light's edge (`u = 0`, `u = 2^-60`, which rounds onto the edge, or
+/// `u = 1 - 2^-53`) is a direction the density must give its own number: the quad's `pdf` of the
+/// direction its `sample` returns is positive, finite and the sample's density (to a relative
+/// 1e-12 times the origin's condition `distance / height`), or `sample` gives `None` and `pdf` of
+/// every direction towards the quad is 0. (Rounding in the ray-quad intersection put such points
+/// at alpha = -1e-17, outside, for a density of 0 where the sampler said positive: for 24% of the
+/// samples with a coordinate on an edge, drawn from random origins around three quads.)
+#[test]
+fn quad_light_samples_on_its_edges_keep_their_density() {
+    let top = 1.0 - f64::EPSILON / 2.0;
+    let us = [0.0, 2f64.powi(-60), 0.5, top];
+    let mut checked = 0;
+    for (name, quad, origins) in quads_and_origins() {
+        let centre = quad.q() + 0.5 * (quad.u() + quad.v());
+        let size = quad.u().length() + quad.v().length();
+        for o in origins {
+            let height = quad.normal().dot(o - quad.q()).abs();
+            let condition = ((o - centre).length() + size) / height;
+            for ux in us {
+                for uy in us {
+                    let u = DVec2::new(ux, uy);
+                    let Some(s) = quad.sample(o, u) else {
+                        let towards = (centre - o).normalize();
+                        assert_eq!(
+                            quad.pdf(o, towards),
+                            0.0,
+                            "{name} from {o}: no sample, yet a density"
+                        );
+                        continue;
+                    };
+                    assert_unit(s.direction, name);
+                    assert!(
+                        s.pdf > 0.0 && s.pdf.is_finite(),
+                        "{name} from {o} at {u}: {}",
+                        s.pdf
+                    );
+                    let p = quad.pdf(o, s.direction);
+                    assert!(
+                        p > 0.0 && p.is_finite(),
+                        "{name} from {o} at {u}: the sample's density is {}, pdf of its direction {p}",
+                        s.pdf
+                    );
+                    let tol = 1e-12 * condition.max(1.0);
+                    assert!(
+                        (p - s.pdf).abs() <= tol * s.pdf,
+                        "{name} from {o} at {u}: sample {}, pdf {p} (relative {:e} > {tol:e})",
+                        s.pdf,
+                        (p - s.pdf).abs() / s.pdf
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 1000, "only {checked} samples checked");
+}
+
+/// The slack that lets a point drawn on an edge count as on the quad is a rounding error wide: from
+/// above the middle of a quad (near and far) a direction 1e-12 of an edge outside it is a miss and
+/// one 1e-12 inside a hit; only a grazing origin, whose height is known to a relative `epsilon
+/// distance / height`, gets more, and never more than `MAX_EDGE_SLACK`.
+#[test]
+fn quad_light_edge_slack_is_a_rounding_error_wide() {
+    let quad = unit_quad();
+    let (q, u, v) = (quad.q(), quad.u(), quad.v());
+    for o in [DVec3::new(0.1, 0.2, 1.0), DVec3::new(-0.3, 0.4, -50.0)] {
+        for (along, across) in [(u, v), (v, u)] {
+            for s in [0.0, 0.3, 1.0] {
+                for (edge, out) in [(q, -1.0), (q + across, 1.0)] {
+                    let at =
+                        |offset: f64| (edge + s * along + offset * out * across - o).normalize();
+                    assert_eq!(quad.pdf(o, at(1e-12)), 0.0, "from {o}: 1e-12 outside");
+                    assert!(quad.pdf(o, at(-1e-12)) > 0.0, "from {o}: 1e-12 inside");
+                }
+            }
+        }
+    }
+    let reach = |o: DVec3| (o - q).abs().max_element();
+    let above = DVec3::new(0.1, 0.2, 1.0);
+    let slack = quad.edge_slack(above, reach(above), 1.0, 1.0);
+    // (16 epsilon |dual| t (reach + |o| + |q| + |u| + |v| + t) / |h| = 1.5e-14 here)
+    assert!(slack > 0.0 && slack < 1e-13, "{slack}");
+    let grazing = DVec3::new(5.0, 0.0, 1e-6);
+    let slack = quad.edge_slack(grazing, reach(grazing), 1e-6, 5.0);
+    assert!(slack > 1e-12 && slack <= rtl_pdf::MAX_EDGE_SLACK, "{slack}");
+    let barely = DVec3::new(1e3, 0.0, 1e-10);
+    let slack = quad.edge_slack(barely, reach(barely), 1e-10, 1e3);
+    assert_eq!(slack, rtl_pdf::MAX_EDGE_SLACK);
+}
+
 #[test]
 fn quad_light_spherical_rectangles_only_for_rectangles() {
     let slanted = QuadTarget::new(DVec3::ZERO, DVec3::X, DVec3::new(0.5, 1.0, 0.0))

@@ -21,7 +21,7 @@ use rtl_pdf::QuadSampling;
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Target8 {
     /// A quad sampled by area ([`rtl_pdf::QuadTarget`]): corner, edges, unit normal, `1 / area`,
-    /// dual basis, edge scale, and whether it is one-sided.
+    /// dual basis, edge scale, the terms of its edges' slack, and whether it is one-sided.
     Quad {
         q: DVec3,
         u: DVec3,
@@ -31,6 +31,8 @@ pub(crate) enum Target8 {
         vw: DVec3,
         wu: DVec3,
         edge_scale: f64,
+        coord_scale: f64,
+        slack_unit: f64,
         one_sided: bool,
     },
     /// A sphere ([`rtl_pdf::SphereTarget`]): centre and radius.
@@ -91,6 +93,8 @@ impl Target8 {
                         vw,
                         wu,
                         edge_scale: quad.edge_scale(),
+                        coord_scale: quad.coord_scale(),
+                        slack_unit: quad.slack_unit(),
                         one_sided: *one_sided,
                     }
                 })
@@ -151,13 +155,21 @@ pub(crate) mod wide {
     #[derive(Clone, Copy)]
     pub(crate) enum View8<W: Wide8> {
         /// A quad: the origin's height `h` above its plane, the lanes behind it (one-sided) and
-        /// those out of its plane.
-        Quad { h: W, behind: W::Mask, off: W::Mask },
-        /// A sphere: the offset to its centre, its square, the lanes inside it, and the cone's
-        /// `1 - cos theta_max` and density.
+        /// those out of its plane, and the part of the magnitude of the coordinates in its edges'
+        /// slack that depends on the origin alone (`reach + |o| + coord_scale`).
+        Quad {
+            h: W,
+            behind: W::Mask,
+            off: W::Mask,
+            magnitude: W,
+        },
+        /// A sphere: the offset to its centre, its square and the radius squared (both divided
+        /// by the largest coordinate of the offset squared where `SphereTarget::relative` divides
+        /// them), the lanes inside it, and the cone's `1 - cos theta_max` and density.
         Sphere {
             to_center: V3<W>,
             d2: W,
+            r2: W,
             surrounding: W::Mask,
             omc: W,
             cone_pdf: W,
@@ -183,26 +195,51 @@ pub(crate) mod wide {
                     q,
                     normal,
                     edge_scale,
+                    coord_scale,
                     one_sided,
                     ..
                 } => {
                     let rel = sub3(origin, splat3_like(o, q));
                     let h = dot(splat3_like(o, normal), rel);
                     let behind = if one_sided { h.le(zero) } else { o.mask(0) };
-                    let magnitude = max_element([rel[0].abs(), rel[1].abs(), rel[2].abs()]);
-                    let scale = magnitude + o.splat_like(edge_scale);
+                    let reach = max_element([rel[0].abs(), rel[1].abs(), rel[2].abs()]);
+                    let scale = reach + o.splat_like(edge_scale);
                     let off = h.abs().gt(o.splat_like(8.0 * f64::EPSILON) * scale);
-                    View8::Quad { h, behind, off }
+                    let o_max = max_element([origin[0].abs(), origin[1].abs(), origin[2].abs()]);
+                    let magnitude = reach + o_max + o.splat_like(coord_scale);
+                    View8::Quad {
+                        h,
+                        behind,
+                        off,
+                        magnitude,
+                    }
                 }
                 Target8::Sphere { center, radius } => {
-                    let to_center = sub3(splat3_like(o, center), origin);
-                    let d2 = dot(to_center, to_center);
-                    let r2 = o.splat_like(radius * radius);
+                    let mut to_center = sub3(splat3_like(o, center), origin);
+                    let mut d2 = dot(to_center, to_center);
+                    let mut r2 = o.splat_like(radius * radius);
+                    // SphereTarget::relative: where d^2 overflows (a sphere more than 1.3e154
+                    // away) or r^2 leaves the normal range, both in the unit of the largest
+                    // coordinate of c - o (lanes where that is 0 or not finite keep the plain
+                    // squares)
+                    let plain =
+                        d2.le(o.splat_like(f64::MAX)) & r2.ge(o.splat_like(f64::MIN_POSITIVE));
+                    let m =
+                        max_element([to_center[0].abs(), to_center[1].abs(), to_center[2].abs()]);
+                    let scaled = !plain & m.positive_finite();
+                    if !scaled.is_empty() {
+                        let unit = [to_center[0] / m, to_center[1] / m, to_center[2] / m];
+                        let r = o.splat_like(radius) / m;
+                        to_center = select3(to_center, scaled, unit);
+                        d2 = d2.select(scaled, dot(unit, unit));
+                        r2 = r2.select(scaled, r * r);
+                    }
                     let surrounding = d2.le(r2) | d2.eq(zero) | d2.is_nan();
                     let omc = cone_one_minus_cos(r2 / d2);
                     View8::Sphere {
                         to_center,
                         d2,
+                        r2,
                         surrounding,
                         omc,
                         cone_pdf: uniform_cone_pdf(omc),
@@ -242,18 +279,29 @@ pub(crate) mod wide {
                         inv_area,
                         vw,
                         wu,
+                        slack_unit,
                         ..
                     },
-                    View8::Quad { h, behind, off },
+                    View8::Quad {
+                        h,
+                        behind,
+                        off,
+                        magnitude,
+                    },
                 ) => {
-                    // QuadTarget::hit: t = -h / (n . d), then the point's plane coordinates
+                    // QuadTarget::hit: t = -h / (n . d), then the point's plane coordinates, in
+                    // [0, 1] to within QuadTarget::edge_slack (which the scalar code computes only
+                    // outside [0, 1]^2: the slack is never negative, so the lanes' one test is the
+                    // same)
                     let normal = splat3_like(o, normal);
                     let t = -h / dot(normal, direction);
                     let point = add3(origin, scale3(t, direction));
                     let on = sub3(point, splat3_like(o, q));
                     let (a, b) = (dot(on, splat3_like(o, vw)), dot(on, splat3_like(o, wu)));
-                    let one = zero.splat_like(1.0);
-                    let inside = zero.le(a) & a.le(one) & zero.le(b) & b.le(one);
+                    let slack = (zero.splat_like(slack_unit) * t * (magnitude + t) / h.abs())
+                        .min(zero.splat_like(rtl_pdf::MAX_EDGE_SLACK));
+                    let (lo, hi) = (zero - slack, zero.splat_like(1.0) + slack);
+                    let inside = lo.le(a) & a.le(hi) & lo.le(b) & b.le(hi);
                     let hit = !behind & off & t.positive_finite() & inside;
                     if hit.is_empty() {
                         return zero;
@@ -261,19 +309,20 @@ pub(crate) mod wide {
                     Self::area_to_solid_angle(inv_area, origin, point, normal).zero_unless(hit)
                 }
                 (
-                    Target8::Sphere { radius, .. },
+                    Target8::Sphere { .. },
                     View8::Sphere {
                         to_center,
+                        r2,
                         surrounding,
-                        omc,
                         cone_pdf,
                         ..
                     },
                 ) => {
                     let c = cross(to_center, direction);
-                    let r2 = zero.splat_like(radius * radius);
                     let missed = dot(to_center, direction).le(zero) | dot(c, c).gt(r2);
-                    let cone = cone_pdf.zero_unless(omc.gt(zero) & !missed);
+                    // (0 where the cone's density is not a finite number, as SphereTarget::pdf:
+                    // where 1 - cos theta_max is 0, and where it is so small the density overflows)
+                    let cone = cone_pdf.zero_unless(cone_pdf.positive_finite() & !missed);
                     cone.select(
                         surrounding,
                         zero.splat_like(rtl_pdf::warp::uniform_sphere_pdf()),
@@ -325,6 +374,7 @@ pub(crate) mod wide {
                         surrounding,
                         omc,
                         cone_pdf,
+                        ..
                     },
                 ) => {
                     // the cone about the axis towards the centre
@@ -555,6 +605,235 @@ pub(crate) mod wide {
         unsafe fn avx2(&self, p: &[F64x8; 3], n: &[F64x8; 3], u: &[F64x8; 2], l: u8) -> Stored {
             // SAFETY: compiled with AVX2, run where the processor has it.
             unsafe { self.sample_stored::<Avx2>(p, n, u, l) }
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::{Target8, View8};
+        use crate::lanes::F64x8;
+        use crate::lights::LightTarget;
+        use crate::wide8::*;
+        use glam::{DVec2, DVec3};
+        use rtl_pdf::{QuadTarget, ShapeSampler, SphereTarget};
+
+        /// Per lane: the density of `d` from `o`, and the sample for `u` (its direction's and
+        /// density's bits where it succeeded).
+        type Answers = [(u64, Option<([u64; 3], u64)>); 8];
+
+        #[inline(always)]
+        unsafe fn answers<W: Wide8>(
+            t: &Target8,
+            o: &[DVec3; 8],
+            d: &[DVec3; 8],
+            u: &[DVec2; 8],
+        ) -> Answers {
+            let three = |v: &[DVec3; 8]| -> [F64x8; 3] {
+                std::array::from_fn(|a| F64x8(std::array::from_fn(|i| v[i][a])))
+            };
+            // SAFETY: as the caller's.
+            let (o, d, u) = unsafe {
+                (
+                    load3::<W>(&three(o)),
+                    load3::<W>(&three(d)),
+                    [
+                        W::load(&F64x8(std::array::from_fn(|i| u[i].x))),
+                        W::load(&F64x8(std::array::from_fn(|i| u[i].y))),
+                    ],
+                )
+            };
+            let view: View8<W> = t.view(o);
+            let pdf = t.pdf(&view, o, d).store();
+            let s = t.sample(&view, o, u);
+            let (dir, sp, ok) = (store3(s.direction), s.pdf.store(), s.ok.bits());
+            std::array::from_fn(|i| {
+                let got = (ok & (1 << i) != 0).then(|| {
+                    (
+                        [dir[0].0[i], dir[1].0[i], dir[2].0[i]].map(f64::to_bits),
+                        sp.0[i].to_bits(),
+                    )
+                });
+                (pdf.0[i].to_bits(), got)
+            })
+        }
+
+        #[target_feature(enable = "avx2")]
+        unsafe fn avx2(t: &Target8, o: &[DVec3; 8], d: &[DVec3; 8], u: &[DVec2; 8]) -> Answers {
+            // SAFETY: compiled with AVX2, run where the processor has it.
+            unsafe { answers::<Avx2>(t, o, d, u) }
+        }
+
+        #[target_feature(enable = "avx512f")]
+        unsafe fn avx512(t: &Target8, o: &[DVec3; 8], d: &[DVec3; 8], u: &[DVec2; 8]) -> Answers {
+            // SAFETY: compiled with AVX-512F, run where the processor has it.
+            unsafe { answers::<Avx512>(t, o, d, u) }
+        }
+
+        /// How many lanes of `target`'s density and sample in the lanes (in every tier this
+        /// processor runs) differ from `LightTarget::pdf` and `LightTarget::sample`, bit for bit,
+        /// for the origins `o`, directions `d` and numbers `u`; and how many lanes were compared.
+        fn mismatches(
+            target: &LightTarget,
+            o: &[DVec3; 8],
+            d: &[DVec3; 8],
+            u: &[DVec2; 8],
+        ) -> (usize, usize) {
+            let t = Target8::new(target).expect("the lanes take this target");
+            let want: Answers = std::array::from_fn(|i| {
+                let s = target
+                    .sample(o[i], u[i])
+                    .map(|s| (s.direction.to_array().map(f64::to_bits), s.pdf.to_bits()));
+                (target.pdf(o[i], d[i]).to_bits(), s)
+            });
+            let (mut bad, mut compared) = (0, 0);
+            let mut tiers: Vec<Answers> = Vec::new();
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the processor runs AVX2.
+                tiers.push(unsafe { avx2(&t, o, d, u) });
+            }
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                // SAFETY: the processor runs AVX-512F.
+                tiers.push(unsafe { avx512(&t, o, d, u) });
+            }
+            for got in tiers {
+                for i in 0..8 {
+                    compared += 1;
+                    bad += (got[i] != want[i]) as usize;
+                }
+            }
+            (bad, compared)
+        }
+
+        /// The numbers at the edges of the unit square: a point drawn with one of them lies on an
+        /// edge of the quad (`2^-60` rounds onto it).
+        const EDGE_US: [f64; 4] = [0.0, 8.673617379884035e-19, 0.5, 1.0 - f64::EPSILON / 2.0];
+
+        /// Towards points on a quad's edges, from near, far and grazing origins, the lanes'
+        /// density is the scalar one to the bit (including where its intersection lies outside the
+        /// parameter square by a rounding error, inside `QuadTarget::edge_slack`), and positive.
+        #[test]
+        fn a_quads_edges_in_the_lanes_are_the_scalar_ones_bit_for_bit() {
+            let quads = [
+                QuadTarget::new(
+                    DVec3::new(343.0, 554.0, 332.0),
+                    DVec3::new(-130.0, 0.0, 0.0),
+                    DVec3::new(0.0, 0.0, -105.0),
+                ),
+                QuadTarget::new(
+                    DVec3::new(0.3, 1.7, -2.1),
+                    DVec3::new(1.3, 0.2, 0.1),
+                    DVec3::new(0.1, -0.7, 0.9),
+                ),
+            ];
+            let (mut compared, mut outside_then_in, mut positive) = (0, 0, 0);
+            for (k, quad) in quads.iter().enumerate() {
+                let target = LightTarget::Quad {
+                    quad: *quad,
+                    one_sided: k == 1,
+                };
+                let (q, e1, e2, n) = (quad.q(), quad.u(), quad.v(), quad.normal());
+                let size = e1.length();
+                let centre = q + 0.5 * (e1 + e2);
+                let origins = [
+                    centre + 0.5 * size * n,
+                    centre - 0.3 * size * n + 0.2 * e1,
+                    q + 1e-3 * size * n,
+                    centre + 1e3 * size * n + 200.0 * e2,
+                    q + 3.0 * e1 + 0.4 * e2 + 3e-3 * size * n,
+                    q - 2.0 * e2 + 0.5 * e1 + 2e-6 * size * n,
+                    q + 1e3 * (e1 + e2) + size * n,
+                    centre + 1e6 * size * n,
+                ];
+                for ux in EDGE_US {
+                    for uy in EDGE_US {
+                        let u = [DVec2::new(ux, uy); 8];
+                        // each lane its own origin, towards the point u names on the quad
+                        let d: [DVec3; 8] = std::array::from_fn(|i| {
+                            (q + ux * e1 + uy * e2 - origins[i]).normalize()
+                        });
+                        let (bad, n) = mismatches(&target, &origins, &d, &u);
+                        assert_eq!(bad, 0, "quad {k} at ({ux}, {uy})");
+                        compared += n;
+                        for i in 0..8 {
+                            let b = d[i];
+                            let p = target.pdf(origins[i], b);
+                            if p > 0.0 {
+                                positive += 1;
+                                // the strict test alone: the intersection in [0, 1]^2
+                                let h = quad.normal().dot(origins[i] - quad.q());
+                                let t = -h / quad.normal().dot(b);
+                                let at = origins[i] + t * b - quad.q();
+                                let (vw, wu) = quad.dual_basis();
+                                let (aa, bb) = (at.dot(vw), at.dot(wu));
+                                let strict = (0.0..=1.0).contains(&aa) && (0.0..=1.0).contains(&bb);
+                                outside_then_in += !strict as usize;
+                            }
+                        }
+                    }
+                }
+            }
+            assert!(compared >= 2 * 16 * 8, "{compared}");
+            // (one-sided from behind: 0; every other one positive)
+            assert!(positive >= 3 * 16 * 8 / 2, "{positive}");
+            assert!(
+                outside_then_in > 10,
+                "the slack was needed {outside_then_in} times"
+            );
+        }
+
+        /// A sphere beyond the squares of f64 (1e200 away: `d^2` overflows) and one too small
+        /// for `r^2` to be a normal number: the lanes rescale as `SphereTarget` does, and give its
+        /// density and samples to the bit, finite and positive towards the sphere.
+        #[test]
+        fn a_sphere_beyond_the_squares_in_the_lanes_is_the_scalar_one_bit_for_bit() {
+            let spheres = [
+                (DVec3::new(1e200, 3e199, -2e199), 1e198),
+                (DVec3::new(-4e180, 1e160, 7e175), 5e170),
+                (DVec3::new(0.5, -0.25, 2.0), 1e-160),
+                (DVec3::new(1e200, 0.0, 0.0), 1e150),
+            ];
+            let origins: [DVec3; 8] = std::array::from_fn(|i| {
+                DVec3::new(i as f64 - 3.0, 0.5 * i as f64, -1.0) * [1.0, 1e3, 1e-3, 1e100][i % 4]
+            });
+            let us: [DVec2; 8] =
+                std::array::from_fn(|i| DVec2::new(EDGE_US[i % 4], EDGE_US[(i / 2) % 4]));
+            for (centre, radius) in spheres {
+                let target = LightTarget::Sphere(SphereTarget::new(centre, radius));
+                // (c - o scaled before it is normalised: its length overflows)
+                let towards: [DVec3; 8] = std::array::from_fn(|i| {
+                    let c = centre - origins[i];
+                    (c / c.abs().max_element()).normalize()
+                });
+                let (bad, _) = mismatches(&target, &origins, &towards, &us);
+                assert_eq!(bad, 0, "sphere at {centre}, radius {radius}");
+                // and the scalar numbers are usable ones (what the lanes gave before: no sample,
+                // density 0, where the axis was the zero vector)
+                for i in 0..8 {
+                    let p = target.pdf(origins[i], towards[i]);
+                    let s = target.sample(origins[i], us[i]);
+                    if radius < 1e-150 {
+                        continue; // (too small to see from some origins)
+                    }
+                    assert!(
+                        p > 0.0 && p.is_finite(),
+                        "{centre} from {}: {p}",
+                        origins[i]
+                    );
+                    let s = s.expect("a sample");
+                    assert!(s.pdf > 0.0 && s.pdf.is_finite() && s.direction.is_finite());
+                }
+                // directions the samples drew
+                let drawn: [DVec3; 8] = std::array::from_fn(|i| {
+                    target
+                        .sample(origins[i], us[i])
+                        .map_or(DVec3::X, |s| s.direction)
+                });
+                let (bad, _) = mismatches(&target, &origins, &drawn, &us);
+                assert_eq!(
+                    bad, 0,
+                    "sphere at {centre}, radius {radius}, drawn directions"
+                );
+            }
         }
     }
 }
