@@ -29,9 +29,22 @@
 //! `P_i(x) = a / n + (1 - a) T_i(x)`  (`a` = [`UNIFORM_SHARE`]),
 //!
 //! so every emitter keeps a probability of at least `a / n` wherever the estimates are poor: any
-//! importance that is 0 where the emitter does contribute costs noise, never bias. Where the two
-//! children's importances do not add up to a positive finite number (both 0, or an overflow) the
-//! descent stops without a sample and `T_i = 0` under it.
+//! importance that is 0 where the emitter does contribute costs noise, never bias.
+//!
+//! Where both children's importances are 0 (or one is not a number: a shading point that is not
+//! one) the descent stops without an emitter, and `T_i = 0` for every emitter under that node: the
+//! tree's share of the choice that reaches it is lost, not handed on. So `sum_i P_i(x)` is 1 less
+//! `(1 - a)` times the probability of reaching such a node, and [`LightTree::choose`] returns
+//! `None` with exactly that probability; [`LightTree::pmf`], which the MIS weight of emission met by
+//! material sampling uses, stops at the same node and gives the same `a / n`. Behind every one-sided
+//! quad (every leaf's importance 0, every cone's too) the descent stops at the root: 90% of the
+//! light samples there come back empty, and the uniform 10% pick an emitter whose sample fails (it
+//! has no direction from behind) — no light sample, and density 0 for every direction, where
+//! indeed no emitter sends light. A cluster of power 0 (black emitters, spheres too small for
+//! `r^2`) has importance 0 everywhere, also at its own centre. Importances that overflow when added
+//! (powers near `f64::MAX`, seen from close by) still share: all to an infinite one, half each to
+//! two, in a smaller unit for two finite ones. The powers must be numbers `>= 0` adding up to a
+//! positive finite total, else there is no tree (the choice stays uniform).
 
 use crate::aabb::Aabb;
 use crate::lights::{EmitterWeight, LightTarget, UNIFORM_SHARE};
@@ -118,6 +131,23 @@ fn normal_cone(emitters: &[LightTarget], order: &[u32], bounds: &Aabb) -> Option
     })
 }
 
+/// The left child's share where the importances `il` and `ir` (each `>= 0` or NaN) overflow when
+/// added (a huge power seen from close by): in a smaller unit if both are finite, all of it to the
+/// infinite one, half to each if both are; `None` for a NaN or two zeros.
+#[cold]
+fn overflowed_share(il: f64, ir: f64) -> Option<f64> {
+    match (il == f64::INFINITY, ir == f64::INFINITY) {
+        (true, true) => Some(0.5),
+        (true, false) => (ir >= 0.0).then_some(1.0),
+        (false, true) => (il >= 0.0).then_some(0.0),
+        (false, false) => {
+            let (l, r) = (0.25 * il, 0.25 * ir);
+            let sum = l + r;
+            (sum > 0.0 && sum.is_finite()).then(|| l / sum)
+        }
+    }
+}
+
 /// The tree over one scene's emitters (built once per scene).
 #[derive(Clone, Debug)]
 pub struct LightTree {
@@ -147,6 +177,11 @@ impl LightTree {
     ) -> Option<LightTree> {
         let n = emitters.len();
         if n < 2 || weights.len() != n || n >= 1 << 31 {
+            return None;
+        }
+        // (a negative or NaN power, which only a caller outside the renderer could give, would
+        // make negative or NaN probabilities)
+        if weights.iter().any(|w| !(w.power() >= 0.0)) {
             return None;
         }
         let total: f64 = weights.iter().map(EmitterWeight::power).sum();
@@ -215,6 +250,11 @@ impl LightTree {
                 normals,
                 ..
             } => {
+                // (a cluster of power 0, such as vanishing spheres, whose sphere may have radius 0:
+                // no 0 / 0 from a point at its centre)
+                if power == 0.0 {
+                    return 0.0;
+                }
                 let d2 = (x - centre).length_squared();
                 let Some(cone) = normals else {
                     return power / (4.0 * d2.max(r2));
@@ -242,13 +282,15 @@ impl LightTree {
     }
 
     /// The probability of the left child of inner node `(left, right)` seen from `x`; `None` where
-    /// the children's importances do not add up to a positive finite number (the descent stops
-    /// there).
+    /// both children's importances are 0 or one is not a number (the descent stops there).
     #[inline]
     fn left_share(&self, left: u32, right: u32, x: Point3) -> Option<f64> {
         let (il, ir) = (self.importance(left, x), self.importance(right, x));
         let sum = il + ir;
-        (sum > 0.0 && sum.is_finite()).then(|| il / sum)
+        if sum > 0.0 && sum.is_finite() {
+            return Some(il / sum);
+        }
+        overflowed_share(il, ir)
     }
 
     /// How many emitters the tree chooses among.
@@ -269,9 +311,11 @@ impl LightTree {
     }
 
     /// [`LightTree::choose`] with the chosen emitter's [`LightTree::pmf`] (the same number: the
-    /// descent multiplies the same shares in the same order as the walk down a trail).
+    /// descent multiplies the same shares in the same order as the walk down a trail). Public for
+    /// the tests that hold the two to the bit.
+    #[doc(hidden)]
     #[inline]
-    fn choose_with_pmf(&self, x: Point3, u: f64) -> Option<(usize, f64, f64)> {
+    pub fn choose_with_pmf(&self, x: Point3, u: f64) -> Option<(usize, f64, f64)> {
         let n = self.len();
         let u = u.clamp(0.0, ONE_MINUS_EPSILON);
         // (a NaN goes here too, and chooses emitter 0)
