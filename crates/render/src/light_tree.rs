@@ -379,31 +379,101 @@ impl LightTree {
         index: Option<&TargetIndex>,
         chosen: Option<(usize, f64, f64)>,
     ) -> f64 {
-        let mut sum = 0.0;
-        let mut term = |j: usize| match chosen {
-            Some((i, p, pmf)) if i == j => sum += pmf * p,
+        // emitter `j`'s term, and whether it took a trail down the tree
+        let term = |j: usize| match chosen {
+            Some((i, p, pmf)) if i == j => (pmf * p, false),
             _ => {
                 let p = emitters[j].pdf(x, direction);
                 // (the trail only where the direction can meet the emitter)
                 if p > 0.0 {
-                    sum += self.pmf(x, j) * p;
+                    (self.pmf(x, j) * p, true)
+                } else {
+                    (0.0, false)
                 }
             }
         };
+        let mut sum = 0.0;
         let mut out = [0u32; MAX_CANDIDATES];
         match index.and_then(|ix| ix.candidates(x, direction, &mut out)) {
             Some(k) => {
                 let mut met_chosen = false;
                 for &j in &out[..k] {
                     met_chosen |= chosen.is_some_and(|(i, ..)| i == j as usize);
-                    term(j as usize);
+                    sum += term(j as usize).0;
                 }
                 // (a conservative index names the chosen emitter; should it not, its term still counts)
                 if let Some((i, ..)) = chosen.filter(|_| !met_chosen) {
-                    term(i);
+                    sum += term(i).0;
                 }
             }
-            None => (0..emitters.len()).for_each(term),
+            None => {
+                // Every emitter, a trail for each that the direction meets; where more than
+                // `MAX_CANDIDATES` do (emitters piled up along the ray: ten thousand at one point
+                // made a trail of 14 levels for each, 70 times `cosine`'s time), one walk over the
+                // whole tree instead.
+                let mut trails = 0;
+                for j in 0..emitters.len() {
+                    let (t, trail) = term(j);
+                    trails += trail as usize;
+                    if trails > MAX_CANDIDATES {
+                        return self.pdf_by_walk(x, direction, emitters, chosen);
+                    }
+                    sum += t;
+                }
+            }
+        }
+        sum
+    }
+
+    /// [`LightTree::pdf`] without an index, by one walk over the whole tree: every emitter's
+    /// probability is [`LightTree::pmf`]'s to the bit (the same shares, multiplied in the same
+    /// order), added in the tree's order rather than the list's. `O(n)` however many emitters the
+    /// direction meets.
+    #[cold]
+    #[inline(never)]
+    fn pdf_by_walk(
+        &self,
+        x: Point3,
+        direction: Vec3,
+        emitters: &[LightTarget],
+        chosen: Option<(usize, f64, f64)>,
+    ) -> f64 {
+        let uniform = UNIFORM_SHARE / self.len() as f64;
+        let mut sum = 0.0;
+        // (node, probability of its trail so far or `None` below a stop); depth-first, at most
+        // one pending sibling a level, and a tree is at most 31 levels deep
+        let mut stack = [(0u32, Some(1.0f64)); 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (k, t) = stack[top];
+            match self.nodes[k as usize] {
+                Node::Leaf { emitter } => {
+                    let j = emitter as usize;
+                    match chosen {
+                        Some((i, p, pmf)) if i == j => sum += pmf * p,
+                        _ => {
+                            let p = emitters[j].pdf(x, direction);
+                            if p > 0.0 {
+                                let pmf = match t {
+                                    Some(t) => uniform + (1.0 - UNIFORM_SHARE) * t,
+                                    None => uniform,
+                                };
+                                sum += pmf * p;
+                            }
+                        }
+                    }
+                }
+                Node::Inner { left, right, .. } => {
+                    let shares = t.and_then(|t| {
+                        self.left_share(left, right, x)
+                            .map(|p| (t * p, t * (1.0 - p)))
+                    });
+                    stack[top] = (right, shares.map(|s| s.1));
+                    stack[top + 1] = (left, shares.map(|s| s.0));
+                    top += 2;
+                }
+            }
         }
         sum
     }

@@ -553,3 +553,71 @@ fn a_sphere_below_the_resolution_of_directions() {
     }
     assert_eq!(missed, 0, "{missed} of 64 samples outside their own cone");
 }
+
+/// A direction that meets more emitters than the index names (here every one of ten thousand
+/// at one point) sums their terms over one walk of the tree, `O(n)`, not one trail each: the
+/// same density as the trails', in the list's order, to rounding; a stop on the way (from behind
+/// a pile of panels) gives the emitters under it their uniform share.
+#[test]
+fn a_direction_through_a_pile_of_emitters_walks_the_tree_once() {
+    let reference = |t: &LightTree, e: &[LightTarget], x: DVec3, d: DVec3| -> f64 {
+        (0..e.len())
+            .map(|j| {
+                let p = e[j].pdf(x, d);
+                if p > 0.0 { t.pmf(x, j) * p } else { 0.0 }
+            })
+            .sum()
+    };
+    let n = 10_000;
+    let c = DVec3::new(0.0, 3.0, 0.0);
+    let e: Vec<LightTarget> = (0..n)
+        .map(|i| sphere(c + DVec3::X * (i % 7) as f64 * 1e-3, 0.3))
+        .collect();
+    let w = weights(&e, |i| 1.0 + (i % 3) as f64);
+    let t = tree(&e, &w);
+    let index = TargetIndex::new(&e);
+    let x = DVec3::ZERO;
+    let start = std::time::Instant::now();
+    for k in 0..200 {
+        let u = DVec2::new((k as f64 + 0.5) / 200.0, 0.37);
+        let s = t.sample(x, u, &e, Some(&index)).unwrap();
+        let p = t.pdf(x, s.direction, &e, Some(&index), None);
+        assert!((s.pdf - p).abs() <= 1e-9 * p, "{} vs {p}", s.pdf);
+        if k % 20 == 0 {
+            let want = reference(&t, &e, x, s.direction);
+            assert!((p - want).abs() <= 1e-12 * want, "{p} vs {want}");
+        }
+    }
+    // (a generous bound: the whole test takes about 1.3 s in a test build)
+    let spent = start.elapsed().as_secs_f64();
+    assert!(spent < 5.0, "{spent} s");
+    // a pile of one-sided panels with a few facing the other way: from the side most face, stops
+    // happen nowhere; from behind most of them, under every cluster of only those
+    let e: Vec<LightTarget> = (0..200)
+        .map(|i| {
+            let q = DVec3::new(-1.0, 3.0 + 1e-3 * (i % 5) as f64, -1.0);
+            if i % 10 == 0 {
+                quad(q, DVec3::X * 2.0, DVec3::Z * 2.0, true) // faces down
+            } else {
+                quad(q, DVec3::Z * 2.0, DVec3::X * 2.0, true) // faces up
+            }
+        })
+        .collect();
+    let w = weights(&e, |_| 1.0);
+    let t = tree(&e, &w);
+    for x in [DVec3::new(0.1, 0.0, 0.2), DVec3::new(0.1, 6.0, 0.2)] {
+        let mut hits = 0;
+        for k in 0..64 {
+            let u = DVec2::new((k as f64 + 0.5) / 64.0, 0.61);
+            let Some(s) = t.sample(x, u, &e, None) else {
+                continue;
+            };
+            hits += 1;
+            let p = t.pdf(x, s.direction, &e, None, None);
+            assert!((s.pdf - p).abs() <= 1e-9 * p, "{} vs {p}", s.pdf);
+            let want = reference(&t, &e, x, s.direction);
+            assert!((p - want).abs() <= 1e-12 * want, "at {x}: {p} vs {want}");
+        }
+        assert!(hits > 0);
+    }
+}
