@@ -181,7 +181,10 @@ impl LightTree {
         }
         // (a negative or NaN power, which only a caller outside the renderer could give, would
         // make negative or NaN probabilities)
-        if weights.iter().any(|w| !(w.power() >= 0.0)) {
+        if weights
+            .iter()
+            .any(|w| w.power().is_nan() || w.power() < 0.0)
+        {
             return None;
         }
         let total: f64 = weights.iter().map(EmitterWeight::power).sum();

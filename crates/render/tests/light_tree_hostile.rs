@@ -621,3 +621,75 @@ fn a_direction_through_a_pile_of_emitters_walks_the_tree_once() {
         assert!(hits > 0);
     }
 }
+
+/// Around the sizes where the choice changes hands (one per point up to 16 emitters, the tree from
+/// 17; the index from 64), with panels facing both ways and two-sided ones: the density a light
+/// sample comes with is the one the MIS weight gives its direction, and from behind every panel
+/// there is no sample and no density.
+#[test]
+fn the_light_sample_and_the_mis_weight_agree_at_the_thresholds() {
+    use rtl_render::Color;
+    use rtl_render::lights::Lights;
+    use rtl_render::material::{Albedo, Material};
+    use rtl_render::scene::SceneBuilder;
+    for n in [16, 17, 63, 64, 65] {
+        for all_up in [false, true] {
+            let mut b = SceneBuilder::new();
+            let w = b.world();
+            let lamp = |b: &mut SceneBuilder, two_sided| {
+                b.material(Material::DiffuseLight {
+                    emit: Albedo::Constant(Color::new(1.0, 2.0, 3.0)),
+                    two_sided,
+                })
+            };
+            let (one, two) = (lamp(&mut b, false), lamp(&mut b, true));
+            for i in 0..n {
+                let q = DVec3::new((i % 8) as f64, 3.0 + 0.1 * (i % 3) as f64, (i / 8) as f64);
+                let (u, v) = if all_up || i % 2 == 0 {
+                    (DVec3::Z * 0.5, DVec3::X * 0.5) // faces up
+                } else {
+                    (DVec3::X * 0.5, DVec3::Z * 0.5) // faces down
+                };
+                let m = if !all_up && i % 5 == 0 { two } else { one };
+                b.quad(w, q, u, v, m).unwrap();
+            }
+            let lights = Lights::new(&b.build().unwrap(), false);
+            assert_eq!(lights.emitters.len(), n);
+            assert_eq!(lights.emitter_tree.is_some(), n > 16, "{n}");
+            assert_eq!(lights.emitter_index.is_some(), n >= 64, "{n}");
+            let mut sampled = 0;
+            for k in 0..400 {
+                let x = DVec3::new(
+                    (k % 20) as f64 * 0.45 - 0.5,
+                    if k % 2 == 0 { 0.0 } else { 6.0 },
+                    (k / 20) as f64 * 0.45 - 0.5,
+                );
+                let u = DVec2::new(
+                    ((k * 7919) % 400) as f64 / 400.0,
+                    0.3 + (k % 3) as f64 * 0.2,
+                );
+                let Some(s) = lights.sample_emitters(x, u) else {
+                    continue;
+                };
+                assert!(
+                    !(all_up && x.y == 0.0),
+                    "{n}: a sample from behind every panel"
+                );
+                sampled += 1;
+                let p = lights.emitters_pdf(x, s.direction);
+                assert!(
+                    s.pdf.is_finite() && (s.pdf - p).abs() <= 1e-9 * p,
+                    "{n} at {x}: sampled with {} but weighted by {p}",
+                    s.pdf
+                );
+            }
+            assert!(sampled > 100, "{n}: {sampled}");
+            if all_up {
+                assert_eq!(
+                    lights.emitters_pdf(DVec3::new(1.0, 0.0, 1.0), DVec3::Y),
+                    0.0
+                );
+            }
+        }
+    }
+}
