@@ -224,6 +224,11 @@ fn ordinary_rows_at_the_thresholds() {
         for s in check_all(&e, &w, &at, &format!("row of {n}")) {
             assert_eq!(s.stopped, 0.0);
         }
+        // a shading point that is not a number (a ray gone wrong upstream): every importance is
+        // NaN, the descent stops at the root, and each emitter keeps its uniform share
+        let t = tree(&e, &w);
+        let s = check(&t, &e, DVec3::splat(f64::NAN), "NaN point");
+        assert!((s.stopped - (1.0 - UNIFORM_SHARE)).abs() < 1e-3, "{s:?}");
     }
 }
 
