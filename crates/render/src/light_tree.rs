@@ -371,8 +371,9 @@ impl LightTree {
 
     /// Next-event estimation's density of `direction` from `x`, per unit solid angle:
     /// `sum_i P_i(x) pdf_i(direction | x)`, over the emitters `index` says the ray may meet (every
-    /// emitter without one), in their order; for emitter `chosen.0`, `pdf_i` is taken as `chosen.1`
-    /// (the density its sample came with) and `P_i` as `chosen.2`.
+    /// emitter without one), in their order (in the tree's where more than [`MAX_CANDIDATES`] have
+    /// a density in `direction`: one walk over the whole tree); for emitter `chosen.0`, `pdf_i` is
+    /// taken as `chosen.1` (the density its sample came with) and `P_i` as `chosen.2`.
     #[inline]
     pub fn pdf(
         &self,
