@@ -34,6 +34,7 @@ pub mod builder;
 pub mod bvh;
 pub mod camera;
 pub mod checkpoint;
+pub mod closed_surface;
 pub mod connection;
 pub mod flatten;
 pub mod glass8;

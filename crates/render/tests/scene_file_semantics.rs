@@ -3,7 +3,7 @@
 //! a scene without a light, the image files a scene reads (inputs a render must not overwrite), and
 //! the words of two messages.
 
-use rtl_render::builder::{CLOSE, OpenSurface};
+use rtl_render::closed_surface::{CLOSE, OpenSurface};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::scene::SceneBuilder;
 use rtl_render::scene_file::{self, SceneFile};

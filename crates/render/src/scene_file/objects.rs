@@ -8,7 +8,7 @@ use super::doc::{
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
 use super::values::{Num, Real, Step};
-use crate::builder::{OpenQuad, OpenSurface};
+use crate::closed_surface::{OpenQuad, OpenSurface};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::shapes::{Quad, Sphere};
