@@ -37,6 +37,9 @@ pub enum OpenSurface {
     },
     /// It lies where another quad does: the two enclose no volume.
     Coincident,
+    /// Two of its own corners are one corner (within [`CLOSE`]): it is a sliver that encloses
+    /// nothing, and its edges, paired with each other, would pass for shared.
+    Sliver,
 }
 
 /// A quad placed in the space of the group looked at ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
@@ -146,6 +149,11 @@ pub(crate) fn first_open(quads: &[LooseQuad]) -> Option<(usize, OpenSurface)> {
         }
     }
     for (q, quad) in quads.iter().enumerate() {
+        let mut place: [usize; 4] = std::array::from_fn(|c| vertex[4 * q + c]);
+        place.sort_unstable();
+        if place.windows(2).any(|w| w[0] == w[1]) {
+            return Some((q, OpenSurface::Sliver));
+        }
         for e in EDGES {
             let others = edges[&edge(q, e)] - 1;
             if others != 1 {
@@ -153,8 +161,6 @@ pub(crate) fn first_open(quads: &[LooseQuad]) -> Option<(usize, OpenSurface)> {
                 return Some((q, OpenSurface::Edge { from, to, others }));
             }
         }
-        let mut place: [usize; 4] = std::array::from_fn(|c| vertex[4 * q + c]);
-        place.sort_unstable();
         if *places.entry(place).or_insert(q) != q {
             return Some((q, OpenSurface::Coincident));
         }

@@ -491,3 +491,21 @@ fn an_instance_whose_quads_cannot_be_placed_is_refused() {
         ],
     );
 }
+
+/// A quad whose u and v are parallel to within a part in 1e9 (so not refused as zero-area) has two
+/// of its own corners within CLOSE of each other: one corner. Its four edges then pair off with
+/// each other, each "an edge of exactly one other", and the sliver alone passed for a closed
+/// surface: a medium inside it loaded, invisible. Refused, naming the quad.
+#[test]
+fn a_sliver_quad_whose_corners_meet_is_no_closed_surface() {
+    let sliver = "[[objects.boundary.objects]]\ntype = \"quad\"\nq = [0, 0, 0]\nu = [1, 0, 0]\n\
+                  v = [1, 1e-12, 0]\nmaterial = \"white\"\n";
+    refused(
+        &medium_in_group("", sliver),
+        &[
+            "some/dir/s.toml:13:8:",
+            "must enclose a volume",
+            "two corners of the quad at line 15:1 are one corner",
+        ],
+    );
+}

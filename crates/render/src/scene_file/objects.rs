@@ -404,6 +404,10 @@ impl Loader<'_> {
                     Num::v3(to)
                 )
             }
+            OpenSurface::Sliver => format!(
+                "two corners of {quad} are one corner (to within a part in 1e9 of its \
+                 coordinates): it encloses no volume, and the medium inside it would be invisible"
+            ),
             OpenSurface::Coincident => format!(
                 "{quad} lies where another quad of the boundary does, and the two enclose no volume: \
                  the medium inside would be invisible"
