@@ -74,66 +74,119 @@ impl LooseQuad {
 /// The first of `quads` (and why) whose edges are not each an edge of exactly one other quad, or
 /// that lies where another does; `None` if they close a surface.
 pub(crate) fn first_open(quads: &[LooseQuad]) -> Option<(usize, OpenSurface)> {
-    // Corners within CLOSE of each other are one vertex, found among the vertices already kept in a
-    // grid of cells 16 times the largest such distance (`reach`): in a corner's own cell, and in a
-    // neighbouring one only if the corner lies within twice `reach` of the side they share (twice:
-    // its place in the cell is rounded).
+    first_open_counted(quads).0
+}
+
+/// The power of two `2^e` at or above a quad's `scale`, by `e` (`i32::MIN` for 0, `i32::MAX` for a
+/// scale that is not a finite number).
+fn level(scale: f64) -> i32 {
+    if !scale.is_finite() {
+        return i32::MAX;
+    }
+    if scale <= 0.0 {
+        return i32::MIN;
+    }
+    let mut e = scale.log2().ceil() as i32;
+    while level_size(e) < scale {
+        e += 1;
+    }
+    e
+}
+
+/// `2^e` for a [`level`] `e`.
+fn level_size(e: i32) -> f64 {
+    match e {
+        i32::MIN => 0.0,
+        i32::MAX => f64::INFINITY,
+        e => (e as f64).exp2(),
+    }
+}
+
+/// [`first_open`], and how many pairs of corners it compared (the tests hold that to the number of
+/// corners, not its square).
+pub(crate) fn first_open_counted(quads: &[LooseQuad]) -> (Option<(usize, OpenSurface)>, usize) {
+    // Corners within CLOSE of each other (of the larger scale of their two quads) are one vertex.
+    // Quads are taken by their scale's level (the power of two at or above it), largest first; a
+    // corner is looked for among the vertices already kept, which are all of its level or a larger
+    // one. Each level has a grid of cells 16 times the largest distance two corners of that level
+    // may be apart and still be one (`reach`, CLOSE times the level's power of two), and a corner
+    // looks in each level's grid at and above its own: in its own cell, and in a neighbouring one
+    // only if it lies within twice `reach` of the side they share (twice: its place in the cell is
+    // rounded). One grid for all (cells sized by the largest quad) put every corner of many small
+    // quads into one cell beside a large one, and compared each with all before it.
     let corner = |i: usize| quads[i / 4].corners[i % 4];
-    let largest = quads.iter().map(|q| q.scale).fold(0.0, f64::max);
-    let reach = CLOSE * largest;
-    let cell = (16.0 * reach).max(f64::MIN_POSITIVE);
+    let levels: Vec<i32> = quads.iter().map(|q| level(q.scale)).collect();
+    let mut order: Vec<usize> = (0..quads.len()).collect();
+    order.sort_by_key(|&q| std::cmp::Reverse(levels[q]));
+    let mut present: Vec<i32> = levels.clone();
+    present.sort_unstable_by_key(|&l| std::cmp::Reverse(l));
+    present.dedup();
     let n = 4 * quads.len();
     let mut vertex: Vec<usize> = (0..n).collect();
-    // per cell the last vertex kept in it, and per vertex the one kept there before it
-    let mut grid: HashMap<[i64; 3], usize> = HashMap::new();
+    // per level and cell the last vertex kept in it, and per vertex the one kept there before it
+    let mut grid: HashMap<(i32, [i64; 3]), usize> = HashMap::new();
     let mut before: Vec<usize> = vec![usize::MAX; n];
-    for i in 0..n {
-        let p = corner(i);
+    let mut compared = 0;
+    // a level's `reach`, and a corner's place in that level's grid: its cell, and where in it
+    let place_in = |l: i32, p: Point3| {
+        let reach = CLOSE * level_size(l);
+        let cell = (16.0 * reach).max(f64::MIN_POSITIVE);
         let at = p / cell;
-        let k = at.floor().as_i64vec3().to_array();
-        // per axis, the neighbouring cells the corner is near (-1, 0 or 1 besides its own)
-        let side = |a: usize| {
-            let f = (at[a] - at[a].floor()) * cell;
-            if f < 2.0 * reach {
-                -1
-            } else if cell - f < 2.0 * reach {
-                1
-            } else {
-                0
-            }
-        };
-        let sides = [side(0), side(1), side(2)];
-        let steps = |a: usize| {
-            if sides[a] == 0 {
-                0..=0
-            } else {
-                sides[a].min(0)..=sides[a].max(0)
-            }
-        };
+        (reach, cell, at, at.floor().as_i64vec3().to_array())
+    };
+    for i in order.iter().flat_map(|&q| 4 * q..4 * q + 4) {
+        let p = corner(i);
+        let own = levels[i / 4];
         let mut found = None;
-        'cells: for dx in steps(0) {
-            for dy in steps(1) {
-                for dz in steps(2) {
-                    let near = [
-                        k[0].saturating_add(dx),
-                        k[1].saturating_add(dy),
-                        k[2].saturating_add(dz),
-                    ];
-                    let mut j = grid.get(&near).copied().unwrap_or(usize::MAX);
-                    while j != usize::MAX {
-                        let tol = CLOSE * quads[i / 4].scale.max(quads[j / 4].scale);
-                        if (p - corner(j)).abs().max_element() <= tol {
-                            found = Some(j);
-                            break 'cells;
+        'levels: for &l in present.iter().take_while(|&&l| l >= own) {
+            let (reach, cell, at, k) = place_in(l, p);
+            // per axis, the neighbouring cells the corner is near (-1, 0 or 1 besides its own)
+            let side = |a: usize| {
+                let f = (at[a] - at[a].floor()) * cell;
+                if f < 2.0 * reach {
+                    -1
+                } else if cell - f < 2.0 * reach {
+                    1
+                } else {
+                    0
+                }
+            };
+            let sides = [side(0), side(1), side(2)];
+            let steps = |a: usize| {
+                if sides[a] == 0 {
+                    0..=0
+                } else {
+                    sides[a].min(0)..=sides[a].max(0)
+                }
+            };
+            for dx in steps(0) {
+                for dy in steps(1) {
+                    for dz in steps(2) {
+                        let near = [
+                            k[0].saturating_add(dx),
+                            k[1].saturating_add(dy),
+                            k[2].saturating_add(dz),
+                        ];
+                        let mut j = grid.get(&(l, near)).copied().unwrap_or(usize::MAX);
+                        while j != usize::MAX {
+                            compared += 1;
+                            let tol = CLOSE * quads[i / 4].scale.max(quads[j / 4].scale);
+                            if (p - corner(j)).abs().max_element() <= tol {
+                                found = Some(j);
+                                break 'levels;
+                            }
+                            j = before[j];
                         }
-                        j = before[j];
                     }
                 }
             }
         }
         match found {
             Some(j) => vertex[i] = j,
-            None => before[i] = grid.insert(k, i).unwrap_or(usize::MAX),
+            None => {
+                let key = (own, place_in(own, p).3);
+                before[i] = grid.insert(key, i).unwrap_or(usize::MAX);
+            }
         }
     }
     const EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
@@ -152,18 +205,69 @@ pub(crate) fn first_open(quads: &[LooseQuad]) -> Option<(usize, OpenSurface)> {
         let mut place: [usize; 4] = std::array::from_fn(|c| vertex[4 * q + c]);
         place.sort_unstable();
         if place.windows(2).any(|w| w[0] == w[1]) {
-            return Some((q, OpenSurface::Sliver));
+            return (Some((q, OpenSurface::Sliver)), compared);
         }
         for e in EDGES {
             let others = edges[&edge(q, e)] - 1;
             if others != 1 {
                 let (from, to) = (quad.corners[e.0], quad.corners[e.1]);
-                return Some((q, OpenSurface::Edge { from, to, others }));
+                return (Some((q, OpenSurface::Edge { from, to, others })), compared);
             }
         }
         if *places.entry(place).or_insert(q) != q {
-            return Some((q, OpenSurface::Coincident));
+            return (Some((q, OpenSurface::Coincident)), compared);
         }
     }
-    None
+    (None, compared)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ids::MaterialId;
+    use crate::vec::Vec3;
+
+    fn loose(q: Point3, u: Vec3, v: Vec3, index: usize) -> LooseQuad {
+        let quad = Quad::new(q, u, v, MaterialId(0)).unwrap();
+        LooseQuad::new(&quad, Transform::IDENTITY, GroupId(0), index)
+    }
+
+    /// A large quad and many small ones near the origin: the small quads' corners are all in one
+    /// cell of a grid sized by the large quad, and each was compared with every corner kept before
+    /// it (4,096 small quads: 134 million comparisons; at the scene's limit of 2^20 quads, hours).
+    /// Taken level by level, each corner meets a handful. The verdict is the same.
+    #[test]
+    fn small_quads_beside_a_large_one_are_not_compared_with_each_other() {
+        let mut quads = vec![loose(Point3::new(1e6, 0.0, 0.0), Vec3::X, Vec3::Y, 0)];
+        for k in 0..4096 {
+            let q = Point3::new((k % 64) as f64 * 2e-7, (k / 64) as f64 * 2e-7, 0.0);
+            quads.push(loose(q, Vec3::X * 1e-7, Vec3::Y * 1e-7, k + 1));
+        }
+        let (open, compared) = first_open_counted(&quads);
+        assert!(
+            matches!(open, Some((0, OpenSurface::Edge { others: 0, .. }))),
+            "{open:?}"
+        );
+        assert!(compared <= 8 * 4 * quads.len(), "{compared} comparisons");
+    }
+
+    /// Levels do not part corners that are one: a box whose faces have scales a level apart (a
+    /// corner at 1, one at 1 + 2^-40) closes, corners that meet across levels found from below.
+    #[test]
+    fn corners_of_quads_of_different_levels_meet() {
+        let d = 1.0 + 2f64.powi(-40);
+        let (x, y, z) = (Vec3::X, Vec3::Y, Vec3::Z);
+        let o = Point3::ZERO;
+        let quads = [
+            loose(o, x, y, 0),
+            loose(o + z, x, y, 1),
+            loose(o, y, z, 2),
+            loose(o + x * d, y, z, 3),
+            loose(o, x, z, 4),
+            loose(o + y, x, z, 5),
+        ];
+        // (the face at x = d has scale d + 1 > 2: a level above the others)
+        assert!(level(quads[3].scale) > level(quads[0].scale));
+        assert_eq!(first_open(&quads), None);
+    }
 }
