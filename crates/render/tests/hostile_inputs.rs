@@ -33,10 +33,29 @@ lamp = { type = "light", emit = [4, 4, 4] }
 #[track_caller]
 fn finishes<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
     let (send, receive) = std::sync::mpsc::channel();
-    std::thread::spawn(move || send.send(f()));
-    receive
-        .recv_timeout(Duration::from_secs(60))
-        .expect("still walking after a minute")
+    let walk = std::thread::spawn(move || send.send(f()));
+    match receive.recv_timeout(Duration::from_secs(60)) {
+        Ok(t) => t,
+        // `f` panicked (the sender dropped unsent): its panic, with its own message, is the test's
+        Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => match walk.join() {
+            Err(payload) => std::panic::resume_unwind(payload),
+            Ok(_) => unreachable!("the walk ended without sending its answer"),
+        },
+        Err(std::sync::mpsc::RecvTimeoutError::Timeout) => panic!("still walking after a minute"),
+    }
+}
+
+/// A walk that panics fails at once with its own message, not as one that never ended.
+#[test]
+fn a_walk_that_panics_fails_with_its_own_message() {
+    let caught = std::panic::catch_unwind(|| finishes(|| -> () { panic!("accepted: the scene") }))
+        .expect_err("the walk's panic");
+    let message = caught
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| caught.downcast_ref::<String>().cloned())
+        .unwrap_or_default();
+    assert_eq!(message, "accepted: the scene");
 }
 
 fn load(text: &str) -> Result<SceneFile, String> {
