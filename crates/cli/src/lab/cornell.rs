@@ -562,7 +562,7 @@ impl Bench {
                 "a {spp}-spp render with mis (seed 999), kept in memory only (not cached: {e})"
             ),
             Some(Reference::Failed(e, _)) => format!(
-                "no reference: {e} (tried again every {} s)",
+                "no reference: {e} (tried again {} s after, while this page is open)",
                 RETRY_FAILED.as_secs()
             ),
         }
