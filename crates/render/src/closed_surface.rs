@@ -40,7 +40,17 @@ pub enum OpenSurface {
     /// Two of its own corners are one corner (within [`CLOSE`]): it is a sliver that encloses
     /// nothing, and its edges, paired with each other, would pass for shared.
     Sliver,
+    /// The check gave up at this quad: its corner was the one that took the search for shared
+    /// corners past [`MAX_LOOKUPS`] (quads of `levels` different scales, each corner looked for in
+    /// every level at and above its own). Not known to be open; refused because it could not be
+    /// shown closed in reasonable time.
+    Unchecked { levels: usize },
 }
+
+/// The most looks at a level's grid ([`OpenSurface::Unchecked`] beyond): a boundary of 2^20 quads
+/// whose scales span four powers of two takes at most 2^24. Only a boundary made to span hundreds of
+/// scales with a million quads comes near, where the search would take minutes.
+pub const MAX_LOOKUPS: usize = 1 << 26;
 
 /// A quad placed in the space of the group looked at ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
 pub(crate) struct LooseQuad {
@@ -74,7 +84,7 @@ impl LooseQuad {
 /// The first of `quads` (and why) whose edges are not each an edge of exactly one other quad, or
 /// that lies where another does; `None` if they close a surface.
 pub(crate) fn first_open(quads: &[LooseQuad]) -> Option<(usize, OpenSurface)> {
-    first_open_counted(quads).0
+    first_open_counted(quads, MAX_LOOKUPS).0
 }
 
 /// The power of two `2^e` at or above a quad's `scale`, by `e` (`i32::MIN` for 0, `i32::MAX` for a
@@ -102,9 +112,12 @@ fn level_size(e: i32) -> f64 {
     }
 }
 
-/// [`first_open`], and how many pairs of corners it compared (the tests hold that to the number of
-/// corners, not its square).
-pub(crate) fn first_open_counted(quads: &[LooseQuad]) -> (Option<(usize, OpenSurface)>, usize) {
+/// [`first_open`] giving up after `max_lookups` looks at a level's grid, and how many pairs of
+/// corners it compared (the tests hold that to the number of corners, not its square).
+pub(crate) fn first_open_counted(
+    quads: &[LooseQuad],
+    max_lookups: usize,
+) -> (Option<(usize, OpenSurface)>, usize) {
     // Corners within CLOSE of each other (of the larger scale of their two quads) are one vertex.
     // Quads are taken by their scale's level (the power of two at or above it), largest first; a
     // corner is looked for among the vertices already kept, which are all of its level or a larger
@@ -127,6 +140,7 @@ pub(crate) fn first_open_counted(quads: &[LooseQuad]) -> (Option<(usize, OpenSur
     let mut grid: HashMap<(i32, [i64; 3]), usize> = HashMap::new();
     let mut before: Vec<usize> = vec![usize::MAX; n];
     let mut compared = 0;
+    let mut looked = 0;
     // a level's `reach`, and a corner's place in that level's grid: its cell, and where in it
     let place_in = |l: i32, p: Point3| {
         let reach = CLOSE * level_size(l);
@@ -139,6 +153,11 @@ pub(crate) fn first_open_counted(quads: &[LooseQuad]) -> (Option<(usize, OpenSur
         let own = levels[i / 4];
         let mut found = None;
         'levels: for &l in present.iter().take_while(|&&l| l >= own) {
+            looked += 1;
+            if looked > max_lookups {
+                let levels = present.len();
+                return (Some((i / 4, OpenSurface::Unchecked { levels })), compared);
+            }
             let (reach, cell, at, k) = place_in(l, p);
             // per axis, the neighbouring cells the corner is near (-1, 0 or 1 besides its own)
             let side = |a: usize| {
@@ -243,12 +262,49 @@ mod tests {
             let q = Point3::new((k % 64) as f64 * 2e-7, (k / 64) as f64 * 2e-7, 0.0);
             quads.push(loose(q, Vec3::X * 1e-7, Vec3::Y * 1e-7, k + 1));
         }
-        let (open, compared) = first_open_counted(&quads);
+        let (open, compared) = first_open_counted(&quads, MAX_LOOKUPS);
         assert!(
             matches!(open, Some((0, OpenSurface::Edge { others: 0, .. }))),
             "{open:?}"
         );
         assert!(compared <= 8 * 4 * quads.len(), "{compared} comparisons");
+    }
+
+    /// Quads of many scales, each with a corner in the origin's cell of its level's grid (but not
+    /// within its tolerance of the origin), and many small quads at the origin: each small corner
+    /// is looked for in every level above its own. Past [`MAX_LOOKUPS`] the check
+    /// gives up, naming the quad it had reached, instead of taking minutes.
+    #[test]
+    fn a_search_past_its_budget_gives_up() {
+        let (x, y) = (Vec3::X, Vec3::Y);
+        // (sizes whose squared area a double holds: 2^0 to 2^249, and 1e-70)
+        let mut quads: Vec<LooseQuad> = (0..250)
+            .map(|k| {
+                let size = 2f64.powi(k);
+                // (a corner in the origin's cell of its level, but three tolerances from it)
+                let q = Point3::new(3.0 * CLOSE * size, 0.0, 0.0);
+                loose(q, x * size, y * size, k as usize)
+            })
+            .collect();
+        // (the budget of the test: MAX_LOOKUPS would take seconds)
+        let budget = 1 << 18;
+        let small = budget / (4 * 250) + 1;
+        for k in 0..small {
+            let q = Point3::new(k as f64 * 2e-70, 0.0, 0.0);
+            quads.push(loose(q, x * 1e-70, y * 1e-70, 250 + k));
+        }
+        let (open, compared) = first_open_counted(&quads, budget);
+        let Some((q, OpenSurface::Unchecked { levels })) = open else {
+            panic!("{open:?} after {compared} comparisons");
+        };
+        assert!(q >= 250 && levels > 250, "{q} {levels}");
+        // With the boundary's budget the search ends with a verdict on the same quads: the small
+        // budget alone made it give up.
+        let (open, _) = first_open_counted(&quads, MAX_LOOKUPS);
+        assert!(
+            !matches!(open, Some((_, OpenSurface::Unchecked { .. }))),
+            "{open:?}"
+        );
     }
 
     /// Levels do not part corners that are one: a box whose faces have scales a level apart (a

@@ -408,6 +408,12 @@ impl Loader<'_> {
                 "two corners of {quad} are one corner (to within a part in 1e9 of its \
                  coordinates): it encloses no volume, and the medium inside it would be invisible"
             ),
+            OpenSurface::Unchecked { levels } => format!(
+                "its quads come in {levels} scales (powers of two apart), and finding which of their \
+                 corners meet would take more than {} looks (stopped at {quad}): a medium's boundary \
+                 needs far fewer kinds of quad",
+                crate::closed_surface::MAX_LOOKUPS
+            ),
             OpenSurface::Coincident => format!(
                 "{quad} lies where another quad of the boundary does, and the two enclose no volume: \
                  the medium inside would be invisible"
