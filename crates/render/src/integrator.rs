@@ -484,7 +484,7 @@ fn light_sample(
     towards_others: Option<&HittablePdf<'_, LightTarget>>,
     u: glam::DVec2,
 ) -> Option<(Ray, f64)> {
-    let ls = lights.sample_emitters(hit.p, u)?;
+    let ls = lights.sample_emitters(hit.p, shading_normal(hit, pdf), u)?;
     let s = pdf.pdf(ls.direction);
     let s_over_p = ratio(s, ls.pdf)?;
     // The material's density of the direction is `s`, made above: not evaluated again.
@@ -494,6 +494,17 @@ fn light_sample(
     };
     let w = power_heuristic(1.0, ls.pdf, 1.0, p_material);
     Some((hit.spawn(ls.direction, time), w * s_over_p))
+}
+
+/// The normal the light tree bounds the cosine at a vertex by ([`Lights::sample_emitters`]): a
+/// Lambertian vertex's (its density is the cosine about `hit.normal`, 0 below that horizon);
+/// `None` for a medium's point and a fuzzy metal.
+#[inline]
+fn shading_normal(hit: &Hit, pdf: &VertexPdf) -> Option<Vec3> {
+    match pdf {
+        VertexPdf::Material(ScatterPdf::Cosine(_)) => Some(hit.normal),
+        _ => None,
+    }
 }
 
 /// How often a path segment through media takes its light sample: with probability
@@ -989,6 +1000,9 @@ pub enum MisVariant {
     /// while the light sample chooses its emitter by the per-point probabilities (the two weights of a
     /// direction no longer sum to 1).
     WrongUniformLightWeight,
+    /// Wrong: the emission that material sampling meets weighted by the light tree's density without
+    /// the shading normal, while the light sample's choice bounded the cosine at the vertex by it.
+    WrongTreeWeightWithoutNormal,
     /// Wrong: material sampling draws towards the non-emitting targets with [`OTHERS_SHARE`] but
     /// divides by the density of the book's even mixture.
     WrongOthersShare,
@@ -1046,7 +1060,7 @@ fn wrong_metal_pdf(p: &FuzzyMetalPdf, direction: Vec3) -> f64 {
 /// - towards the emitters (`p_l`), every emitter of the scene, listed or not, each chosen with a
 ///   probability that depends on the vertex (its radiance times the solid angle it subtends there,
 ///   [`Lights::towards_emitters`]; above 16 emitters through a light tree by power and distance,
-///   [`Lights::sample_emitters`]): a shadow ray, whose
+///   and at a Lambertian vertex the cosine there, [`Lights::sample_emitters`]): a shadow ray, whose
 ///   emission, times the transmittance of the media it crosses, counts with weight
 ///   `w_l = p_l^2 / (p_l^2 + p_m^2)`;
 /// - from the material's density mixed with the non-emitting targets by [`OTHERS_SHARE`] (`p_m`):
@@ -1193,8 +1207,9 @@ impl MisStep {
 pub(crate) struct MisPath {
     pub l: Color,
     pub throughput: Color,
-    /// `None` after the camera or a specular bounce.
-    previous: Option<(Point3, f64)>,
+    /// `None` after the camera or a specular bounce; else its point, the shading normal its light
+    /// sample used ([`shading_normal`]) and the density.
+    previous: Option<(Point3, Option<Vec3>, f64)>,
     inside_dielectrics: u32,
     /// The interface ([`crate::manifold::Manifold::interfaces`]) the path entered, while it is inside
     /// that one dielectric and no other.
@@ -1267,13 +1282,17 @@ impl MisPath {
                         }
                         _ => 1.0,
                     },
-                    Some((origin, p_material)) => {
-                        let p_light = if variant == MisVariant::WrongUniformLightWeight {
-                            HittablePdf::new(origin, &lights.emitters)
-                                .map_or(0.0, |h| h.pdf(ray.direction))
-                        } else {
-                            // the light sample's own per-point probabilities
-                            lights.emitters_pdf(origin, ray.direction)
+                    Some((origin, normal, p_material)) => {
+                        let p_light = match variant {
+                            MisVariant::WrongUniformLightWeight => {
+                                HittablePdf::new(origin, &lights.emitters)
+                                    .map_or(0.0, |h| h.pdf(ray.direction))
+                            }
+                            MisVariant::WrongTreeWeightWithoutNormal => {
+                                lights.emitters_pdf(origin, None, ray.direction)
+                            }
+                            // the light sample's own per-point probabilities, with its normal
+                            _ => lights.emitters_pdf(origin, normal, ray.direction),
                         };
                         power_heuristic(1.0, p_material, 1.0, p_light)
                     }
@@ -1417,7 +1436,7 @@ impl MisPath {
         };
         self.throughput *= attenuation * s_over_p;
         self.previous = (light_strategy || variant == MisVariant::WrongWeightInsideDielectrics)
-            .then_some((hit.p, ms.pdf));
+            .then_some((hit.p, shading_normal(hit, &pdf), ms.pdf));
         self.through = connected.map(|(k, kind)| Through::new(hit.p, ms.pdf, k, kind));
         let next = hit.spawn(ms.direction, ray.time);
 
@@ -1538,7 +1557,9 @@ impl MisPath {
             return false;
         };
         self.throughput = throughput;
-        self.previous = Some((p, pdf));
+        // (no normal: the lanes take a vertex only in scenes of one emitter, chosen without a light
+        // tree, whose light sample and density ignore it)
+        self.previous = Some((p, None, pdf));
         self.through = crossed.map(|k| Through::new(p, pdf, k, connection::Kind::Crossing));
         self.survives_roulette(depth, false, options, MisVariant::Book, ctx)
     }

@@ -1,7 +1,7 @@
 //! A light tree: next-event estimation's choice among many emitters, weighed per shading point in
 //! `O(log n)` (Conty Estevez and Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree
 //! Splitting"; pbrt-v4's `BVHLightSampler`, its cones of normals for clusters of one-sided quads
-//! only, and without the cosine at the shading point).
+//! only, and its bound on the cosine at the shading point for a one-sided receiver).
 //!
 //! A binary hierarchy over the emitters, split at the median of the longest axis of their centres.
 //! Each inner node keeps the total power `Phi` of its emitters (radiance x emitting area, up to the
@@ -30,6 +30,27 @@
 //!
 //! so every emitter keeps a probability of at least `a / n` wherever the estimates are poor: any
 //! importance that is 0 where the emitter does contribute costs noise, never bias.
+//!
+//! The cosine at the shading point. A Lambertian vertex receives light only from the hemisphere
+//! above its normal `n`, weighted by the cosine; every choice and density here takes that normal as
+//! an `Option` (`None` at a medium's point or a metal: the importances above, bit for bit). With a
+//! normal, a node's (or leaf's) importance is multiplied by a bound on the cosine over its sphere
+//! (pbrt-v4's `LightBounds::Importance`, one-sided):
+//!
+//! `I_n(x) = I(x) cos(max(0, theta_i - theta_b))`, 0 where `theta_i - theta_b >= 90 degrees`,
+//!
+//! `theta_i` the angle from `n` to `c - x` and `theta_b` the half-angle of the sphere seen from `x`
+//! (1 from inside it). A leaf takes its emitter's own sphere (a sphere's; a quad's circumscribed
+//! one), so it is never 0 where any of the emitter lies above the horizon. An inner node is also 0
+//! where its box lies entirely below the horizon (`n . (c - x) + |n| . h <= 0`, `|n|` taken
+//! componentwise and `h` the box's half extent), which holds where `x` is inside the sphere too (lamps just under a floor, seen from the
+//! floor). A cluster entirely below the horizon thus gets only the uniform share `a / n`, and two
+//! such children stop the descent as above. The MIS weight of the emission material sampling meets
+//! must use the normal of the vertex it left, the one its light sample used (the integrator keeps it
+//! beside that vertex's point). Under 40 lamps above a floor the noise constant hardly changes (0.0249
+//! to 0.0236, 9% more time a sample); with 40 more mirrored under the floor it falls from 0.0451 to
+//! 0.0265 (2.4 times the samples' worth per unit of time), with a wall among the 40 from 0.106 to
+//! 0.083 (1.4 times).
 //!
 //! Where both children's importances are 0 (or one is not a number: a shading point that is not
 //! one) the descent stops without an emitter, and `T_i = 0` for every emitter under that node: the
@@ -68,6 +89,8 @@ enum Node {
         centre: Point3,
         /// The sphere's radius, squared.
         r2: f64,
+        /// Half the extent of the box the sphere is around (centred on `centre`).
+        half: Vec3,
         power: f64,
         /// The cone of its emitters' normals, if all are one-sided quads.
         normals: Option<NormalCone>,
@@ -131,6 +154,47 @@ fn normal_cone(emitters: &[LightTarget], order: &[u32], bounds: &Aabb) -> Option
     })
 }
 
+/// A sphere around `target` (centre, radius squared): a sphere's own; the circle around a
+/// parallelogram's corners (half its longer diagonal about its centre).
+fn bounding_sphere(target: &LightTarget) -> (Point3, f64) {
+    match target {
+        LightTarget::Sphere(s) => (s.center(), s.radius() * s.radius()),
+        LightTarget::Quad { quad, .. } => {
+            let (u, v) = (quad.u(), quad.v());
+            let r2 = 0.25 * (u + v).length_squared().max((u - v).length_squared());
+            (quad.q() + 0.5 * (u + v), r2)
+        }
+    }
+}
+
+/// The cosine bound at a shading point `x` of unit normal `n` for light from the sphere `(c, r2)`:
+/// `cos(max(0, theta_i - theta_b))`, `theta_i` the angle from `n` to `c - x` and `theta_b` the
+/// half-angle the sphere subtends from `x`; 0 where the whole sphere is below the horizon of `n`
+/// (the angle is 90 degrees or more), 1 from inside the sphere.
+#[inline]
+fn cosine_bound(x: Point3, n: Vec3, c: Point3, r2: f64) -> f64 {
+    let d = c - x;
+    let d2 = d.length_squared();
+    if d2 <= r2 {
+        return 1.0;
+    }
+    // With `a = n . d = |d| cos(theta_i)`, `sin(theta_b) = R / |d|` and `cos(theta_b) =
+    // sqrt(|d|^2 - R^2) / |d|`: `theta_i <= theta_b` where `a >= 0` and `a^2 >= |d|^2 - R^2`, else
+    // `cos(theta_i - theta_b) = (a sqrt(|d|^2 - R^2) + sqrt(|d|^2 - a^2) R) / |d|^2`.
+    let a = n.dot(d);
+    let h2 = d2 - r2;
+    if a >= 0.0 && a * a >= h2 {
+        return 1.0;
+    }
+    let cos_p = (a * h2.sqrt() + (d2 - a * a).max(0.0).sqrt() * r2.sqrt()) / d2;
+    // (NaN, from a normal or a point that is not a number, stays NaN: the descent stops)
+    if cos_p > 0.0 || cos_p.is_nan() {
+        cos_p.min(1.0)
+    } else {
+        0.0
+    }
+}
+
 /// The left child's share where the importances `il` and `ir` (each `>= 0` or NaN) overflow when
 /// added (a huge power seen from close by): in a smaller unit if both are finite, all of it to the
 /// infinite one, half to each if both are; `None` for a NaN or two zeros.
@@ -157,6 +221,9 @@ pub struct LightTree {
     /// Per emitter, its trail from the root: bit `k` set where level `k` goes right; and its depth
     /// (a median split halves each level: at most 31 levels below 2^31 emitters).
     trails: Vec<(u64, u8)>,
+    /// Per emitter, a sphere around it (centre, radius squared) for the cosine bound at a shading
+    /// point with a normal: a sphere's own, a quad's circumscribed one.
+    spheres: Vec<(Point3, f64)>,
 }
 
 impl LightTree {
@@ -198,6 +265,7 @@ impl LightTree {
             nodes: Vec::with_capacity(2 * n),
             weights: weights.to_vec(),
             trails: vec![(0, 0); n],
+            spheres: emitters.iter().map(bounding_sphere).collect(),
         };
         tree.build(cones.then_some(emitters), &boxes, &mut order, 0, 0);
         Some(tree)
@@ -223,7 +291,8 @@ impl LightTree {
             .iter()
             .map(|&i| self.weights[i as usize].power())
             .sum();
-        let (centre, r2) = (bounds.centroid(), (0.5 * bounds.extent()).length_squared());
+        let (centre, half) = (bounds.centroid(), 0.5 * bounds.extent());
+        let r2 = half.length_squared();
         let mid = split_at_median(boxes, order);
         let normals = emitters.and_then(|e| normal_cone(e, order, &bounds));
         self.nodes.push(Node::Leaf { emitter: 0 });
@@ -235,15 +304,47 @@ impl LightTree {
             right,
             centre,
             r2,
+            half,
             power,
             normals,
         };
         at
     }
 
-    /// Node `k`'s importance seen from `x` (see the module's documentation).
+    /// Node `k`'s importance seen from `x` with the shading normal `normal` (see the module's
+    /// documentation): without a normal, exactly [`LightTree::importance_at`]'s.
     #[inline]
-    fn importance(&self, k: u32, x: Point3) -> f64 {
+    fn importance(&self, k: u32, x: Point3, normal: Option<Vec3>) -> f64 {
+        let i = self.importance_at(k, x);
+        let Some(n) = normal else {
+            return i;
+        };
+        // (0 stays 0, and a NaN a NaN: the descent stops where it did)
+        if i.is_nan() || i <= 0.0 {
+            return i;
+        }
+        let (c, r2) = match self.nodes[k as usize] {
+            Node::Leaf { emitter } => self.spheres[emitter as usize],
+            Node::Inner {
+                centre, r2, half, ..
+            } => {
+                // A box entirely below the horizon (its highest point along `n` no higher than
+                // `x`): 0, also where `x` is inside the sphere around it (a cluster just under a
+                // floor, seen from the floor).
+                if n.dot(centre - x) + n.abs().dot(half) <= 0.0 {
+                    return 0.0;
+                }
+                (centre, r2)
+            }
+        };
+        let f = cosine_bound(x, n, c, r2);
+        // (not `inf * 0`, a NaN, for an overflowed importance below the horizon)
+        if f == 0.0 { 0.0 } else { i * f }
+    }
+
+    /// Node `k`'s importance seen from `x` without the cosine at `x`.
+    #[inline]
+    fn importance_at(&self, k: u32, x: Point3) -> f64 {
         match self.nodes[k as usize] {
             Node::Leaf { emitter } => self.weights[emitter as usize].at(x).unwrap_or(0.0),
             Node::Inner {
@@ -287,8 +388,11 @@ impl LightTree {
     /// The probability of the left child of inner node `(left, right)` seen from `x`; `None` where
     /// both children's importances are 0 or one is not a number (the descent stops there).
     #[inline]
-    fn left_share(&self, left: u32, right: u32, x: Point3) -> Option<f64> {
-        let (il, ir) = (self.importance(left, x), self.importance(right, x));
+    fn left_share(&self, left: u32, right: u32, x: Point3, normal: Option<Vec3>) -> Option<f64> {
+        let (il, ir) = (
+            self.importance(left, x, normal),
+            self.importance(right, x, normal),
+        );
         let sum = il + ir;
         if sum > 0.0 && sum.is_finite() {
             return Some(il / sum);
@@ -309,8 +413,8 @@ impl LightTree {
     /// The emitter chosen at `x` for the uniform number `u`, with `u` remapped to `[0, 1)` for its
     /// direction; `None` where the descent stops (two children of importance 0).
     #[inline]
-    pub fn choose(&self, x: Point3, u: f64) -> Option<(usize, f64)> {
-        self.choose_with_pmf(x, u).map(|(i, u, _)| (i, u))
+    pub fn choose(&self, x: Point3, normal: Option<Vec3>, u: f64) -> Option<(usize, f64)> {
+        self.choose_with_pmf(x, normal, u).map(|(i, u, _)| (i, u))
     }
 
     /// [`LightTree::choose`] with the chosen emitter's [`LightTree::pmf`] (the same number: the
@@ -318,13 +422,18 @@ impl LightTree {
     /// the tests that hold the two to the bit.
     #[doc(hidden)]
     #[inline]
-    pub fn choose_with_pmf(&self, x: Point3, u: f64) -> Option<(usize, f64, f64)> {
+    pub fn choose_with_pmf(
+        &self,
+        x: Point3,
+        normal: Option<Vec3>,
+        u: f64,
+    ) -> Option<(usize, f64, f64)> {
         let n = self.len();
         let u = u.clamp(0.0, ONE_MINUS_EPSILON);
         // (a NaN goes here too, and chooses emitter 0)
         if u < UNIFORM_SHARE || u.is_nan() {
             let (i, u) = choose_uniform(n, u / UNIFORM_SHARE);
-            return Some((i, u, self.pmf(x, i)));
+            return Some((i, u, self.pmf(x, normal, i)));
         }
         let mut u = ((u - UNIFORM_SHARE) / (1.0 - UNIFORM_SHARE)).min(ONE_MINUS_EPSILON);
         let (mut k, mut t) = (0u32, 1.0);
@@ -335,7 +444,7 @@ impl LightTree {
                     return Some((emitter as usize, u, pmf));
                 }
                 Node::Inner { left, right, .. } => {
-                    let p = self.left_share(left, right, x)?;
+                    let p = self.left_share(left, right, x, normal)?;
                     (k, u, t) = if u < p {
                         (left, u / p, t * p)
                     } else {
@@ -349,7 +458,7 @@ impl LightTree {
 
     /// `P_i(x)`: the probability that [`LightTree::choose`] at `x` chooses emitter `i`.
     #[inline]
-    pub fn pmf(&self, x: Point3, i: usize) -> f64 {
+    pub fn pmf(&self, x: Point3, normal: Option<Vec3>, i: usize) -> f64 {
         let uniform = UNIFORM_SHARE / self.len() as f64;
         let (trail, depth) = self.trails[i];
         let (mut k, mut t) = (0u32, 1.0);
@@ -357,7 +466,7 @@ impl LightTree {
             let Node::Inner { left, right, .. } = self.nodes[k as usize] else {
                 break;
             };
-            let Some(p) = self.left_share(left, right, x) else {
+            let Some(p) = self.left_share(left, right, x, normal) else {
                 return uniform;
             };
             (k, t) = if trail >> level & 1 == 1 {
@@ -378,6 +487,7 @@ impl LightTree {
     pub fn pdf(
         &self,
         x: Point3,
+        normal: Option<Vec3>,
         direction: Vec3,
         emitters: &[LightTarget],
         index: Option<&TargetIndex>,
@@ -390,7 +500,7 @@ impl LightTree {
                 let p = emitters[j].pdf(x, direction);
                 // (the trail only where the direction can meet the emitter)
                 if p > 0.0 {
-                    (self.pmf(x, j) * p, true)
+                    (self.pmf(x, normal, j) * p, true)
                 } else {
                     (0.0, false)
                 }
@@ -420,7 +530,7 @@ impl LightTree {
                     let (t, trail) = term(j);
                     trails += trail as usize;
                     if trails > MAX_CANDIDATES {
-                        return self.pdf_by_walk(x, direction, emitters, chosen);
+                        return self.pdf_by_walk(x, normal, direction, emitters, chosen);
                     }
                     sum += t;
                 }
@@ -438,6 +548,7 @@ impl LightTree {
     fn pdf_by_walk(
         &self,
         x: Point3,
+        normal: Option<Vec3>,
         direction: Vec3,
         emitters: &[LightTarget],
         chosen: Option<(usize, f64, f64)>,
@@ -470,7 +581,7 @@ impl LightTree {
                 }
                 Node::Inner { left, right, .. } => {
                     let shares = t.and_then(|t| {
-                        self.left_share(left, right, x)
+                        self.left_share(left, right, x, normal)
                             .map(|p| (t * p, t * (1.0 - p)))
                     });
                     stack[top] = (right, shares.map(|s| s.1));
@@ -488,13 +599,21 @@ impl LightTree {
     pub fn sample(
         &self,
         x: Point3,
+        normal: Option<Vec3>,
         u: DVec2,
         emitters: &[LightTarget],
         index: Option<&TargetIndex>,
     ) -> Option<DirectionSample> {
-        let (i, u0, pmf) = self.choose_with_pmf(x, u.x)?;
+        let (i, u0, pmf) = self.choose_with_pmf(x, normal, u.x)?;
         let s = emitters[i].sample(x, DVec2::new(u0, u.y))?;
-        let pdf = self.pdf(x, s.direction, emitters, index, Some((i, s.pdf, pmf)));
+        let pdf = self.pdf(
+            x,
+            normal,
+            s.direction,
+            emitters,
+            index,
+            Some((i, s.pdf, pmf)),
+        );
         DirectionSample::new(s.direction, pdf)
     }
 }
@@ -520,15 +639,28 @@ mod tests {
             .map(|(i, t)| EmitterWeight::new(t, 1.0 + (i % 3) as f64))
             .collect();
         let tree = LightTree::new(&emitters, &weights).unwrap();
-        let mut chosen = vec![false; emitters.len()];
-        for k in 0..4000 {
-            let u = (k as f64 + 0.5) / 4000.0;
-            let x = Point3::new(u * 9.0 - 2.0, -1.0 + (k % 7) as f64, 2.5 - (k % 3) as f64);
-            let (i, v, pmf) = tree.choose_with_pmf(x, u).unwrap();
-            assert!((0.0..1.0).contains(&v));
-            assert_eq!(pmf.to_bits(), tree.pmf(x, i).to_bits(), "{x} {u}");
-            chosen[i] = true;
+        // without a normal, and with normals all around (some with every emitter below the horizon)
+        let normals = [
+            None,
+            Some(Vec3::Y),
+            Some(-Vec3::Y),
+            Some(Vec3::new(0.6, 0.0, 0.8)),
+            Some(Vec3::new(-0.48, 0.6, -0.64)),
+        ];
+        for normal in normals {
+            let mut chosen = vec![false; emitters.len()];
+            for k in 0..4000 {
+                let u = (k as f64 + 0.5) / 4000.0;
+                let x = Point3::new(u * 9.0 - 2.0, -1.0 + (k % 7) as f64, 2.5 - (k % 3) as f64);
+                let Some((i, v, pmf)) = tree.choose_with_pmf(x, normal, u) else {
+                    continue;
+                };
+                assert!((0.0..1.0).contains(&v));
+                let trail = tree.pmf(x, normal, i);
+                assert_eq!(pmf.to_bits(), trail.to_bits(), "{x} {u} {normal:?}");
+                chosen[i] = true;
+            }
+            assert!(chosen.iter().all(|&c| c), "every emitter chosen somewhere");
         }
-        assert!(chosen.iter().all(|&c| c), "every emitter chosen somewhere");
     }
 }

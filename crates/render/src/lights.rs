@@ -438,27 +438,39 @@ impl Lights {
     /// [`Lights::towards_emitters`] (or the light tree), with its density; `None` without emitters,
     /// where the drawn emitter has no direction from `x`, or where the light tree's descent stops
     /// (two clusters of importance 0).
+    ///
+    /// `normal`: the unit normal of a surface at `x` that receives light only from the hemisphere
+    /// above it (a Lambertian one), which the light tree's importance bounds the cosine by; `None`
+    /// elsewhere (a medium's point, a metal). Only the light tree uses it; the MIS weight of the
+    /// emission met from `x` must pass [`Lights::emitters_pdf`] the same one.
     #[inline]
-    pub fn sample_emitters(&self, x: Point3, u: DVec2) -> Option<DirectionSample> {
+    pub fn sample_emitters(
+        &self,
+        x: Point3,
+        normal: Option<Vec3>,
+        u: DVec2,
+    ) -> Option<DirectionSample> {
         if self.weighs_emitters() {
             self.sample_weighed(x, u)
         } else if let Some(tree) = &self.emitter_tree {
-            tree.sample(x, u, &self.emitters, self.emitter_index.as_ref())
+            tree.sample(x, normal, u, &self.emitters, self.emitter_index.as_ref())
         } else {
             // (no probabilities to keep: the common case of one emitter pays nothing for them)
             self.uniformly(x)?.sample(u)
         }
     }
 
-    /// The density with which next-event estimation from `x` picks `direction`
-    /// ([`Lights::towards_emitters`]; 0 without emitters).
+    /// The density with which next-event estimation from `x` with the shading normal `normal` (see
+    /// [`Lights::sample_emitters`]) picks `direction` ([`Lights::towards_emitters`]; 0 without
+    /// emitters).
     #[inline]
-    pub fn emitters_pdf(&self, x: Point3, direction: Vec3) -> f64 {
+    pub fn emitters_pdf(&self, x: Point3, normal: Option<Vec3>, direction: Vec3) -> f64 {
         if self.weighs_emitters() {
             self.pdf_weighed(x, direction)
         } else if let Some(tree) = &self.emitter_tree {
             tree.pdf(
                 x,
+                normal,
                 direction,
                 &self.emitters,
                 self.emitter_index.as_ref(),

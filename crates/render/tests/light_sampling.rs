@@ -20,7 +20,7 @@ use rtl_render::lights::{EmitterWeight, LightTarget, Lights, MAX_WEIGHED_EMITTER
 
 const N: usize = 100_000;
 /// Tests of a correct sampler in this file's run (for the Sidak correction).
-const TESTS: usize = 8;
+const TESTS: usize = 16;
 
 /// The origin is (0, 0, 0); the lights around it.
 fn lights(spherical_rectangles: bool) -> [LightTarget; 4] {
@@ -147,19 +147,30 @@ fn the_light_tree_draws_what_its_density_says() {
     let targets = lights(false);
     let tree = tree_over(&targets);
     let x = DVec3::ZERO;
-    // the light seen from behind (1) fails its samples: its probability is the failure cell's
-    let p_fail = 1.0 - [0, 2, 3].iter().map(|&i| tree.pmf(x, i)).sum::<f64>();
-    assert!(
-        p_fail > 0.99 * UNIFORM_SHARE / 4.0 && p_fail < 0.5,
-        "{p_fail}"
-    );
-    let r = test(
-        |d| tree.pdf(x, d, &targets, None, None),
-        p_fail,
-        4,
-        |u| tree.sample(x, u, &targets, None),
-    );
-    assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{r:?}");
+    // without a shading normal and with two (the cosine at x bounded in the importance)
+    for (k, normal) in [None, Some(DVec3::Y), Some(DVec3::new(0.6, 0.0, -0.8))]
+        .into_iter()
+        .enumerate()
+    {
+        // the light seen from behind (1) fails its samples: its probability is the failure cell's
+        // (with the share of descents that stop)
+        let p_fail = 1.0
+            - [0, 2, 3]
+                .iter()
+                .map(|&i| tree.pmf(x, normal, i))
+                .sum::<f64>();
+        assert!(
+            p_fail > 0.99 * UNIFORM_SHARE / 4.0 && p_fail < 0.5,
+            "{normal:?}: {p_fail}"
+        );
+        let r = test(
+            |d| tree.pdf(x, normal, d, &targets, None, None),
+            p_fail,
+            4 + k as u64,
+            |u| tree.sample(x, normal, u, &targets, None),
+        );
+        assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{normal:?}: {r:?}");
+    }
 }
 
 /// Forty lights of sizes, radiances and orientations drawn at random around the origin, a third of
@@ -191,6 +202,7 @@ fn forty_lights() -> (Vec<LightTarget>, Vec<EmitterWeight>) {
 fn choices(
     tree: &LightTree,
     x: DVec3,
+    normal: Option<DVec3>,
     seed: u64,
     pmf: impl Fn(usize) -> f64,
 ) -> Result<Chi2Report, Chi2Failure> {
@@ -198,7 +210,7 @@ fn choices(
     let mut observed = vec![0u64; n + 1];
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     for _ in 0..N {
-        match tree.choose(x, rng.random()) {
+        match tree.choose(x, normal, rng.random()) {
             Some((i, u)) => {
                 assert!((0.0..1.0).contains(&u), "{u}");
                 observed[i] += 1;
@@ -224,27 +236,47 @@ fn the_light_tree_chooses_each_light_as_often_as_its_probability_says() {
     .into_iter()
     .enumerate()
     {
-        let sum: f64 = (0..tree.len()).map(|i| tree.pmf(x, i)).sum();
-        assert!(sum <= 1.0 + 1e-12 && sum > 0.9, "{sum}");
-        let r = choices(&tree, x, 10 + k as u64, |i| tree.pmf(x, i)).unwrap();
-        assert!(r.p_value >= alpha, "at {x}: {r:?}");
-        // The checker catches probabilities that forget the uniform share.
-        let forgetful = |i| (tree.pmf(x, i) - UNIFORM_SHARE / 40.0) / (1.0 - UNIFORM_SHARE);
-        // (a light seen from behind is chosen by its uniform share alone: outside the support)
-        let wrong = choices(&tree, x, 10 + k as u64, forgetful);
-        assert!(
-            wrong.as_ref().map_or(true, |r| r.p_value < alpha),
-            "at {x}: {wrong:?}"
-        );
+        // without a shading normal, and with normals that put some of the lights below the horizon
+        let normals = [None, Some(DVec3::Y), Some(DVec3::new(-0.48, 0.6, 0.64))];
+        for (m, normal) in normals.into_iter().enumerate() {
+            let seed = 10 + 3 * k as u64 + m as u64;
+            // (with a normal, descents stop where both clusters are below the horizon: the rest is
+            // the chi-square's cell for choices of nothing)
+            let sum: f64 = (0..tree.len()).map(|i| tree.pmf(x, normal, i)).sum();
+            let least = if normal.is_some() { UNIFORM_SHARE } else { 0.9 };
+            assert!(sum <= 1.0 + 1e-12 && sum > least, "{normal:?}: {sum}");
+            let r = choices(&tree, x, normal, seed, |i| tree.pmf(x, normal, i)).unwrap();
+            assert!(r.p_value >= alpha, "at {x} {normal:?}: {r:?}");
+            // The checker catches probabilities that forget the uniform share.
+            let forgetful =
+                |i| (tree.pmf(x, normal, i) - UNIFORM_SHARE / 40.0) / (1.0 - UNIFORM_SHARE);
+            // (a light seen from behind is chosen by its uniform share alone: outside the support)
+            let wrong = choices(&tree, x, normal, seed, forgetful);
+            assert!(
+                wrong.as_ref().map_or(true, |r| r.p_value < alpha),
+                "at {x} {normal:?}: {wrong:?}"
+            );
+            // ... and the choice with the normal against the probabilities without it
+            if normal.is_some() {
+                let blind = choices(&tree, x, normal, seed, |i| tree.pmf(x, None, i));
+                assert!(
+                    blind.as_ref().map_or(true, |r| r.p_value < alpha),
+                    "at {x} {normal:?}: {blind:?}"
+                );
+            }
+        }
     }
     // Numbers at the ends of [0, 1) and beyond, and a point that is not a number: a light or none,
     // never a panic; probabilities that are numbers.
     for u in [0.0, rtl_pdf::ONE_MINUS_EPSILON, 1.0, f64::NAN, -1.0] {
         for x in [DVec3::ZERO, DVec3::splat(f64::NAN), DVec3::splat(1e300)] {
-            if let Some((i, v)) = tree.choose(x, u) {
-                assert!(i < 40 && (0.0..1.0).contains(&v), "{u} {x}: {i} {v}");
+            for normal in [None, Some(DVec3::Y)] {
+                if let Some((i, v)) = tree.choose(x, normal, u) {
+                    assert!(i < 40 && (0.0..1.0).contains(&v), "{u} {x}: {i} {v}");
+                }
+                let pmf = |i| tree.pmf(x, normal, i);
+                assert!((0..40).all(|i| pmf(i).is_finite() && pmf(i) > 0.0));
             }
-            assert!((0..40).all(|i| tree.pmf(x, i).is_finite() && tree.pmf(x, i) > 0.0));
         }
     }
 }
@@ -278,14 +310,14 @@ fn the_light_tree_sends_a_point_to_the_panels_that_face_it() {
     // far wall should take all but the near wall's uniform share, 1 - 0.1 x 12 / 24 (without the
     // cones, 0.15: the near panels' distance wins and their samples fail)
     let x = DVec3::new(3.2, 1.5, -0.5);
-    let far: f64 = (0..12).map(|i| with.pmf(x, i)).sum();
-    let far_without: f64 = (0..12).map(|i| without.pmf(x, i)).sum();
+    let far: f64 = (0..12).map(|i| with.pmf(x, None, i)).sum();
+    let far_without: f64 = (0..12).map(|i| without.pmf(x, None, i)).sum();
     assert!(far > 0.94, "{far}");
     assert!(
         far > far_without + 0.2,
         "{far} vs {far_without} without the cones"
     );
-    let r = choices(&with, x, 31, |i| with.pmf(x, i)).unwrap();
+    let r = choices(&with, x, None, 31, |i| with.pmf(x, None, i)).unwrap();
     assert!(r.p_value >= sidak_alpha(0.01, TESTS), "{r:?}");
 }
 
@@ -712,7 +744,7 @@ fn the_light_sample_and_the_mis_weight_use_the_same_density() {
         let Some(s) = h.sample(DVec2::new(rng.random(), rng.random())) else {
             continue;
         };
-        let p = lights.emitters_pdf(x, s.direction);
+        let p = lights.emitters_pdf(x, None, s.direction);
         assert!(
             (s.pdf - p).abs() <= 1e-9 * p,
             "at {x}: sampled with {} but weighted by {p}",
@@ -755,11 +787,11 @@ fn one_emitter_keeps_the_uniform_choice_and_more_than_the_stack_holds_take_the_t
     // far likelier under it than 16 units away.
     let under = |k: usize| Point3::new(2.0 * k as f64, 0.0, 0.0);
     for k in [0, 8, 16] {
-        let p: Vec<f64> = (0..n).map(|i| tree.pmf(under(k), i)).collect();
+        let p: Vec<f64> = (0..n).map(|i| tree.pmf(under(k), None, i)).collect();
         assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{p:?}");
         assert!(p.iter().all(|&p| p >= UNIFORM_SHARE / n as f64), "{p:?}");
         let away = under((k + 8) % 16);
-        assert!(p[k] > 3.0 * tree.pmf(away, k), "{k}: {p:?}");
+        assert!(p[k] > 3.0 * tree.pmf(away, None, k), "{k}: {p:?}");
     }
     assert!(lights.describe_emitters().ends_with(&format!(
         "chosen per shading point through a light tree by their power and distance (more than \
@@ -791,7 +823,7 @@ fn one_emitter_keeps_the_uniform_choice_and_more_than_the_stack_holds_take_the_t
     let lights = Lights::new(&b.build().unwrap(), false);
     assert!(lights.weighs_emitters());
     assert!(lights.towards_emitters(Point3::ZERO, &mut pmf).is_none());
-    assert_eq!(lights.emitters_pdf(Point3::ZERO, Vec3::Y), 0.0);
+    assert_eq!(lights.emitters_pdf(Point3::ZERO, None, Vec3::Y), 0.0);
     assert!(
         lights
             .towards_emitters(Point3::new(0.0, 5.0, 0.0), &mut pmf)

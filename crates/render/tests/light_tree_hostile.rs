@@ -47,9 +47,14 @@ struct Seen {
 /// Strata of `u` per point.
 const M: usize = 1 << 14;
 
-/// The checks of the module's documentation at `x`.
+/// The checks of the module's documentation at `x`, without a shading normal and with two opposite
+/// slanted ones (what is seen without one is returned).
 fn check(tree: &LightTree, emitters: &[LightTarget], x: DVec3, label: &str) -> Seen {
-    check_choice(tree, emitters, x, label, true)
+    let n = DVec3::new(0.48, 0.6, -0.64);
+    for normal in [n, -n] {
+        check_choice(tree, emitters, x, Some(normal), label, true);
+    }
+    check_choice(tree, emitters, x, None, label, true)
 }
 
 /// [`check`], with the densities of samples (`sampled`) or without them: a sphere whose angular
@@ -60,12 +65,13 @@ fn check_choice(
     tree: &LightTree,
     emitters: &[LightTarget],
     x: DVec3,
+    normal: Option<DVec3>,
     label: &str,
     sampled: bool,
 ) -> Seen {
     let n = tree.len();
     let floor = UNIFORM_SHARE / n as f64;
-    let pmf: Vec<f64> = (0..n).map(|i| tree.pmf(x, i)).collect();
+    let pmf: Vec<f64> = (0..n).map(|i| tree.pmf(x, normal, i)).collect();
     for (i, &p) in pmf.iter().enumerate() {
         assert!(
             p.is_finite() && p >= floor && p <= 1.0 + 1e-12,
@@ -88,7 +94,7 @@ fn check_choice(
         f64::NAN,
     ];
     for &u in us.iter().chain(&edges) {
-        match tree.choose_with_pmf(x, u) {
+        match tree.choose_with_pmf(x, normal, u) {
             Some((i, v, p)) => {
                 assert!(i < n, "{label}: chose {i} of {n}");
                 assert!((0.0..1.0).contains(&v), "{label}: u {u} remapped to {v}");
@@ -106,7 +112,7 @@ fn check_choice(
         }
     }
     for &u in &us {
-        match tree.choose_with_pmf(x, u) {
+        match tree.choose_with_pmf(x, normal, u) {
             Some((i, ..)) => {
                 count[i] += 1;
                 if u >= UNIFORM_SHARE {
@@ -120,7 +126,7 @@ fn check_choice(
         let expected = pmf[i] * M as f64;
         assert!(
             (count[i] as f64 - expected).abs() <= 2.5,
-            "{label}: at {x} emitter {i} chosen {} times of {M}, pmf {} expects {expected}",
+            "{label}: at {x} {normal:?} emitter {i} chosen {} times of {M}, pmf {} expects {expected}",
             count[i],
             pmf[i]
         );
@@ -129,10 +135,13 @@ fn check_choice(
     let sum: f64 = pmf.iter().sum();
     assert!(
         (sum + stopped - 1.0).abs() <= (n as f64 + 2.0) / M as f64,
-        "{label}: at {x} sum pmf {sum} + stopped {stopped} != 1"
+        "{label}: at {x} {normal:?} sum pmf {sum} + stopped {stopped} != 1"
     );
     if stops == 0 {
-        assert!((sum - 1.0).abs() < 1e-12, "{label}: at {x} sum pmf {sum}");
+        assert!(
+            (sum - 1.0).abs() < 1e-12,
+            "{label}: at {x} {normal:?} sum pmf {sum}"
+        );
     }
     // A sample's density is the mixture's, through the index or without it.
     let index = TargetIndex::new(emitters);
@@ -141,26 +150,26 @@ fn check_choice(
             (k as f64 + 0.5) / 64.0,
             ((k * 37) % 64) as f64 / 64.0 + 0.007,
         );
-        let Some(s) = tree.sample(x, u, emitters, None) else {
+        let Some(s) = tree.sample(x, normal, u, emitters, None) else {
             continue;
         };
         assert!(
             s.direction.is_finite() && s.pdf.is_finite() && s.pdf > 0.0,
             "{label}: {s:?}"
         );
-        let p = tree.pdf(x, s.direction, emitters, None, None);
+        let p = tree.pdf(x, normal, s.direction, emitters, None, None);
         assert!(
             (s.pdf - p).abs() <= 1e-9 * p,
-            "{label}: at {x} sampled with {} but pdf {p}",
+            "{label}: at {x} {normal:?} sampled with {} but pdf {p}",
             s.pdf
         );
-        let q = tree.pdf(x, s.direction, emitters, Some(&index), None);
+        let q = tree.pdf(x, normal, s.direction, emitters, Some(&index), None);
         assert_eq!(
             p.to_bits(),
             q.to_bits(),
-            "{label}: at {x} pdf {p} without the index, {q} through it"
+            "{label}: at {x} {normal:?} pdf {p} without the index, {q} through it"
         );
-        let via = tree.sample(x, u, emitters, Some(&index)).unwrap();
+        let via = tree.sample(x, normal, u, emitters, Some(&index)).unwrap();
         assert_eq!(via.direction, s.direction);
         assert!((via.pdf - s.pdf).abs() <= 1e-12 * s.pdf, "{label}");
     }
@@ -399,7 +408,7 @@ fn far_and_close_packed() {
         check(&t, &e, x, "far and close-packed");
     }
     for x in [DVec3::ZERO, DVec3::splat(-1e15)] {
-        check_choice(&t, &e, x, "far and close-packed, from afar", false);
+        check_choice(&t, &e, x, None, "far and close-packed, from afar", false);
     }
     // the same forty at ordinary coordinates, so that they are forty points
     let base = DVec3::new(1.0, 2.0, 3.0);
@@ -414,6 +423,7 @@ fn far_and_close_packed() {
         &t,
         &e,
         DVec3::splat(-1e15),
+        None,
         "close-packed, from afar",
         false,
     );
@@ -501,9 +511,9 @@ fn behind_every_one_sided_panel() {
     // every leaf's importance is 0, so the descent stops wherever it gets
     assert!((s.stopped - (1.0 - UNIFORM_SHARE)).abs() < 1e-3, "{s:?}");
     for u in [0.0, 0.05, 0.5, 0.999] {
-        assert!(t.sample(x, DVec2::new(u, 0.5), &e, None).is_none());
+        assert!(t.sample(x, None, DVec2::new(u, 0.5), &e, None).is_none());
     }
-    assert_eq!(t.pdf(x, DVec3::X, &e, None, None), 0.0);
+    assert_eq!(t.pdf(x, None, DVec3::X, &e, None, None), 0.0);
     // from outside, in front of a few
     check(&t, &e, DVec3::new(0.0, 0.0, 30.0), "outside the shell");
 }
@@ -520,8 +530,11 @@ fn ten_thousand_emitters_at_one_point_build_and_choose() {
     for x in [DVec3::ONE, DVec3::new(1.0, 5.0, 1.0)] {
         for k in 0..1000 {
             let u = (k as f64 + 0.5) / 1000.0;
-            let (i, _, p) = t.choose_with_pmf(x, u).unwrap();
-            assert_eq!(p.to_bits(), t.pmf(x, i).to_bits());
+            // (normals that face the pile, or see it straddle their horizon)
+            for normal in [None, Some(-DVec3::Y), Some(DVec3::X)] {
+                let (i, _, p) = t.choose_with_pmf(x, normal, u).unwrap();
+                assert_eq!(p.to_bits(), t.pmf(x, normal, i).to_bits());
+            }
         }
     }
 }
@@ -569,7 +582,7 @@ fn a_direction_through_a_pile_of_emitters_walks_the_tree_once() {
         (0..e.len())
             .map(|j| {
                 let p = e[j].pdf(x, d);
-                if p > 0.0 { t.pmf(x, j) * p } else { 0.0 }
+                if p > 0.0 { t.pmf(x, None, j) * p } else { 0.0 }
             })
             .sum()
     };
@@ -585,8 +598,8 @@ fn a_direction_through_a_pile_of_emitters_walks_the_tree_once() {
     let start = std::time::Instant::now();
     for k in 0..200 {
         let u = DVec2::new((k as f64 + 0.5) / 200.0, 0.37);
-        let s = t.sample(x, u, &e, Some(&index)).unwrap();
-        let p = t.pdf(x, s.direction, &e, Some(&index), None);
+        let s = t.sample(x, None, u, &e, Some(&index)).unwrap();
+        let p = t.pdf(x, None, s.direction, &e, Some(&index), None);
         assert!((s.pdf - p).abs() <= 1e-9 * p, "{} vs {p}", s.pdf);
         if k % 20 == 0 {
             let want = reference(&t, &e, x, s.direction);
@@ -614,11 +627,11 @@ fn a_direction_through_a_pile_of_emitters_walks_the_tree_once() {
         let mut hits = 0;
         for k in 0..64 {
             let u = DVec2::new((k as f64 + 0.5) / 64.0, 0.61);
-            let Some(s) = t.sample(x, u, &e, None) else {
+            let Some(s) = t.sample(x, None, u, &e, None) else {
                 continue;
             };
             hits += 1;
-            let p = t.pdf(x, s.direction, &e, None, None);
+            let p = t.pdf(x, None, s.direction, &e, None, None);
             assert!((s.pdf - p).abs() <= 1e-9 * p, "{} vs {p}", s.pdf);
             let want = reference(&t, &e, x, s.direction);
             assert!((p - want).abs() <= 1e-12 * want, "at {x}: {p} vs {want}");
@@ -673,7 +686,13 @@ fn the_light_sample_and_the_mis_weight_agree_at_the_thresholds() {
                     ((k * 7919) % 400) as f64 / 400.0,
                     0.3 + (k % 3) as f64 * 0.2,
                 );
-                let Some(s) = lights.sample_emitters(x, u) else {
+                // without a normal, and with normals facing the panels and away from them
+                let normal = match k % 3 {
+                    0 => None,
+                    1 => Some(DVec3::Y),
+                    _ => Some(-DVec3::Y),
+                };
+                let Some(s) = lights.sample_emitters(x, normal, u) else {
                     continue;
                 };
                 assert!(
@@ -681,7 +700,7 @@ fn the_light_sample_and_the_mis_weight_agree_at_the_thresholds() {
                     "{n}: a sample from behind every panel"
                 );
                 sampled += 1;
-                let p = lights.emitters_pdf(x, s.direction);
+                let p = lights.emitters_pdf(x, normal, s.direction);
                 assert!(
                     s.pdf.is_finite() && (s.pdf - p).abs() <= 1e-9 * p,
                     "{n} at {x}: sampled with {} but weighted by {p}",
@@ -691,10 +710,77 @@ fn the_light_sample_and_the_mis_weight_agree_at_the_thresholds() {
             assert!(sampled > 100, "{n}: {sampled}");
             if all_up {
                 assert_eq!(
-                    lights.emitters_pdf(DVec3::new(1.0, 0.0, 1.0), DVec3::Y),
+                    lights.emitters_pdf(DVec3::new(1.0, 0.0, 1.0), None, DVec3::Y),
                     0.0
                 );
             }
         }
     }
+}
+
+/// The cosine at the shading point: a cluster entirely below the horizon of the normal gets only
+/// the uniform share (its emitters' trails stop at the root), the probabilities still add up to 1
+/// with the share of the descents that stop; an emitter that pokes above the horizon keeps more;
+/// without a normal the choice is the one without the cosine, to the bit.
+#[test]
+fn a_cluster_below_the_horizon_gets_only_the_uniform_share() {
+    // twenty spheres 5 below the shading point, twenty 5 above (the split is along y, the longest
+    // axis of the centres: one cluster each)
+    let mut e = Vec::new();
+    for side in [-5.0, 5.0] {
+        for k in 0..20 {
+            let c = DVec3::new((k % 5) as f64 * 0.3, side, (k / 5) as f64 * 0.3);
+            e.push(sphere(c, 0.1));
+        }
+    }
+    let w = weights(&e, |i| 1.0 + (i % 3) as f64);
+    let t = tree(&e, &w);
+    let x = DVec3::new(0.6, 0.0, 0.45);
+    let floor = UNIFORM_SHARE / 40.0;
+    for (normal, below) in [(DVec3::Y, 0..20), (-DVec3::Y, 20..40)] {
+        for i in below.clone() {
+            assert_eq!(t.pmf(x, Some(normal), i), floor, "{normal} {i}");
+        }
+        let s = check_choice(&t, &e, x, Some(normal), "half below the horizon", true);
+        assert_eq!(s.stopped, 0.0);
+        assert_eq!(s.chosen_by_tree, 20, "{normal}: only the cluster above");
+        let sum: f64 = (0..40).map(|i| t.pmf(x, Some(normal), i)).sum();
+        assert!((sum - 1.0).abs() < 1e-12, "{sum}");
+    }
+    // just above the lower cluster's box, inside the sphere around it: the box is below the
+    // horizon all the same
+    let on_top = DVec3::new(0.6, -4.85, 0.45);
+    for i in 0..20 {
+        assert_eq!(t.pmf(on_top, Some(DVec3::Y), i), floor, "{i}");
+    }
+    check_choice(&t, &e, on_top, Some(DVec3::Y), "on top of a cluster", true);
+    // a normal along the floor: both clusters straddle its horizon
+    let beside = DVec3::new(-1.0, 0.0, 0.45);
+    let s = check_choice(&t, &e, beside, Some(DVec3::X), "both at the horizon", true);
+    assert_eq!(s.chosen_by_tree, 40);
+    // without a normal: the old importance
+    for i in 0..40 {
+        assert!(t.pmf(x, None, i) > floor);
+    }
+    // Every emitter below the horizon: the descent stops at the root (90% of the choices come
+    // back empty), each emitter keeps its uniform share.
+    let low: Vec<LightTarget> = e[..20].to_vec();
+    let t = tree(&low, &w[..20]);
+    let s = check_choice(&t, &low, x, Some(DVec3::Y), "all below the horizon", true);
+    assert!((s.stopped - (1.0 - UNIFORM_SHARE)).abs() < 1e-3, "{s:?}");
+    for i in 0..20 {
+        assert_eq!(t.pmf(x, Some(DVec3::Y), i), UNIFORM_SHARE / 20.0);
+    }
+    // A sphere whose centre is below the horizon but which pokes above it keeps its leaf's
+    // importance: of two spheres side by side, one entirely below (chosen by its share alone).
+    let pair = vec![
+        sphere(DVec3::new(3.0, -0.5, 0.0), 1.0),
+        sphere(DVec3::new(-3.0, -1.5, 0.0), 1.0),
+    ];
+    let w2 = weights(&pair, |_| 1.0);
+    let t = tree(&pair, &w2);
+    let origin = DVec3::ZERO;
+    assert_eq!(t.pmf(origin, Some(DVec3::Y), 1), UNIFORM_SHARE / 2.0);
+    let p = t.pmf(origin, Some(DVec3::Y), 0);
+    assert!((p - (1.0 - UNIFORM_SHARE / 2.0)).abs() < 1e-15, "{p}");
 }

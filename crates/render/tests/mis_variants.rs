@@ -18,6 +18,9 @@
 //!   (wrong: the uniform choice's density again);
 //! - two walls of one-sided panels facing each other: the light tree culls clusters by their cones
 //!   of normals (wrong: the uniform choice's density again);
+//! - lamps above a floor and, brighter, just under it: the light tree bounds the cosine at the
+//!   shading point, which gives the lamps under the floor only their uniform share there (wrong: the
+//!   emission met by material sampling weighted by the tree's density without the normal);
 //! - a glass ball listed as a target under a light, beside a second lamp seen mostly from behind:
 //!   material sampling draws `OTHERS_SHARE` of its
 //!   directions towards the ball (wrong: divided by the density of the book's even mixture).
@@ -413,6 +416,62 @@ fn facing_walls_of_panels_through_the_cones_agree_and_a_uniform_weight_is_caught
     assert_eq!(lights.emitters.len(), 24);
     assert!(lights.emitter_tree.is_some());
     agrees_and_the_uniform_weight_is_caught(&scene);
+}
+
+/// A floor with a white ball on it, 12 bright lamps just under the floor (below the horizon of
+/// every point on it) and 12 dimmer ones above it: the light tree chooses, and at the floor the
+/// cosine bound at the shading point gives the cluster under it nothing but its uniform share
+/// (without the normal the near, bright lamps under the floor take most of the choice).
+pub fn lamps_above_and_below_a_floor() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let white = b.material(Material::lambertian(Color::splat(0.7)));
+    floor(&mut b, w, white);
+    b.sphere(w, Point3::new(0.8, 0.6, -0.5), 0.6, white)
+        .unwrap();
+    // a 4 x 3 grid of lamps at each height, its heights further apart than its width (the tree's
+    // first split is between the two grids)
+    for i in 0..24 {
+        let below = i % 2 == 0;
+        let k = i / 2;
+        let (x, z) = (-1.2 + 0.8 * (k % 4) as f64, -0.8 + 0.8 * (k / 4) as f64);
+        let (y, r, emit) = if below {
+            (-0.5, 0.3, 8.0)
+        } else {
+            (2.0 + 0.1 * (k % 3) as f64, 0.3 + 0.03 * (k % 4) as f64, 3.0)
+        };
+        let m = b.material(Material::DiffuseLight {
+            emit: Albedo::Constant(Color::splat(emit)),
+            two_sided: true,
+        });
+        b.sphere(w, Point3::new(x, y, z), r, m).unwrap();
+    }
+    framed(
+        b,
+        Point3::new(0.0, 4.0, 6.0),
+        Point3::new(0.0, 0.5, 0.0),
+        55.0,
+    )
+}
+
+#[test]
+fn the_light_tree_with_the_shading_normal_agrees_and_a_weight_without_it_is_caught() {
+    let scene = lamps_above_and_below_a_floor();
+    let lights = rtl_render::lights::Lights::new(&scene, false);
+    assert_eq!(lights.emitters.len(), 24);
+    assert!(lights.emitter_tree.is_some());
+    let cosine = cosine_means(&scene);
+    let mis = batch_means(|seed| render_variant(&scene, seed, MisVariant::Book));
+    let d = disagreements(&cosine, &mis);
+    assert!(d.is_empty(), "mis vs cosine:\n{}", d.join("\n"));
+    let wrong =
+        batch_means(|seed| render_variant(&scene, seed, MisVariant::WrongTreeWeightWithoutNormal));
+    let d = disagreements(&cosine, &wrong);
+    assert!(
+        !d.is_empty(),
+        "the MIS weight without the normal the light sample's choice used went unnoticed"
+    );
+    eprintln!("without the normal in the weight:\n{}", d.join("\n"));
 }
 
 /// A floor under a one-sided ceiling light, a dim one-sided lamp standing on it, and a glass ball
