@@ -775,13 +775,7 @@ mod tests {
     fn a_setting_change_restarts_and_idleness_stops() {
         let scene = Arc::new(glue::scene().unwrap());
         let dir = std::env::temp_dir().join(format!("rtl-lab-test-{}", std::process::id()));
-        let s = Settings {
-            width: 16,
-            strategy: Strategy::Cosine,
-            seed: 1,
-            max_depth: 50,
-            mixture_weight: 0.5,
-        };
+        let s = cosine_16();
         let bench = Arc::new(Bench::new(s, dir.clone(), 16));
         {
             let b = Arc::clone(&bench);
@@ -918,13 +912,7 @@ mod tests {
     fn a_reference_stops_when_nobody_watches() {
         let scene = Arc::new(glue::scene().unwrap());
         let dir = std::env::temp_dir().join(format!("rtl-lab-ref-test-{}", std::process::id()));
-        let s = Settings {
-            width: 16,
-            strategy: Strategy::Cosine,
-            seed: 1,
-            max_depth: 50,
-            mixture_weight: 0.5,
-        };
+        let s = cosine_16();
         // Far more samples than a test could wait for: only a stop ends it.
         let bench = Arc::new(Bench::new(s, dir.clone(), 1 << 40));
         bench.touch();
@@ -963,14 +951,19 @@ mod tests {
         }
     }
 
-    fn tiny_reference_bench(dir: &Path) -> Arc<Bench> {
-        let s = Settings {
+    /// `cosine` at 16 pixels wide: the tests' render that takes next to no time.
+    fn cosine_16() -> Settings {
+        Settings {
             width: 16,
             strategy: Strategy::Cosine,
             seed: 1,
             max_depth: 50,
             mixture_weight: 0.5,
-        };
+        }
+    }
+
+    fn tiny_reference_bench(dir: &Path) -> Arc<Bench> {
+        let s = cosine_16();
         let bench = Arc::new(Bench::new(s, dir.to_path_buf(), 1));
         bench.touch();
         bench
