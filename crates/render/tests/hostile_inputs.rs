@@ -11,21 +11,15 @@ use rtl_render::limits::{
 };
 use rtl_render::material::{Albedo, Material};
 use rtl_render::scene::{Object, SceneBuilder, Transform};
-use rtl_render::scene_file::{self, SceneFile};
+use rtl_render::scene_file;
 use rtl_render::scenes;
 use rtl_render::texture::{ImageData, Texture};
 use rtl_render::vec::{Color, Point3, Vec3};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-const HEAD: &str = r#"[camera]
-lookfrom = [0, 0, -10]
-lookat = [0, 0, 0]
-
-[materials]
-white = { type = "lambertian", albedo = 0.5 }
-lamp = { type = "light", emit = [4, 4, 4] }
-"#;
+mod scene_text;
+use scene_text::{HEAD, load};
 
 /// `f()`, run on a thread of its own and given up on after a minute: a guard against a walk that
 /// never ends (2^40 places, groups nested 5,000 deep), not a claim about speed, which benchmarks
@@ -58,11 +52,6 @@ fn a_walk_that_panics_fails_with_its_own_message() {
     assert_eq!(message, "accepted: the scene");
 }
 
-fn load(text: &str) -> Result<SceneFile, String> {
-    scene_file::load_str(text, "some/dir/bad.toml", Path::new("some/dir"))
-        .map_err(|e| e.to_string())
-}
-
 /// The error for `text`, which must start with the file and `line`, and contain each of `words`.
 #[track_caller]
 fn refused(text: &str, line: usize, words: &[&str]) -> String {
@@ -70,7 +59,7 @@ fn refused(text: &str, line: usize, words: &[&str]) -> String {
         Ok(_) => panic!("accepted:\n{text}"),
         Err(e) => e,
     };
-    let place = format!("some/dir/bad.toml:{line}:");
+    let place = format!("some/dir/s.toml:{line}:");
     assert!(err.starts_with(&place), "wanted {place}, got: {err}");
     for w in words {
         assert!(err.contains(w), "wanted '{w}', got: {err}");
@@ -146,9 +135,7 @@ fn exponential_instancing_is_refused_at_once_naming_the_group() {
         // that brings it past 2^20 is g18.
         let line = line_of(&text, "name = \"g18\"") - 2;
         assert!(
-            err.starts_with(&format!(
-                "some/dir/bad.toml:{line}:1: field `objects[18]`: "
-            )),
+            err.starts_with(&format!("some/dir/s.toml:{line}:1: field `objects[18]`: ")),
             "{err}"
         );
         for words in [
@@ -363,7 +350,7 @@ fn a_file_the_toml_reader_would_take_gigabytes_to_hold_is_refused_before_it_is_r
     assert!(text.len() as u64 <= MAX_SCENE_FILE_BYTES);
     let e = load(&text).err().expect("refused");
     assert!(
-        e.starts_with("some/dir/bad.toml: cannot read scene file: its 7.2 MB of text")
+        e.starts_with("some/dir/s.toml: cannot read scene file: its 7.2 MB of text")
             && e.contains("more than the 2.1 GB a scene file may take")
             && e.contains("inline tables"),
         "{e}"

@@ -6,22 +6,12 @@
 use rtl_render::closed_surface::{CLOSE, OpenSurface};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::scene::SceneBuilder;
-use rtl_render::scene_file::{self, SceneFile};
+use rtl_render::scene_file;
 use rtl_render::vec::{Color, Point3, Vec3};
 use std::path::{Path, PathBuf};
 
-const HEAD: &str = r#"[camera]
-lookfrom = [0, 0, -10]
-lookat = [0, 0, 0]
-
-[materials]
-white = { type = "lambertian", albedo = 0.5 }
-lamp = { type = "light", emit = [4, 4, 4] }
-"#;
-
-fn load(text: &str) -> Result<SceneFile, String> {
-    scene_file::load_str(text, "some/dir/s.toml", Path::new("some/dir")).map_err(|e| e.to_string())
-}
+mod scene_text;
+use scene_text::{HEAD, load};
 
 #[track_caller]
 fn refused(text: &str, words: &[&str]) {
