@@ -186,11 +186,12 @@ impl SceneBuilder {
     /// The first quad of group `g` (held directly or by the groups and instances within it) that
     /// keeps `g` from enclosing a volume, the way a medium's boundary must: `None` if it encloses
     /// one. Spheres and boxes do; so does a group or instance that encloses a volume by itself; the
-    /// rest of the quads must close a surface among themselves: every edge of each quad an edge of
-    /// exactly one other quad (corners equal to within [`CLOSE`](crate::closed_surface::CLOSE) of the quads' coordinates, so a box
-    /// written out as six quads, rotated or not, closes), no two quads at the same place. Media in
-    /// `g` are left out (their own boundaries are theirs). An edge that meets another quad's in its
-    /// middle (a T-junction) is not taken for shared.
+    /// rest of the quads must close a surface among themselves
+    /// ([`closed_surface`](crate::closed_surface): every edge of each quad an edge of exactly one
+    /// other quad, corners equal to within a rounding error, so that a box written out as six
+    /// quads, rotated or not, closes; no two quads at the same place). Media in `g` are left out
+    /// (their own boundaries are theirs). An edge that meets another quad's in its middle (a
+    /// T-junction) is not taken for shared.
     pub fn open_quad(&self, g: GroupId) -> Option<OpenQuad> {
         let mut closed = HashMap::new();
         let mut quads = Vec::new();
