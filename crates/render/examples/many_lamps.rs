@@ -7,11 +7,17 @@
 //! cargo run --release -p rtl-render --example many_lamps -- 10000 0.02 0.02 > many.toml
 //! # forty lamps of radii 0.05 to 0.5 (radiance the same: power grows with the area)
 //! cargo run --release -p rtl-render --example many_lamps -- 40 0.05 0.5 > forty.toml
+//! # the same forty, and each again under the floor; or with a wall among them
+//! cargo run --release -p rtl-render --example many_lamps -- 40 0.05 0.5 1 mirror > both.toml
+//! cargo run --release -p rtl-render --example many_lamps -- 40 0.05 0.5 1 wall > wall.toml
 //! rtl render many.toml --strategy mis
 //! ```
 //!
 //! Arguments: the number of lamps, the least and the largest radius (drawn uniformly between
-//! them), and optionally a seed (default 1). The lamps lie on a jittered square grid three to five
+//! them), optionally a seed (default 1), and optionally `mirror` (each lamp also mirrored under
+//! the floor, below the horizon of every point on its top: the light tree's cosine at the shading
+//! point, `render-speed.md`'s twenty-seventh round) or `wall` (a white wall seven units high across
+//! the floor at `x = 1.5`). The lamps lie on a jittered square grid three to five
 //! units above a white floor,
 //! seen by a camera below them that looks down at the floor (the lamps are out of its view: the
 //! image's noise is next-event estimation's). The file is the same for the same arguments on every machine.
@@ -51,6 +57,12 @@ fn main() -> Result<(), String> {
     let r_min: f64 = arg(&args, 1, "least radius", 0.02)?;
     let r_max: f64 = arg(&args, 2, "largest radius", r_min)?;
     let seed: u64 = arg(&args, 3, "seed", 1)?;
+    let extra: String = arg(&args, 4, "extra", String::new())?;
+    if !["", "mirror", "wall"].contains(&extra.as_str()) {
+        return Err(format!(
+            "extra (argument 5): {extra:?}, expected mirror or wall"
+        ));
+    }
     if n == 0 || n > 1_000_000 {
         return Err(format!("number of lamps: {n}, expected 1 to 1000000"));
     }
@@ -67,15 +79,27 @@ fn main() -> Result<(), String> {
     let _ = writeln!(
         s,
         "# {n} emitting spheres of radii {r_min} to {r_max} over a floor (seed {seed}), written by\n\
-         # `cargo run --release -p rtl-render --example many_lamps -- {n} {r_min} {r_max} {seed}`.\n\
+         # `cargo run --release -p rtl-render --example many_lamps -- {n} {r_min} {r_max} {seed}{}`.\n\
          description = \"{n} lamps over a floor\"\n\n\
          [render]\nwidth = 96\naspect = \"1:1\"\nspp = 16\nmax_depth = 8\nbackground = [0, 0, 0]\n\n\
          [camera]\nvfov = 40\nlookfrom = [0, 2.5, 5]\nlookat = [0, 0, -1]\n\n\
          [materials]\nwhite = {{ type = \"lambertian\", albedo = [0.7, 0.7, 0.7] }}\n\
          lamp = {{ type = \"light\", emit = [4, 4, 4] }}\n\n\
          [[objects]]\ntype = \"quad\"\nq = [-12, 0, 12]\nu = [24, 0, 0]\nv = [0, 0, -24]\n\
-         material = \"white\""
+         material = \"white\"",
+        if extra.is_empty() {
+            String::new()
+        } else {
+            format!(" {extra}")
+        }
     );
+    if extra == "wall" {
+        let _ = write!(
+            s,
+            "\n\n[[objects]]\ntype = \"quad\"\nq = [1.5, 0, 12]\nu = [0, 0, -24]\nv = [0, 7, 0]\n\
+             material = \"white\""
+        );
+    }
     for i in 0..n {
         let (gx, gz) = ((i % k) as f64, (i / k) as f64);
         let radius = r_min + (r_max - r_min) * rng.uniform();
@@ -89,6 +113,14 @@ fn main() -> Result<(), String> {
             "\n\n[[objects]]\ntype = \"sphere\"\ncenter = [{x:.6}, {y:.6}, {z:.6}]\n\
              radius = {radius:.6}\nmaterial = \"lamp\""
         );
+        if extra == "mirror" {
+            let _ = write!(
+                s,
+                "\n\n[[objects]]\ntype = \"sphere\"\ncenter = [{x:.6}, {:.6}, {z:.6}]\n\
+                 radius = {radius:.6}\nmaterial = \"lamp\"",
+                -y
+            );
+        }
     }
     println!("{s}");
     Ok(())
