@@ -130,7 +130,8 @@ mod wide {
                 let (o, dir) = (half(ray.origin), half(ray.direction));
                 let n = load3(&self.normal);
                 let q = load3(&self.q);
-                let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
+                let rcp = _mm256_div_pd(_mm256_set1_pd(1.0), dot(n, dir));
+                let t = _mm256_mul_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), rcp);
                 let at =
                     |a: usize| _mm256_sub_pd(_mm256_add_pd(o[a], _mm256_mul_pd(t, dir[a])), q[a]);
                 let planar = [at(0), at(1), at(2)];
@@ -164,7 +165,8 @@ mod wide {
                 let (o, dir) = (ray.origin, ray.direction);
                 let n = load3(&self.normal);
                 let q = load3(&self.q);
-                let t = _mm512_div_pd(_mm512_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
+                let rcp = _mm512_div_pd(_mm512_set1_pd(1.0), dot(n, dir));
+                let t = _mm512_mul_pd(_mm512_sub_pd(load(&self.d), dot(n, o)), rcp);
                 // planar = ray.at(t) - q
                 let at =
                     |a: usize| _mm512_sub_pd(_mm512_add_pd(o[a], _mm512_mul_pd(t, dir[a])), q[a]);

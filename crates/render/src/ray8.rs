@@ -128,9 +128,11 @@ pub fn closest_portable(
 /// Cornell box's walls and light do.
 ///
 /// With a normal `n = s e_k` (`s = ±1`, the other coordinates zero), the products with the zeros
-/// add only zeros, so `n . o = s o_k` and `n . d = s d_k` exactly, and `t = (d - s o_k) / (s d_k)`;
-/// where the two differ, in the sign of a zero, the parameter is `±0`, `±inf` or NaN, which no
-/// range with `min >= 0` holds. If also `du` and `dv` have one non-zero coordinate each (`a` and `b`),
+/// add only zeros, so `n . o = s o_k` and `n . d = s d_k` exactly, and `Quad::hit`'s
+/// `t = (d - n . o) * (1 / (n . d))` is `(d - s o_k) * (s / d_k)`, where `s / d_k` is the ray's
+/// reciprocal `1 / d_k` (or its negative, exactly), taken once for every such quad and the boxes
+/// (a division saved a quad); where the two differ, in the sign of a zero, the parameter is `±0`,
+/// `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one non-zero coordinate each (`a` and `b`),
 /// then `alpha = planar_a du_a` and `beta = planar_b dv_b`; these can differ from the full dot
 /// products only in the sign of a zero, so the lanes where a hit has `alpha` or `beta` zero take
 /// the full products.
@@ -293,6 +295,7 @@ mod wide {
         quads: &[LaneQuad],
         o: V3<W>,
         dir: V3<W>,
+        inv: V3<W>,
         range: Interval,
         found: &mut Found<W>,
     ) {
@@ -301,7 +304,7 @@ mod wide {
         let no_hit = o[0].splat_like(NO_HIT as f64);
         // (the axis forms hold for ranges that exclude every zero and negative parameter)
         let axis_forms = range.min >= 0.0;
-        let neg_dir = [-dir[0], -dir[1], -dir[2]];
+        let neg_inv = [-inv[0], -inv[1], -inv[2]];
         for quad in quads {
             let (t, alpha, beta, in_plane) = match quad.form {
                 QuadForm::Unused => continue,
@@ -309,9 +312,9 @@ mod wide {
                     // (each axis a constant, so that the rays' coordinates stay in registers)
                     let d = zero.splat_like(quad.d);
                     let t = match k {
-                        0 => axis_t::<W, 0>(d, o, dir, neg_dir, neg),
-                        1 => axis_t::<W, 1>(d, o, dir, neg_dir, neg),
-                        _ => axis_t::<W, 2>(d, o, dir, neg_dir, neg),
+                        0 => axis_t::<W, 0>(d, o, inv, neg_inv, neg),
+                        1 => axis_t::<W, 1>(d, o, inv, neg_inv, neg),
+                        _ => axis_t::<W, 2>(d, o, inv, neg_inv, neg),
                     };
                     match plane {
                         Some(ab) => {
@@ -332,9 +335,9 @@ mod wide {
                     }
                 }
                 _ => {
-                    // As `Quad::hit`: t = (d - n . o) / (n . dir).
+                    // As `Quad::hit`: t = (d - n . o) * (1 / (n . dir)).
                     let n = splat3_of(zero, quad.normal);
-                    let t = (zero.splat_like(quad.d) - dot(n, o)) / dot(n, dir);
+                    let t = (zero.splat_like(quad.d) - dot(n, o)) * (one / dot(n, dir));
                     let (alpha, beta) = coordinates(quad, o, dir, t);
                     (t, alpha, beta, false)
                 }
@@ -373,6 +376,7 @@ mod wide {
             quads: &[LaneQuad],
             o: V3<Self>,
             dir: V3<Self>,
+            inv: V3<Self>,
             range: Interval,
             found: &mut Found<Self>,
             entering: Self::Mask,
@@ -387,11 +391,12 @@ mod wide {
             cluster: &[LaneQuad],
             o: V3<Self>,
             dir: V3<Self>,
+            inv: V3<Self>,
             range: Interval,
             found: &mut Found<Self>,
             _entering: Bits8,
         ) {
-            quads::<Self, true>(cluster, o, dir, range, found);
+            quads::<Self, true>(cluster, o, dir, inv, range, found);
         }
     }
 
@@ -404,12 +409,14 @@ mod wide {
             cluster: &[LaneQuad],
             o: V3<Self>,
             dir: V3<Self>,
+            inv: V3<Self>,
             range: Interval,
             found: &mut Found<Self>,
             entering: Lanes4x2,
         ) {
             let bits = entering.bits();
             let (o2, dir2) = (o.map(Avx2::halves), dir.map(Avx2::halves));
+            let inv2 = inv.map(Avx2::halves);
             let (t, alpha) = (found.t.halves(), found.alpha.halves());
             let (beta, which) = (found.beta.halves(), found.which.halves());
             let mut out = [t, alpha, beta, which];
@@ -419,13 +426,14 @@ mod wide {
                 }
                 let o = [o2[0][h], o2[1][h], o2[2][h]];
                 let dir = [dir2[0][h], dir2[1][h], dir2[2][h]];
+                let inv = [inv2[0][h], inv2[1][h], inv2[2][h]];
                 let mut half = Found {
                     t: t[h],
                     alpha: alpha[h],
                     beta: beta[h],
                     which: which[h],
                 };
-                quads::<Avx2Half, true>(cluster, o, dir, range, &mut half);
+                quads::<Avx2Half, true>(cluster, o, dir, inv, range, &mut half);
                 (out[0][h], out[1][h]) = (half.t, half.alpha);
                 (out[2][h], out[3][h]) = (half.beta, half.which);
             }
@@ -457,17 +465,18 @@ mod wide {
             beta: zero,
             which: o[0].splat_like(NO_HIT as f64),
         };
-        self::quads::<W, false>(&quads.rest, o, dir, range, &mut found);
+        // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes, and the
+        // reciprocals `Quad::hit` takes of the quads in axis planes
+        let one = o[0].splat_like(1.0);
+        let inv = [one / dir[0], one / dir[1], one / dir[2]];
+        self::quads::<W, false>(&quads.rest, o, dir, inv, range, &mut found);
         if quads.clusters.is_empty() && spheres.is_empty() {
             return found;
         }
-        // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes.
-        let one = o[0].splat_like(1.0);
-        let inv = [one / dir[0], one / dir[1], one / dir[2]];
         for (bounds, cluster) in &quads.clusters {
             let entering = enters(bounds, o, inv, min, found.t);
             if !entering.is_empty() {
-                W::instance(cluster, o, dir, range, &mut found, entering);
+                W::instance(cluster, o, dir, inv, range, &mut found, entering);
             }
         }
         for (i, (s, bounds)) in spheres.iter().enumerate() {
@@ -494,19 +503,20 @@ mod wide {
     }
 
     /// The parameter where `o + t dir` meets the plane `s x_K = d` of a quad whose normal is
-    /// `s e_K` (`neg`: `s = -1`), as [`QuadForm`] says `Quad::hit` computes it.
+    /// `s e_K` (`neg`: `s = -1`), as [`QuadForm`] says `Quad::hit` computes it, from the ray's
+    /// reciprocals `inv = 1 / dir` and their negatives `neg_inv`.
     #[inline(always)]
     fn axis_t<W: Lanes, const K: usize>(
         d: W,
         o: V3<W>,
-        dir: V3<W>,
-        neg_dir: V3<W>,
+        inv: V3<W>,
+        neg_inv: V3<W>,
         neg: bool,
     ) -> W {
         if neg {
-            (d + o[K]) / neg_dir[K]
+            (d + o[K]) * neg_inv[K]
         } else {
-            (d - o[K]) / dir[K]
+            (d - o[K]) * inv[K]
         }
     }
 

@@ -255,10 +255,15 @@ impl Quad {
     /// Ray-plane intersection, then the point's coordinates `(alpha, beta)` in the frame `(u, v)`;
     /// inside when both lie in [0, 1]. The hit point is rebuilt as `Q + alpha u + beta v`, whose error
     /// is bounded by the quad's magnitude rather than by the ray's length.
+    ///
+    /// The parameter is `t = (d - n . o) * (1 / (n . dir))`, a product with the reciprocal rather
+    /// than the quotient (two roundings, not one): for a quad in an axis plane (`n = ±e_k`) the
+    /// reciprocal is `±1 / dir_k`, which the lanes compute once per ray and share among all such
+    /// quads and the bounding boxes ([`crate::ray8::QuadForm`]), bit for bit this number.
     #[inline]
     pub fn hit(&self, ray: &Ray, range: Interval) -> Option<Hit> {
         let denom = self.normal.dot(ray.direction);
-        let t = (self.d - self.normal.dot(ray.origin)) / denom;
+        let t = (self.d - self.normal.dot(ray.origin)) * denom.recip();
         // A ray parallel to the plane gives t = inf or NaN; `surrounds` rejects both.
         if !range.surrounds(t) {
             return None;
@@ -358,7 +363,7 @@ impl Quad4 {
             // As `Quad::hit`, lane by lane.
             let denom = (nx.0[i] * dir.x) + (ny.0[i] * dir.y) + (nz.0[i] * dir.z);
             let no = (nx.0[i] * o.x) + (ny.0[i] * o.y) + (nz.0[i] * o.z);
-            let ti = (self.d.0[i] - no) / denom;
+            let ti = (self.d.0[i] - no) * denom.recip();
             let px = (o.x + ti * dir.x) - qx.0[i];
             let py = (o.y + ti * dir.y) - qy.0[i];
             let pz = (o.z + ti * dir.z) - qz.0[i];
@@ -416,7 +421,8 @@ impl Quad4 {
             let (o, dir) = (ray.origin, ray.direction);
             let n = load3(&self.normal);
             let q = load3(&self.q);
-            let t = _mm256_div_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), dot(n, dir));
+            let rcp = _mm256_div_pd(_mm256_set1_pd(1.0), dot(n, dir));
+            let t = _mm256_mul_pd(_mm256_sub_pd(load(&self.d), dot(n, o)), rcp);
             // planar = ray.at(t) - q
             let at = |a: usize| _mm256_sub_pd(_mm256_add_pd(o[a], _mm256_mul_pd(t, dir[a])), q[a]);
             let planar = [at(0), at(1), at(2)];
