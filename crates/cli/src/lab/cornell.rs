@@ -177,6 +177,31 @@ pub struct Bench {
 /// `last_seen_ms` before the first request.
 const NEVER: u64 = u64::MAX;
 
+/// Held by the thread that renders a reference: when the thread ends, however it ends, the bench is
+/// free to render the next one. If it ends by a panic, the reference at `width` is recorded as
+/// failed, so that the page says so and asks again after [`RETRY_FAILED`], rather than waiting for a
+/// render that will never finish (and the map of references, if the panic left it poisoned, is
+/// usable again).
+struct ReferenceThread {
+    bench: Arc<Bench>,
+    width: usize,
+}
+
+impl Drop for ReferenceThread {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            let references = &self.bench.references;
+            let mut refs = references.lock().unwrap_or_else(|e| e.into_inner());
+            let why = "the reference's render stopped on an internal error (a panic: its message \
+                       is on the terminal)";
+            refs.insert(self.width, Reference::Failed(why.into(), Instant::now()));
+            drop(refs);
+            references.clear_poison();
+        }
+        self.bench.reference_busy.store(false, Ordering::SeqCst);
+    }
+}
+
 /// A number for a label: the shortest decimal that reads back as `x` (`0.2`, `0.0001`), or in
 /// scientific notation when that decimal would be long (`1e-320` rather than 0.000...0001).
 fn readable(x: f64) -> String {
@@ -452,6 +477,10 @@ impl Bench {
         refs.insert(width, Reference::Rendering);
         let (me, scene) = (Arc::clone(self), Arc::clone(scene));
         std::thread::spawn(move || {
+            let _done = ReferenceThread {
+                bench: Arc::clone(&me),
+                width,
+            };
             let dir = &me.reference_dir;
             let spp = cached_reference_spp(dir, width).unwrap_or(me.reference_spp);
             // Stopped when nobody watches: the page closed, or went to another bench.
@@ -499,7 +528,6 @@ impl Bench {
             if let (Some(reference), false, false, Ok(pool)) = (ready, measured, by_render, &pool) {
                 pool.install(|| me.measure_noise(&scene, width, &reference, spp, &stop));
             }
-            me.reference_busy.store(false, Ordering::SeqCst);
         });
         Reference::Rendering
     }
@@ -935,6 +963,48 @@ mod tests {
         assert!(bench.references.lock().unwrap().get(&16).is_none());
         let written = std::fs::read_dir(&dir).map_or(0, |d| d.count());
         assert_eq!(written, 0);
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    /// A reference thread that panics (here while it holds the map of references) leaves the bench
+    /// free, the reference failed with a message, and the map usable; then it is not tried again
+    /// before [`RETRY_FAILED`].
+    #[test]
+    fn a_panic_in_the_reference_thread_frees_the_bench() {
+        let scene = Arc::new(glue::scene().unwrap());
+        let dir = std::env::temp_dir().join(format!("rtl-lab-ref-panic-{}", std::process::id()));
+        let bench = Arc::new(Bench::new(cosine_16(), dir.clone(), 4));
+        bench.reference_busy.store(true, Ordering::SeqCst);
+        bench
+            .references
+            .lock()
+            .unwrap()
+            .insert(16, Reference::Rendering);
+        let me = Arc::clone(&bench);
+        let thread = std::thread::spawn(move || {
+            let _done = ReferenceThread {
+                bench: Arc::clone(&me),
+                width: 16,
+            };
+            let _held = me.references.lock().unwrap();
+            panic!("a bug in the reference's render");
+        });
+        assert!(thread.join().is_err());
+        assert!(!bench.reference_busy.load(Ordering::SeqCst));
+        assert!(!bench.references.is_poisoned());
+        match bench.reference(&scene, 16) {
+            Reference::Failed(why, _) => assert!(why.contains("panic"), "{why}"),
+            _ => panic!("not recorded as failed"),
+        }
+        assert!(
+            bench.reference_note(16).contains("panic"),
+            "{}",
+            bench.reference_note(16)
+        );
+        assert!(
+            !bench.reference_busy.load(Ordering::SeqCst),
+            "tried again at once"
+        );
         let _ = std::fs::remove_dir_all(dir);
     }
 
