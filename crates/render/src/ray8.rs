@@ -132,10 +132,10 @@ pub fn closest_portable(
 /// `t = (d - n . o) * (1 / (n . d))` is `(d - s o_k) * (s / d_k)`, where `s / d_k` is the ray's
 /// reciprocal `1 / d_k` (or its negative, exactly), taken once for every such quad and the boxes
 /// (a division saved a quad); where the two differ, in the sign of a zero, the parameter is `±0`,
-/// `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one non-zero coordinate each (`a` and `b`),
-/// then `alpha = planar_a du_a` and `beta = planar_b dv_b`; these can differ from the full dot
-/// products only in the sign of a zero, so the lanes where a hit has `alpha` or `beta` zero take
-/// the full products.
+/// `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one non-zero
+/// coordinate each (`a` and `b`), then `alpha = planar_a du_a` and `beta = planar_b dv_b`; these
+/// can differ from the full dot products only in the sign of a zero, so the lanes where a hit has
+/// `alpha` or `beta` zero take the full products.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum QuadForm {
     /// An unused lane of its packet (a zero normal: never hit).
