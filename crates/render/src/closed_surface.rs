@@ -1,7 +1,8 @@
 //! Whether quads close a surface, as a medium's boundary must: every edge of each quad an edge of
 //! exactly one other, corners equal to within a rounding error ([`CLOSE`]), no two quads at one
-//! place. [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad) gathers a boundary's quads where its
-//! instances put them (boxes and groups that close by themselves left out) and asks `first_open`.
+//! place. [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)
+//! gathers a boundary's quads where its instances put them (boxes and groups that close by
+//! themselves left out) and asks `first_open`.
 
 use crate::ids::GroupId;
 use crate::shapes::Quad;
@@ -10,15 +11,18 @@ use crate::vec::Point3;
 use std::collections::HashMap;
 
 /// How close two quads' corners must be to be the same corner of a closed surface
-/// ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)): this fraction of the largest coordinate, edge or translation of
-/// either quad. Rounding (0.1 + 0.7 is not 0.8; a rotation by 15 degrees) moves a corner by a few
-/// parts in 1e16; corners written a part in 1e9 apart are apart.
+/// ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)): this fraction of the
+/// largest coordinate, edge or translation of either quad. Rounding (0.1 + 0.7 is not 0.8; a
+/// rotation by 15 degrees) moves a corner by a few parts in 1e16; corners written a part in 1e9
+/// apart are apart.
 pub const CLOSE: f64 = 1e-9;
 
-/// A quad that keeps a medium's boundary from enclosing a volume ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
+/// A quad that keeps a medium's boundary from enclosing a volume
+/// ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OpenQuad {
-    /// The group holding it, and its index among that group's objects ([`SceneBuilder::objects`](crate::builder::SceneBuilder::objects)).
+    /// The group holding it, and its index among that group's objects
+    /// ([`SceneBuilder::objects`](crate::builder::SceneBuilder::objects)).
     pub group: GroupId,
     pub index: usize,
     pub problem: OpenSurface,
@@ -52,7 +56,8 @@ pub enum OpenSurface {
 /// scales with a million quads comes near, where the search would take minutes.
 pub const MAX_LOOKUPS: usize = 1 << 26;
 
-/// A quad placed in the space of the group looked at ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
+/// A quad placed in the space of the group looked at
+/// ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
 pub(crate) struct LooseQuad {
     /// `q`, `q + u`, `q + v`, `q + u + v`.
     corners: [Point3; 4],

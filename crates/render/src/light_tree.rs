@@ -43,14 +43,14 @@
 //! (1 from inside it). A leaf takes its emitter's own sphere (a sphere's; a quad's circumscribed
 //! one), so it is never 0 where any of the emitter lies above the horizon. An inner node is also 0
 //! where its box lies entirely below the horizon (`n . (c - x) + |n| . h <= 0`, `|n|` taken
-//! componentwise and `h` the box's half extent), which holds where `x` is inside the sphere too (lamps just under a floor, seen from the
-//! floor). A cluster entirely below the horizon thus gets only the uniform share `a / n`, and two
-//! such children stop the descent as above. The MIS weight of the emission material sampling meets
-//! must use the normal of the vertex it left, the one its light sample used (the integrator keeps it
-//! beside that vertex's point). Under 40 lamps above a floor the noise constant hardly changes (0.0249
-//! to 0.0236, 9% more time a sample); with 40 more mirrored under the floor it falls from 0.0451 to
-//! 0.0265 (2.4 times the samples' worth per unit of time), with a wall among the 40 from 0.106 to
-//! 0.083 (1.4 times).
+//! componentwise and `h` the box's half extent), which holds where `x` is inside the sphere too
+//! (lamps just under a floor, seen from the floor). A cluster entirely below the horizon thus gets
+//! only the uniform share `a / n`, and two such children stop the descent as above. The MIS weight
+//! of the emission material sampling meets must use the normal of the vertex it left, the one its
+//! light sample used (the integrator keeps it beside that vertex's point). Under 40 lamps above a
+//! floor the noise constant hardly changes (0.0249 to 0.0236, 9% more time a sample); with 40 more
+//! mirrored under the floor it falls from 0.0451 to 0.0265 (2.4 times the samples' worth per unit
+//! of time), with a wall among the 40 from 0.106 to 0.083 (1.4 times).
 //!
 //! Where both children's importances are 0 (or one is not a number: a shading point that is not
 //! one) the descent stops without an emitter, and `T_i = 0` for every emitter under that node: the

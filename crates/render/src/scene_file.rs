@@ -50,14 +50,15 @@
 //! ```
 //!
 //! Object types: `sphere` (center, radius), `moving_sphere` (center0 at time 0, center1 at time 1,
-//! radius), `quad` (q, u, v), `box` (opposite corners a, b), `group` (its own `[[objects.objects]]`,
-//! with its own BVH), `instance` (`of` = the name of a group or box, placed again) and `medium` (a
-//! constant-density medium: `density`, `albedo`, and a `boundary` object, which must enclose a volume:
-//! a sphere, a moving sphere, a box, a group or instance of them, or quads each of whose edges is an
-//! edge of exactly one other quad, as [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)
-//! decides; an open one is refused at its `type`, naming its first open quad). Textures: `solid`, `checker`,
-//! `marble`, `image` (`file`, relative to the scene file). Materials: `lambertian`, `metal`,
-//! `dielectric`, `light`, `isotropic`.
+//! radius), `quad` (q, u, v), `box` (opposite corners a, b), `group` (its own
+//! `[[objects.objects]]`, with its own BVH), `instance` (`of` = the name of a group or box, placed
+//! again) and `medium` (a constant-density medium: `density`, `albedo`, and a `boundary` object,
+//! which must enclose a volume: a sphere, a moving sphere, a box, a group or instance of them, or
+//! quads each of whose edges is an edge of exactly one other quad, as
+//! [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad) decides; an open one is
+//! refused at its `type`, naming its first open quad). Textures: `solid`, `checker`, `marble`,
+//! `image` (`file`, relative to the scene file). Materials: `lambertian`, `metal`, `dielectric`,
+//! `light`, `isotropic`.
 //!
 //! Every error names the place: `FILE:LINE:COL: field objects[2].radius: message`.
 //!
