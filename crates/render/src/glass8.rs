@@ -173,7 +173,7 @@ mod wide {
         // SAFETY: as this function's.
         let (c, t, err, u, o, d) = unsafe {
             (
-                W::columns16(&rows),
+                W::columns(&rows),
                 W::load_unaligned(&g.t),
                 W::load_unaligned(&g.err),
                 W::load_unaligned(&g.u),

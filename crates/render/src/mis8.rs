@@ -82,9 +82,9 @@ impl MisBatch {
         throughput: Color,
     ) {
         self.found.hit[i] = found.hit[l];
-        self.found.alpha[i] = found.alpha[l];
-        self.found.beta[i] = found.beta[l];
+        self.found.t[i] = found.t[l];
         for a in 0..3 {
+            self.rays.origin[a].0[i] = rays.origin[a].0[l];
             self.rays.direction[a].0[i] = rays.direction[a].0[l];
             self.throughput[a].0[i] = throughput[a];
         }

@@ -186,9 +186,10 @@ mod wide {
         ) {
             // SAFETY: as this function's.
             let (at, tp, ul, um) = unsafe {
+                let o = load3::<W>(&input.rays.origin);
                 let dir = load3::<W>(&input.rays.direction);
                 (
-                    input.surfaces.surface_in(input.found, dir, lanes),
+                    input.surfaces.surface_in(input.found, o, dir, lanes),
                     load3::<W>(input.throughput),
                     [W::load(&input.u_light[0]), W::load(&input.u_light[1])],
                     [W::load(&input.u_material[0]), W::load(&input.u_material[1])],

@@ -372,8 +372,7 @@ pub(crate) fn render_row(
                     let l = bits.trailing_zeros() as usize;
                     bits &= bits - 1;
                     met.hit[l] = closest.hit[l];
-                    met.alpha[l] = closest.alpha[l];
-                    met.beta[l] = closest.beta[l];
+                    met.t[l] = closest.t[l];
                 }
                 pending[g] |= lambertian;
             }
@@ -618,8 +617,7 @@ impl Batch {
     ) {
         self.from[b] = (g, l);
         self.met.hit[b] = met.hit[l];
-        self.met.alpha[b] = met.alpha[l];
-        self.met.beta[b] = met.beta[l];
+        self.met.t[b] = met.t[l];
         for a in 0..3 {
             self.rays.origin[a].0[b] = rays.origin[a].0[l];
             self.rays.direction[a].0[b] = rays.direction[a].0[l];

@@ -66,13 +66,13 @@ pub const SPHERE: u32 = 1 << 31;
 
 /// Each lane's closest hit: `hit[i]` is its quad's place in the packets' order (packet `hit / 4`,
 /// lane `hit % 4`), or [`SPHERE`] with the sphere's place among the group's spheres, or [`NO_HIT`];
-/// `t` its parameter (the range's maximum if none), `alpha` and `beta` a quad's coordinates.
+/// `t` its parameter (the range's maximum if none). A quad's coordinates `(alpha, beta)` are not
+/// kept: they are computed where the hit is used ([`crate::shapes::Quad::coordinates`]), once,
+/// rather than kept for every closer hit found on the way.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Closest8 {
     pub hit: [u32; 8],
     pub t: [f64; 8],
-    pub alpha: [f64; 8],
-    pub beta: [f64; 8],
 }
 
 /// The closest hit of each ray of `rays` among the quads of `packets`, then the static spheres of
@@ -88,8 +88,6 @@ pub fn closest_portable(
     let mut out = Closest8 {
         hit: [NO_HIT; 8],
         t: [range.max; 8],
-        alpha: [0.0; 8],
-        beta: [0.0; 8],
     };
     for lane in 0..8 {
         let ray = Ray::new(
@@ -102,8 +100,6 @@ pub fn closest_portable(
             if let Some(h) = p.hit(&ray, within) {
                 out.hit[lane] = (4 * i + h.lane) as u32;
                 out.t[lane] = h.t;
-                out.alpha[lane] = h.alpha;
-                out.beta[lane] = h.beta;
             }
         }
         let inv = ray.direction.recip();
@@ -129,13 +125,15 @@ pub fn closest_portable(
 ///
 /// With a normal `n = s e_k` (`s = ±1`, the other coordinates zero), the products with the zeros
 /// add only zeros, so `n . o = s o_k` and `n . d = s d_k` exactly, and `Quad::hit`'s
-/// `t = (d - n . o) * (1 / (n . d))` is `(d - s o_k) * (s / d_k)`, where `s / d_k` is the ray's
-/// reciprocal `1 / d_k` (or its negative, exactly), taken once for every such quad and the boxes
-/// (a division saved a quad); where the two differ, in the sign of a zero, the parameter is `±0`,
-/// `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one non-zero
+/// `t = (d - n . o) * (1 / (n . d))` is `(d - s o_k) * (s / d_k)`, and that is
+/// `(s d - o_k) * (1 / d_k)` (a sign moved from one factor to the other, exactly: rounding is
+/// symmetric), where `1 / d_k` is the ray's reciprocal, taken once for every such quad and the
+/// boxes (a division saved a quad). Where the forms differ, in the sign of a zero, the parameter
+/// is `±0`, `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one non-zero
 /// coordinate each (`a` and `b`), then `alpha = planar_a du_a` and `beta = planar_b dv_b`; these
-/// can differ from the full dot products only in the sign of a zero, so the lanes where a hit has
-/// `alpha` or `beta` zero take the full products.
+/// can differ from the full dot products only in the sign of a zero, which the test
+/// `0 <= alpha, beta <= 1` does not see (the coordinates of the closest hit are computed in full
+/// afterwards, [`crate::shapes::Quad::coordinates`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum QuadForm {
     /// An unused lane of its packet (a zero normal: never hit).
@@ -282,8 +280,6 @@ mod wide {
     #[derive(Clone, Copy)]
     struct Found<W> {
         t: W,
-        alpha: W,
-        beta: W,
         which: W,
     }
 
@@ -304,42 +300,35 @@ mod wide {
         let no_hit = o[0].splat_like(NO_HIT as f64);
         // (the axis forms hold for ranges that exclude every zero and negative parameter)
         let axis_forms = range.min >= 0.0;
-        let neg_inv = [-inv[0], -inv[1], -inv[2]];
         for quad in quads {
-            let (t, alpha, beta, in_plane) = match quad.form {
+            let (t, alpha, beta) = match quad.form {
                 QuadForm::Unused => continue,
                 QuadForm::Axis { k, neg, plane } if axis_forms => {
-                    // (each axis a constant, so that the rays' coordinates stay in registers)
-                    let d = zero.splat_like(quad.d);
+                    // `(s d - o_k) * (1 / d_k)`, each axis a constant, so that the rays'
+                    // coordinates stay in registers
+                    let sd = zero.splat_like(if neg { -quad.d } else { quad.d });
                     let t = match k {
-                        0 => axis_t::<W, 0>(d, o, inv, neg_inv, neg),
-                        1 => axis_t::<W, 1>(d, o, inv, neg_inv, neg),
-                        _ => axis_t::<W, 2>(d, o, inv, neg_inv, neg),
+                        0 => (sd - o[0]) * inv[0],
+                        1 => (sd - o[1]) * inv[1],
+                        _ => (sd - o[2]) * inv[2],
                     };
-                    match plane {
-                        Some(ab) => {
-                            let (alpha, beta) = match ab {
-                                (1, 2) => in_plane::<W, 1, 2>(quad, o, dir, t),
-                                (2, 1) => in_plane::<W, 2, 1>(quad, o, dir, t),
-                                (0, 2) => in_plane::<W, 0, 2>(quad, o, dir, t),
-                                (2, 0) => in_plane::<W, 2, 0>(quad, o, dir, t),
-                                (0, 1) => in_plane::<W, 0, 1>(quad, o, dir, t),
-                                _ => in_plane::<W, 1, 0>(quad, o, dir, t),
-                            };
-                            (t, alpha, beta, true)
-                        }
-                        None => {
-                            let (alpha, beta) = coordinates(quad, o, dir, t);
-                            (t, alpha, beta, false)
-                        }
-                    }
+                    let (alpha, beta) = match plane {
+                        Some((1, 2)) => in_plane::<W, 1, 2>(quad, o, dir, t),
+                        Some((2, 1)) => in_plane::<W, 2, 1>(quad, o, dir, t),
+                        Some((0, 2)) => in_plane::<W, 0, 2>(quad, o, dir, t),
+                        Some((2, 0)) => in_plane::<W, 2, 0>(quad, o, dir, t),
+                        Some((0, 1)) => in_plane::<W, 0, 1>(quad, o, dir, t),
+                        Some(_) => in_plane::<W, 1, 0>(quad, o, dir, t),
+                        None => coordinates(quad, o, dir, t),
+                    };
+                    (t, alpha, beta)
                 }
                 _ => {
                     // As `Quad::hit`: t = (d - n . o) * (1 / (n . dir)).
                     let n = splat3_of(zero, quad.normal);
                     let t = (zero.splat_like(quad.d) - dot(n, o)) * (one / dot(n, dir));
                     let (alpha, beta) = coordinates(quad, o, dir, t);
-                    (t, alpha, beta, false)
+                    (t, alpha, beta)
                 }
             };
             let number = zero.splat_like(quad.index as f64);
@@ -352,18 +341,8 @@ mod wide {
             };
             // `0 <= alpha, beta <= 1` in two comparisons: where its own comparison fails, `min`
             // gives `beta` and `max` gives `alpha`, so that a NaN in either fails one of them
-            let lowest = alpha.min(beta);
-            let k = min.lt(t) & before & zero.le(lowest) & beta.max(alpha).le(one);
-            // a hit on an edge line of an axis-plane quad (`alpha` or `beta` zero, so the lower
-            // of the two, both in [0, 1] where a lane hits): the zero's sign of the full products
-            let (alpha, beta) = if in_plane && !(k & lowest.eq(zero)).is_empty() {
-                coordinates(quad, o, dir, t)
-            } else {
-                (alpha, beta)
-            };
+            let k = min.lt(t) & before & zero.le(alpha.min(beta)) & beta.max(alpha).le(one);
             found.t = found.t.select(k, t);
-            found.alpha = found.alpha.select(k, alpha);
-            found.beta = found.beta.select(k, beta);
             found.which = found.which.select(k, number);
         }
     }
@@ -417,9 +396,8 @@ mod wide {
             let bits = entering.bits();
             let (o2, dir2) = (o.map(Avx2::halves), dir.map(Avx2::halves));
             let inv2 = inv.map(Avx2::halves);
-            let (t, alpha) = (found.t.halves(), found.alpha.halves());
-            let (beta, which) = (found.beta.halves(), found.which.halves());
-            let mut out = [t, alpha, beta, which];
+            let (t, which) = (found.t.halves(), found.which.halves());
+            let mut out = [t, which];
             for h in 0..2 {
                 if (bits >> (4 * h)) & 15 == 0 {
                     continue;
@@ -429,19 +407,14 @@ mod wide {
                 let inv = [inv2[0][h], inv2[1][h], inv2[2][h]];
                 let mut half = Found {
                     t: t[h],
-                    alpha: alpha[h],
-                    beta: beta[h],
                     which: which[h],
                 };
                 quads::<Avx2Half, true>(cluster, o, dir, inv, range, &mut half);
-                (out[0][h], out[1][h]) = (half.t, half.alpha);
-                (out[2][h], out[3][h]) = (half.beta, half.which);
+                (out[0][h], out[1][h]) = (half.t, half.which);
             }
             *found = Found {
                 t: Avx2::from_halves(out[0]),
-                alpha: Avx2::from_halves(out[1]),
-                beta: Avx2::from_halves(out[2]),
-                which: Avx2::from_halves(out[3]),
+                which: Avx2::from_halves(out[1]),
             };
         }
     }
@@ -461,8 +434,6 @@ mod wide {
         let min = o[0].splat_like(range.min);
         let mut found = Found {
             t: o[0].splat_like(range.max),
-            alpha: zero,
-            beta: zero,
             which: o[0].splat_like(NO_HIT as f64),
         };
         // `ray.direction.recip()`, as the one-ray traversal takes it for the boxes, and the
@@ -497,27 +468,7 @@ mod wide {
     #[inline(always)]
     fn store<W: Wide8>(found: Found<W>, out: &mut Closest8) {
         out.t = found.t.store().0;
-        out.alpha = found.alpha.store().0;
-        out.beta = found.beta.store().0;
         out.hit = found.which.store().0.map(|w| w as u32);
-    }
-
-    /// The parameter where `o + t dir` meets the plane `s x_K = d` of a quad whose normal is
-    /// `s e_K` (`neg`: `s = -1`), as [`QuadForm`] says `Quad::hit` computes it, from the ray's
-    /// reciprocals `inv = 1 / dir` and their negatives `neg_inv`.
-    #[inline(always)]
-    fn axis_t<W: Lanes, const K: usize>(
-        d: W,
-        o: V3<W>,
-        inv: V3<W>,
-        neg_inv: V3<W>,
-        neg: bool,
-    ) -> W {
-        if neg {
-            (d + o[K]) * neg_inv[K]
-        } else {
-            (d - o[K]) * inv[K]
-        }
     }
 
     /// `(alpha, beta)` of `o + t dir` in an axis-plane quad whose `du` has its one non-zero

@@ -268,13 +268,21 @@ impl Quad {
         if !range.surrounds(t) {
             return None;
         }
-        let planar = ray.at(t) - self.q;
-        let alpha = planar.dot(self.du);
-        let beta = planar.dot(self.dv);
+        let (alpha, beta) = self.coordinates(ray, t);
         if !(0.0..=1.0).contains(&alpha) || !(0.0..=1.0).contains(&beta) {
             return None;
         }
         Some(self.hit_at(ray, t, alpha, beta))
+    }
+
+    /// The coordinates `(alpha, beta)` of the ray's point at `t` in the frame `(u, v)`, as
+    /// [`Quad::hit`] computes them: `planar = o + t dir - Q`, then its dot products with the dual
+    /// basis `du`, `dv`. The lanes find only each ray's closest quad and `t`; its coordinates are
+    /// these, computed afterwards (here, or in [`crate::vertex8`] eight at a time).
+    #[inline(always)]
+    pub fn coordinates(&self, ray: &Ray, t: f64) -> (f64, f64) {
+        let planar = ray.at(t) - self.q;
+        (planar.dot(self.du), planar.dot(self.dv))
     }
 
     /// The hit record of a hit at parameter `t` and coordinates `(alpha, beta)` found by [`Quad::hit`]

@@ -761,7 +761,7 @@ impl Scene {
         while bits != 0 {
             let i = bits.trailing_zeros() as usize;
             bits &= bits - 1;
-            let so_far = (found.t[i], hits.closest(found, i));
+            let so_far = (found.t[i], hits.closest(found, i, &rays[i]));
             let (closest, best) =
                 self.others_in_turn(group, &rays[i], range.min, so_far, &mut ctxs[i]);
             per_lane[i] = Found {
@@ -988,9 +988,10 @@ pub struct Hits8<'a> {
 }
 
 impl<'a> Hits8<'a> {
-    /// Lane `i`'s closest quad or static sphere, of those in `found`.
+    /// Lane `i`'s closest quad or static sphere, of those in `found`, met by `ray` (a quad's
+    /// coordinates computed here, as [`Quad::hit`] computes them).
     #[inline(always)]
-    fn closest(&self, found: &crate::ray8::Closest8, i: usize) -> Closest<'a> {
+    fn closest(&self, found: &crate::ray8::Closest8, i: usize, ray: &Ray) -> Closest<'a> {
         let group = self.group;
         match found.hit[i] {
             crate::ray8::NO_HIT => Closest::Nothing,
@@ -1001,12 +1002,20 @@ impl<'a> Hits8<'a> {
                 };
                 Closest::Sphere(s)
             }
-            q => Closest::Quad {
-                packet: q / PACKET as u32,
-                lane: q as usize % PACKET,
-                alpha: found.alpha[i],
-                beta: found.beta[i],
-            },
+            q => {
+                let (packet, lane) = (q / PACKET as u32, q as usize % PACKET);
+                let index = group.accel.packets[packet as usize].index[lane];
+                let Object::Quad(quad) = &group.objects[index as usize] else {
+                    unreachable!("a packet lane names a quad")
+                };
+                let (alpha, beta) = quad.coordinates(ray, found.t[i]);
+                Closest::Quad {
+                    packet,
+                    lane,
+                    alpha,
+                    beta,
+                }
+            }
         }
     }
 
@@ -1024,7 +1033,7 @@ impl<'a> Hits8<'a> {
         let (closest, t) = if self.per_lane {
             (per_lane[i].closest, per_lane[i].t)
         } else {
-            (self.closest(found, i), found.t[i])
+            (self.closest(found, i, ray), found.t[i])
         };
         match closest {
             Closest::Sphere(s) => Some(s.hit_at(ray, t)),

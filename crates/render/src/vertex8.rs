@@ -11,7 +11,7 @@
 //!   `omega` leaves on ([`crate::hit::Hit::spawn_origin`]).
 //!
 //! The quads' numbers are kept one row per quad ([`QuadSurfaces`]), and the eight rows the lanes
-//! met are transposed into columns in registers ([`crate::wide8::Wide8::columns16`]). Each lane computes the same
+//! met are transposed into columns in registers ([`crate::wide8::Wide8::columns`]). Each lane computes the same
 //! `f64` operations in the same order as the one-path code, so the paths, and the image, are
 //! bit-identical to tracing one path at a time (tested in `crates/render/tests/paths8.rs`).
 //! Only the bounce's two numbers are drawn lane by lane, each from its own sample's sequence.
@@ -20,8 +20,8 @@ use crate::material::{Albedo, Material};
 use crate::scene::{GroupId, Object, Scene};
 
 /// A quad's numbers: `Q`, `u`, `v`, the unit outward normal, the error bound of a hit point, the
-/// albedo.
-type Row = [f64; 16];
+/// albedo, the dual basis `du`, `dv` its coordinates are taken in, and two unused.
+type Row = [f64; 24];
 
 /// The quads of a small group in the order of its packets (quad `k` is lane `k % 4` of packet
 /// `k / 4`, the numbering of [`crate::ray8::Closest8::hit`]), for the vertex in the lanes.
@@ -78,7 +78,7 @@ impl QuadSurfaces {
                     } => Some(c),
                     _ => None,
                 });
-                let mut row = [0.0; 16];
+                let mut row = [0.0; 24];
                 if let (Some(q), Some(a)) = (quad, albedo) {
                     let parts = [q.q, q.u, q.v, q.normal];
                     for (k, v) in parts.iter().enumerate() {
@@ -86,6 +86,8 @@ impl QuadSurfaces {
                     }
                     row[12] = q.err;
                     row[13..16].copy_from_slice(&a.to_array());
+                    row[16..19].copy_from_slice(&q.du.to_array());
+                    row[19..22].copy_from_slice(&q.dv.to_array());
                 }
                 rows.push(row);
                 lambertian.push(albedo.is_some());
@@ -126,7 +128,7 @@ impl QuadSurfaces {
 }
 
 #[cfg(target_arch = "x86_64")]
-pub use wide::lambertian;
+pub use wide::{coordinates, lambertian};
 
 #[cfg(target_arch = "x86_64")]
 mod wide {
@@ -140,7 +142,10 @@ mod wide {
     /// What the lanes' quads are where their rays met them: the hit point, the unit normal turned
     /// against the ray, the point's error bound, the albedo; and the point pushed off the surface
     /// for a ray leaving it either way.
-    pub(crate) struct Surface8<W: Wide8> {
+    pub(crate) struct Surface8<W: Lanes> {
+        /// The hit's coordinates in its quad, as `Quad::coordinates` computes them.
+        pub alpha: W,
+        pub beta: W,
         pub p: V3<W>,
         pub normal: V3<W>,
         pub albedo: V3<W>,
@@ -149,7 +154,7 @@ mod wide {
         above: V3<W>,
     }
 
-    impl<W: Wide8> Surface8<W> {
+    impl<W: Lanes> Surface8<W> {
         /// `Hit::spawn_origin` of a ray leaving in direction `d`: `above` where
         /// `d . normal >= 0`, else `below`. (A function, not a closure: a closure does not take its
         /// caller's target features, and its intrinsics would be calls.)
@@ -165,8 +170,10 @@ mod wide {
 
     impl QuadSurfaces {
         /// The surfaces the rays of direction `dir` met in the lanes of `lanes`, Lambertian quads
-        /// of constant albedo (`found`, numbered as these): their rows transposed into columns,
-        /// `Quad::hit_at`'s point `p = Q + alpha u + beta v` and `Hit::face`'s normal.
+        /// of constant albedo (`found`, numbered as these) from the origins `o`: their rows
+        /// transposed into columns, the coordinates `(alpha, beta)` of `o + t dir` in each lane's
+        /// quad (`Quad::coordinates`), `Quad::hit_at`'s point `p = Q + alpha u + beta v` and
+        /// `Hit::face`'s normal.
         ///
         /// # Safety
         /// As [`Wide8::splat`]; `lanes` is not empty.
@@ -174,6 +181,7 @@ mod wide {
         pub(crate) unsafe fn surface_in<W: Wide8>(
             &self,
             found: &Closest8,
+            o: V3<W>,
             dir: V3<W>,
             lanes: u8,
         ) -> Surface8<W> {
@@ -186,16 +194,13 @@ mod wide {
                 }
             }
             // SAFETY: as this function's.
-            let (c, alpha, beta) = unsafe {
-                (
-                    W::columns16(&rows),
-                    W::load_unaligned(&found.alpha),
-                    W::load_unaligned(&found.beta),
-                )
-            };
-            let zero = alpha.zero_like();
+            let (c, t) = unsafe { (W::columns(&rows), W::load_unaligned(&found.t)) };
+            let zero = t.zero_like();
             let (q, e1, e2) = ([c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]);
             let (outward, err, albedo) = ([c[9], c[10], c[11]], c[12], [c[13], c[14], c[15]]);
+            let (du, dv) = ([c[16], c[17], c[18]], [c[19], c[20], c[21]]);
+            let planar = sub3(add3(o, scale3(t, dir)), q);
+            let (alpha, beta) = (dot(planar, du), dot(planar, dv));
             let p = add3(add3(q, scale3(alpha, e1)), scale3(beta, e2));
             let front = dot(dir, outward).lt(zero);
             let normal = select3(neg3(outward), front, outward);
@@ -203,6 +208,8 @@ mod wide {
             let push = zero.splat_like(4.0) * err;
             let offset = [normal[0] * push, normal[1] * push, normal[2] * push];
             Surface8 {
+                alpha,
+                beta,
                 p,
                 normal,
                 albedo,
@@ -241,6 +248,63 @@ mod wide {
                 _ => avx2(surfaces, m, found, rays, throughput, u, lanes),
             }
         }
+    }
+
+    /// The coordinates `(alpha, beta)` in their quads of the hits `found` of the rays `rays`, in
+    /// the lanes of `lanes` (Lambertian quads of `surfaces`, not empty), as [`lambertian`]
+    /// computes them in the instructions of `tier`: what the tests hold to
+    /// [`crate::shapes::Quad::coordinates`], bit for bit.
+    ///
+    /// # Safety
+    /// Only where the processor runs `tier`, which is AVX2 or AVX-512.
+    pub unsafe fn coordinates(
+        tier: HitTier,
+        surfaces: &QuadSurfaces,
+        found: &Closest8,
+        rays: &Rays8,
+        lanes: u8,
+    ) -> [F64x8; 2] {
+        #[target_feature(enable = "avx512f")]
+        unsafe fn avx512(
+            s: &QuadSurfaces,
+            found: &Closest8,
+            rays: &Rays8,
+            lanes: u8,
+        ) -> [F64x8; 2] {
+            // SAFETY: compiled with AVX-512F, run where the processor has it.
+            unsafe { coordinates_in::<Avx512>(s, found, rays, lanes) }
+        }
+        #[target_feature(enable = "avx2")]
+        unsafe fn avx2(s: &QuadSurfaces, found: &Closest8, rays: &Rays8, lanes: u8) -> [F64x8; 2] {
+            // SAFETY: compiled with AVX2, run where the processor has it.
+            unsafe { coordinates_in::<Avx2>(s, found, rays, lanes) }
+        }
+        // SAFETY: as this function's.
+        unsafe {
+            match tier {
+                HitTier::Avx512 => avx512(surfaces, found, rays, lanes),
+                _ => avx2(surfaces, found, rays, lanes),
+            }
+        }
+    }
+
+    /// [`coordinates`] in the instructions of `W`.
+    ///
+    /// # Safety
+    /// As [`Wide8::splat`]; as [`coordinates`].
+    #[inline(always)]
+    unsafe fn coordinates_in<W: Wide8>(
+        s: &QuadSurfaces,
+        found: &Closest8,
+        rays: &Rays8,
+        lanes: u8,
+    ) -> [F64x8; 2] {
+        // SAFETY: as this function's.
+        let at = unsafe {
+            let (o, dir) = (load3::<W>(&rays.origin), load3::<W>(&rays.direction));
+            s.surface_in(found, o, dir, lanes)
+        };
+        [at.alpha.store(), at.beta.store()]
     }
 
     #[target_feature(enable = "avx512f")]
@@ -288,10 +352,10 @@ mod wide {
     ) -> u8 {
         // SAFETY: as this function's.
         let (at, o, dir, tp, u) = unsafe {
-            let dir = load3::<W>(&rays.direction);
+            let (o, dir) = (load3::<W>(&rays.origin), load3::<W>(&rays.direction));
             (
-                s.surface_in(found, dir, lanes),
-                load3::<W>(&rays.origin),
+                s.surface_in(found, o, dir, lanes),
+                o,
                 dir,
                 load3::<W>(throughput),
                 [W::load(&u[0]), W::load(&u[1])],

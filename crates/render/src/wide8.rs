@@ -124,12 +124,13 @@ pub trait Wide8: Lanes {
     /// # Safety
     /// As [`Lanes::splat`].
     unsafe fn load_unaligned(x: &[f64; 8]) -> Self;
-    /// Eight rows of sixteen numbers as sixteen columns: lane `i` of column `j` is `rows[i][j]`
-    /// (the rows transposed in registers, by shuffles, not by stores that a load reads back).
+    /// Eight rows of `N` numbers as `N` columns: lane `i` of column `j` is `rows[i][j]` (the rows
+    /// transposed in registers, by shuffles, not by stores that a load reads back); `N` is a
+    /// multiple of four.
     ///
     /// # Safety
     /// As [`Lanes::splat`].
-    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16];
+    unsafe fn columns<const N: usize>(rows: &[&[f64; N]; 8]) -> [Self; N];
     /// The lanes, stored.
     fn store(self) -> F64x8;
 }
@@ -233,10 +234,10 @@ pub unsafe fn load3<W: Wide8>(v: &[F64x8; 3]) -> V3<W> {
 /// (a 4 x 4 transpose: pairs interleaved, then halves exchanged).
 ///
 /// # Safety
-/// Only where the processor has AVX; `at + 4 <= 16`.
+/// Only where the processor has AVX; `at + 4 <= N`.
 #[inline(always)]
-unsafe fn columns4(rows: [&[f64; 16]; 4], at: usize) -> [__m256d; 4] {
-    debug_assert!(at + 4 <= 16);
+unsafe fn columns4<const N: usize>(rows: [&[f64; N]; 4], at: usize) -> [__m256d; 4] {
+    debug_assert!(at + 4 <= N);
     // SAFETY: as this function's; each load reads `rows[i][at..at + 4]`, inside the row.
     unsafe {
         // (written out: in a closure the loads would not be compiled with the caller's AVX)
@@ -449,9 +450,10 @@ impl Wide8 for Avx512 {
         avx512!(Avx512(_mm512_loadu_pd(x.as_ptr())))
     }
     #[inline(always)]
-    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
-        let mut out = [avx512!(Avx512(_mm512_setzero_pd())); 16];
-        for block in 0..4 {
+    unsafe fn columns<const N: usize>(rows: &[&[f64; N]; 8]) -> [Self; N] {
+        const { assert!(N.is_multiple_of(4)) };
+        let mut out = [avx512!(Avx512(_mm512_setzero_pd())); N];
+        for block in 0..N / 4 {
             // (AVX-512F implies the AVX that `columns4` takes)
             let (lo, hi) = avx512!((
                 columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
@@ -724,9 +726,10 @@ impl Wide8 for Avx2 {
         ]))
     }
     #[inline(always)]
-    unsafe fn columns16(rows: &[&[f64; 16]; 8]) -> [Self; 16] {
-        let mut out = [avx2!(Avx2([_mm256_setzero_pd(); 2])); 16];
-        for block in 0..4 {
+    unsafe fn columns<const N: usize>(rows: &[&[f64; N]; 8]) -> [Self; N] {
+        const { assert!(N.is_multiple_of(4)) };
+        let mut out = [avx2!(Avx2([_mm256_setzero_pd(); 2])); N];
+        for block in 0..N / 4 {
             let (lo, hi) = avx2!((
                 columns4([rows[0], rows[1], rows[2], rows[3]], 4 * block),
                 columns4([rows[4], rows[5], rows[6], rows[7]], 4 * block),

@@ -758,9 +758,7 @@ fn cluster_mismatches(seed: u64, tier: HitTier, shrink: bool) -> (usize, usize) 
             let want = closest_portable(&accel.packets, spheres, &rays, Interval::FORWARD);
             let got = closest_with(tier, &quads, spheres, &rays);
             for l in 0..8 {
-                let bits =
-                    |c: &Closest8| (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits));
-                wrong += (bits(&got) != bits(&want)) as usize;
+                wrong += (lane_bits(&got, l) != lane_bits(&want, l)) as usize;
                 let h = want.hit[l];
                 in_clusters += (h < 64 && clustered & (1 << h) != 0) as usize;
             }
@@ -851,9 +849,9 @@ fn portable_and_lanes(
     (want, closest_in(tier, accel, spheres_for_lanes, &lanes))
 }
 
-/// Lane `l` of `c` bit for bit: the hit, `t`, `alpha`, `beta`.
-fn lane_bits(c: &Closest8, l: usize) -> (u32, [u64; 3]) {
-    (c.hit[l], [c.t[l], c.alpha[l], c.beta[l]].map(f64::to_bits))
+/// Lane `l` of `c` bit for bit: the hit and `t`.
+fn lane_bits(c: &Closest8, l: usize) -> (u32, u64) {
+    (c.hit[l], c.t[l].to_bits())
 }
 
 /// How many lanes of [`closest_avx512`] or [`closest_avx2`] (`tier`) differ from
@@ -892,10 +890,21 @@ fn assert_lanes_agree(
     want
 }
 
+/// The quad a lane's hit `h` names (its place in the packets' order).
+fn quad_of(scene: &Scene, h: u32) -> &rtl_render::shapes::Quad {
+    let group = &scene.groups[0];
+    let index = group.accel.packets[h as usize / 4].index[h as usize % 4];
+    match &group.objects[index as usize] {
+        rtl_render::scene::Object::Quad(q) => q,
+        _ => panic!("a packet lane names a quad"),
+    }
+}
+
 #[test]
 fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
     // Rays in axis planes through the quads' corners hit edge lines, where `alpha` or `beta` is a
-    // zero whose sign the full dot products decide (`ray8::QuadForm`); both signs must come out.
+    // zero of either sign (`ray8::QuadForm`): the lanes find the hits the one-ray test finds, and
+    // the Lambertian vertex's coordinates of them are `Quad::coordinates`', zeros' signs too.
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(10);
     for tier in tiers() {
         let mut zeros = [0usize; 2];
@@ -903,14 +912,31 @@ fn eight_rays_at_once_find_the_edges_of_quads_in_axis_planes_bit_for_bit() {
             let (scene, corners) = small_group(&mut rng);
             let accel = &scene.groups[0].accel;
             let spheres = accel.spheres.as_deref().unwrap_or(&[]);
+            let surfaces = rtl_render::vertex8::QuadSurfaces::new(&scene, GroupId(0));
             for _ in 0..40 {
-                let want = assert_lanes_agree(tier, accel, spheres, &rays8(&mut rng, &corners));
-                for l in 0..8 {
-                    if want.hit[l] < rtl_render::ray8::SPHERE {
-                        for x in [want.alpha[l], want.beta[l]] {
-                            if x == 0.0 {
-                                zeros[x.is_sign_negative() as usize] += 1;
-                            }
+                let rays = rays8(&mut rng, &corners);
+                let want = assert_lanes_agree(tier, accel, spheres, &rays);
+                let quads = (0..8).filter(|&l| want.hit[l] < rtl_render::ray8::SPHERE);
+                let lanes = quads.clone().fold(0u8, |m, l| m | 1 << l);
+                let Some(surfaces) = surfaces.as_ref().filter(|_| lanes != 0) else {
+                    continue;
+                };
+                let mut packed = Rays8::default();
+                for (l, r) in rays.iter().enumerate() {
+                    packed.set(l, r);
+                }
+                // SAFETY: `tiers` gives only the forms this processor runs.
+                let [alpha, beta] = unsafe {
+                    rtl_render::vertex8::coordinates(tier, surfaces, &want, &packed, lanes)
+                };
+                for l in quads {
+                    let q = quad_of(&scene, want.hit[l]);
+                    let (a, b) = q.coordinates(&rays[l], want.t[l]);
+                    let got = [alpha.0[l], beta.0[l]];
+                    assert_eq!(got.map(f64::to_bits), [a, b].map(f64::to_bits), "{tier:?}");
+                    for x in [a, b] {
+                        if x == 0.0 {
+                            zeros[x.is_sign_negative() as usize] += 1;
                         }
                     }
                 }
