@@ -36,6 +36,8 @@ type Row = [f64; 16];
 /// (`SPHERE | i` is sphere `i`), those of a dielectric with their numbers for the lanes.
 pub struct GlassSpheres {
     spheres: Vec<Option<(Sphere, Row)>>,
+    /// The glass spheres as bits, for eight lanes' hits at once.
+    kind: crate::ray8::HitKinds,
 }
 
 impl GlassSpheres {
@@ -60,10 +62,21 @@ impl GlassSpheres {
                 _ => None,
             })
             .collect();
-        spheres
-            .iter()
-            .any(Option::is_some)
-            .then_some(GlassSpheres { spheres })
+        if !spheres.iter().any(Option::is_some) {
+            return None;
+        }
+        let quads = 4 * group.accel.packets.len();
+        let kind = crate::ray8::HitKinds::new(quads, spheres.len(), |h| {
+            h & SPHERE != 0 && spheres[(h & !SPHERE) as usize].is_some()
+        })?;
+        Some(GlassSpheres { spheres, kind })
+    }
+
+    /// The lanes whose hit in `hit` (as [`crate::ray8::Closest8::hit`] numbers it) is on a glass
+    /// sphere ([`GlassSpheres::is_glass`] lane by lane).
+    #[inline(always)]
+    pub fn glass_lanes(&self, hit: &[u32; 8]) -> u8 {
+        self.kind.lanes(hit)
     }
 
     /// The glass sphere a lane's hit `h` is on (as [`crate::ray8::Closest8::hit`] numbers it), if

@@ -194,11 +194,8 @@ pub(crate) fn render_row(
         if let Some((surfaces, mis)) = in_lanes {
             let mut n = 0usize;
             for g in 0..PACKETS {
-                let mut lambertian = 0u8;
-                for (l, &h) in closest[g].hit.iter().enumerate() {
-                    lambertian |= (surfaces.lambertian(h) as u8) << l;
-                }
-                lambertian &= active[g] & !shadows[g];
+                let mut lambertian =
+                    surfaces.lambertian_lanes(&closest[g].hit) & active[g] & !shadows[g];
                 let mut bits = lambertian;
                 while bits != 0 {
                     let l = bits.trailing_zeros() as usize;

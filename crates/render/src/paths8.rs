@@ -362,10 +362,7 @@ pub(crate) fn render_row(
             let mut lambertian = 0u8;
             if let Some(s) = surfaces {
                 // (the set made without a branch per lane: which kind a lane met is a coin toss)
-                for (l, &h) in closest.hit.iter().enumerate() {
-                    lambertian |= (s.lambertian(h) as u8) << l;
-                }
-                lambertian &= traced;
+                lambertian = s.lambertian_lanes(&closest.hit) & traced;
                 let met = &mut met[g];
                 let mut bits = lambertian;
                 while bits != 0 {
@@ -381,10 +378,7 @@ pub(crate) fn render_row(
             // where the lanes take them (`GlassSpheres::error`).
             let mut glassy = 0u8;
             if let Some(gs) = glass {
-                for (l, &h) in closest.hit.iter().enumerate() {
-                    glassy |= (gs.is_glass(h) as u8) << l;
-                }
-                glassy &= traced & !lambertian;
+                glassy = gs.glass_lanes(&closest.hit) & traced & !lambertian;
                 let mut bits = glassy;
                 while bits != 0 {
                     let l = bits.trailing_zeros() as usize;
@@ -412,12 +406,12 @@ pub(crate) fn render_row(
             // (`OneSamplePath::scatter` without the hit's record).
             let mut lit = 0u8;
             if let Some(s) = surfaces {
-                let mut bits = traced & !lambertian & !glassy;
+                lit = s.light_lanes(&closest.hit) & traced & !lambertian & !glassy;
+                let mut bits = lit;
                 while bits != 0 {
                     let l = bits.trailing_zeros() as usize;
                     bits &= bits - 1;
                     if let Some(light) = s.light(closest.hit[l]) {
-                        lit |= 1 << l;
                         let at = |v: &[F64x8; 3]| Vec3::new(v[0].0[l], v[1].0[l], v[2].0[l]);
                         let emitted = light.emitted(at(&lanes.direction));
                         paths[l].l += at(throughput) * emitted;

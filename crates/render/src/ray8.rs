@@ -64,6 +64,44 @@ pub const NO_HIT: u32 = u32::MAX;
 /// Set in [`Closest8::hit`] when the lane's closest hit is a sphere's (the rest of the bits: which).
 pub const SPHERE: u32 = 1 << 31;
 
+/// The place of a small group's hit number `h` in a table of 32 ([`HitKinds`]): quad `k < 15` at
+/// `k`, sphere `i < 15` at `16 + i`, no hit at 31.
+#[inline(always)]
+pub fn hit_key(h: u32) -> u32 {
+    (h & 15) | ((h >> 27) & 16)
+}
+
+/// Which of a small group's hits are of one kind (a Lambertian quad, a light, a glass sphere), one
+/// bit a hit at its [`hit_key`], so that the lanes' hits are sorted by kind without a load a lane.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HitKinds(u32);
+
+impl HitKinds {
+    /// The hits whose number `is(h)` holds, among the quads `0..quads` and the spheres `0..spheres`;
+    /// `None` past fifteen of either.
+    pub fn new(quads: usize, spheres: usize, is: impl Fn(u32) -> bool) -> Option<HitKinds> {
+        if quads > 15 || spheres > 15 {
+            return None;
+        }
+        let numbers = (0..quads as u32).chain((0..spheres as u32).map(|i| SPHERE | i));
+        Some(HitKinds(
+            numbers
+                .filter(|&h| is(h))
+                .fold(0, |bits, h| bits | 1 << hit_key(h)),
+        ))
+    }
+
+    /// The lanes whose hit in `hit` is of this kind.
+    #[inline(always)]
+    pub fn lanes(self, hit: &[u32; 8]) -> u8 {
+        let mut lanes = 0;
+        for (l, &h) in hit.iter().enumerate() {
+            lanes |= (((self.0 >> hit_key(h)) & 1) as u8) << l;
+        }
+        lanes
+    }
+}
+
 /// Each lane's closest hit: `hit[i]` is its quad's place in the packets' order (packet `hit / 4`,
 /// lane `hit % 4`), or [`SPHERE`] with the sphere's place among the group's spheres, or [`NO_HIT`];
 /// `t` its parameter (the range's maximum if none). A quad's coordinates `(alpha, beta)` are not

@@ -17,6 +17,7 @@
 //! Only the bounce's two numbers are drawn lane by lane, each from its own sample's sequence.
 
 use crate::material::{Albedo, Material};
+use crate::ray8::HitKinds;
 use crate::scene::{GroupId, Object, Scene};
 
 /// A quad's numbers: `Q`, `u`, `v`, the unit outward normal, the error bound of a hit point, the
@@ -31,6 +32,9 @@ pub struct QuadSurfaces {
     lambertian: Vec<bool>,
     /// Quad `k`'s light, if its material is a light of constant radiance.
     lights: Vec<Option<QuadLight>>,
+    /// `lambertian` and `lights` as bits, for eight lanes' hits at once.
+    lambertian_kind: HitKinds,
+    light_kind: HitKinds,
 }
 
 /// A quad that emits a constant radiance: what a path that meets it gathers
@@ -106,11 +110,35 @@ impl QuadSurfaces {
                 );
             }
         }
-        lambertian.contains(&true).then_some(QuadSurfaces {
+        if !lambertian.contains(&true) {
+            return None;
+        }
+        let spheres = group.accel.spheres.as_ref().map_or(0, Vec::len);
+        let kind = |is: &dyn Fn(usize) -> bool| {
+            HitKinds::new(rows.len(), spheres, |h| {
+                (h as usize) < rows.len() && is(h as usize)
+            })
+        };
+        Some(QuadSurfaces {
+            lambertian_kind: kind(&|k| lambertian[k])?,
+            light_kind: kind(&|k| lights[k].is_some())?,
             rows,
             lambertian,
             lights,
         })
+    }
+
+    /// The lanes whose hit in `hit` (as [`crate::ray8::Closest8::hit`] numbers it) is on a
+    /// Lambertian quad of constant albedo ([`QuadSurfaces::lambertian`] lane by lane).
+    #[inline(always)]
+    pub fn lambertian_lanes(&self, hit: &[u32; 8]) -> u8 {
+        self.lambertian_kind.lanes(hit)
+    }
+
+    /// The lanes whose hit in `hit` is on a light of constant radiance.
+    #[inline(always)]
+    pub fn light_lanes(&self, hit: &[u32; 8]) -> u8 {
+        self.light_kind.lanes(hit)
     }
 
     /// Whether a lane's hit `h` (as [`crate::ray8::Closest8::hit`] numbers it) is on a Lambertian

@@ -1434,3 +1434,84 @@ fn a_light_met_without_its_record_gives_what_the_material_emits() {
         assert_eq!(dark > 0, !two_sided);
     }
 }
+
+/// The lanes of each kind as [`rtl_render::ray8::HitKinds`] sorts them, and as the lookups one lane
+/// at a time do, over `hits`; how many lanes of any kind there were.
+fn kind_mismatches(scene: &Scene, hits: &[[u32; 8]]) -> (usize, usize) {
+    let g = GroupId(0);
+    let s = rtl_render::vertex8::QuadSurfaces::new(scene, g).expect("Lambertian quads");
+    let glass = rtl_render::glass8::GlassSpheres::new(scene, g).expect("a glass ball");
+    let (mut wrong, mut some) = (0, 0);
+    for hit in hits {
+        let one_at_a_time =
+            |is: &dyn Fn(u32) -> bool| (0..8).fold(0u8, |m, l| m | (is(hit[l]) as u8) << l);
+        let pairs = [
+            (s.lambertian_lanes(hit), one_at_a_time(&|h| s.lambertian(h))),
+            (s.light_lanes(hit), one_at_a_time(&|h| s.light(h).is_some())),
+            (
+                glass.glass_lanes(hit),
+                one_at_a_time(&|h| glass.is_glass(h)),
+            ),
+        ];
+        for (got, want) in pairs {
+            wrong += (got != want) as usize;
+            some += want.count_ones() as usize;
+        }
+    }
+    (wrong, some)
+}
+
+/// Every number a lane's hit can hold in the Cornell box (its quads, its spheres, none) and some
+/// it cannot, eight at a time.
+fn hit_numbers(rng: &mut Xoshiro256PlusPlus) -> Vec<[u32; 8]> {
+    use rtl_render::ray8::{NO_HIT, SPHERE};
+    (0..2000)
+        .map(|_| {
+            std::array::from_fn(|_| match rng.random_range(0..4) {
+                0 => NO_HIT,
+                1 => SPHERE | rng.random_range(0..3),
+                _ => rng.random_range(0..16),
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn the_lanes_are_sorted_by_what_they_met_as_one_lane_at_a_time() {
+    let scene = builtin("cornell");
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(12);
+    let (wrong, some) = kind_mismatches(&scene, &hit_numbers(&mut rng));
+    assert_eq!(wrong, 0);
+    // (about 7,300 of the 16,000: of the numbers 0-15, eleven are Lambertian quads and one the
+    // light; of the three sphere numbers, one is the glass ball)
+    assert!(some > 5_000, "{some} lanes of some kind");
+    // past fifteen quads or spheres the table of 32 has no room: no kinds, and no lanes form
+    use rtl_render::ray8::HitKinds;
+    assert!(HitKinds::new(16, 2, |_| true).is_none());
+    assert!(HitKinds::new(12, 16, |_| true).is_none());
+    let all = HitKinds::new(15, 15, |_| true).unwrap();
+    assert_eq!(
+        all.lanes(&[rtl_render::ray8::NO_HIT; 8]),
+        0,
+        "no hit is of no kind"
+    );
+    assert_eq!(
+        all.lanes(&[14, rtl_render::ray8::SPHERE | 14, 0, 0, 0, 0, 0, 0]),
+        0xff
+    );
+}
+
+#[test]
+fn the_kind_check_catches_a_number_the_table_aliases() {
+    // the glass ball's hits numbered 16, which no quad of the Cornell box has: the table of 32
+    // reads it as quad 0 (`hit_key` keeps four bits of a quad's number), the lookups as nothing,
+    // and the check sees the two disagree
+    let scene = builtin("cornell");
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(13);
+    let wrong_numbers: Vec<[u32; 8]> = hit_numbers(&mut rng)
+        .into_iter()
+        .map(|hit| hit.map(|h| if h == rtl_render::ray8::SPHERE { 16 } else { h }))
+        .collect();
+    let (wrong, _) = kind_mismatches(&scene, &wrong_numbers);
+    assert!(wrong > 0);
+}
