@@ -272,7 +272,7 @@ pub(crate) fn render_row(
     let mut throughput = [[F64x8::ZERO; 3]; PACKETS];
     let mut active = [0u8; PACKETS];
     // The paths whose ray met a Lambertian quad, waiting for the vertex in the lanes (their
-    // quads' numbers kept in `met`), and the batch of up to eight of them gathered for it.
+    // quads' numbers and `t` kept in `met`), and the batch of up to eight of them gathered for it.
     let mut pending = [0u8; PACKETS];
     let mut met = [crate::ray8::Closest8::default(); PACKETS];
     let mut batch = Batch::default();
@@ -573,8 +573,8 @@ pub(crate) fn render_row(
 }
 
 /// A batch of Lambertian vertices for [`crate::vertex8`], gathered lane by lane from the paths
-/// that wait for one: batch lane `b` is the path `from[b]` (packet, lane), with its quad's numbers,
-/// its ray, its throughput and its bounce's two numbers.
+/// that wait for one: batch lane `b` is the path `from[b]` (packet, lane), with its quad's number
+/// and `t`, its ray, its throughput and its bounce's two numbers.
 struct Batch {
     from: [(usize, usize); LANES],
     met: crate::ray8::Closest8,
@@ -596,8 +596,8 @@ impl Default for Batch {
 }
 
 impl Batch {
-    /// Batch lane `b` takes path `(g, l)`: its quad's numbers from `met`, its ray from `rays`, its
-    /// throughput, and the bounce's numbers `u`.
+    /// Batch lane `b` takes path `(g, l)`: its quad's number and `t` from `met`, its ray from
+    /// `rays`, its throughput, and the bounce's numbers `u`.
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // (three arrays, one coordinate at a time)
     fn gather(

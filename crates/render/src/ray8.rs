@@ -167,11 +167,11 @@ pub fn closest_portable(
 /// `(s d - o_k) * (1 / d_k)` (a sign moved from one factor to the other, exactly: rounding is
 /// symmetric), where `1 / d_k` is the ray's reciprocal, taken once for every such quad and the
 /// boxes (a division saved a quad). Where the forms differ, in the sign of a zero, the parameter
-/// is `±0`, `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one non-zero
-/// coordinate each (`a` and `b`), then `alpha = planar_a du_a` and `beta = planar_b dv_b`; these
-/// can differ from the full dot products only in the sign of a zero, which the test
-/// `0 <= alpha, beta <= 1` does not see (the coordinates of the closest hit are computed in full
-/// afterwards, [`crate::shapes::Quad::coordinates`]).
+/// is `±0`, `±inf` or NaN, which no range with `min >= 0` holds. If also `du` and `dv` have one
+/// non-zero coordinate each (`a` and `b`), then `alpha = planar_a du_a` and
+/// `beta = planar_b dv_b`; these can differ from the full dot products only in the sign of a
+/// zero, which the test `0 <= alpha, beta <= 1` does not see (the closest hit's coordinates are
+/// computed in full afterwards, [`crate::shapes::Quad::coordinates`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum QuadForm {
     /// An unused lane of its packet (a zero normal: never hit).

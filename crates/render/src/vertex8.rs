@@ -11,8 +11,10 @@
 //!   `omega` leaves on ([`crate::hit::Hit::spawn_origin`]).
 //!
 //! The quads' numbers are kept one row per quad ([`QuadSurfaces`]), and the eight rows the lanes
-//! met are transposed into columns in registers ([`crate::wide8::Wide8::columns`]). Each lane computes the same
-//! `f64` operations in the same order as the one-path code, so the paths, and the image, are
+//! met are transposed into columns in registers ([`crate::wide8::Wide8::columns`]); the hit's
+//! coordinates `(alpha, beta)` in its quad are computed there, from the ray and `t`, as
+//! [`crate::shapes::Quad::coordinates`] computes them. Each lane computes the same `f64`
+//! operations in the same order as the one-path code, so the paths, and the image, are
 //! bit-identical to tracing one path at a time (tested in `crates/render/tests/paths8.rs`).
 //! Only the bounce's two numbers are drawn lane by lane, each from its own sample's sequence.
 
