@@ -410,6 +410,17 @@ impl LightTree {
         self.weights.is_empty()
     }
 
+    /// The levels below the root of the deepest leaf: `ceil(log2 n)` for `n` emitters, since each
+    /// split is at the median (so that building is `O(n log n)` and a trail `O(log n)`, however the
+    /// emitters lie).
+    pub fn depth(&self) -> usize {
+        self.trails
+            .iter()
+            .map(|&(_, d)| d as usize)
+            .max()
+            .unwrap_or(0)
+    }
+
     /// The emitter chosen at `x` for the uniform number `u`, with `u` remapped to `[0, 1)` for its
     /// direction; `None` where the descent stops (two children of importance 0).
     #[inline]
@@ -542,10 +553,12 @@ impl LightTree {
     /// [`LightTree::pdf`] without an index, by one walk over the whole tree: every emitter's
     /// probability is [`LightTree::pmf`]'s to the bit (the same shares, multiplied in the same
     /// order), added in the tree's order rather than the list's. `O(n)` however many emitters the
-    /// direction meets.
+    /// direction meets. (Public for the tests, which hold [`LightTree::pdf`] to it bit for bit
+    /// where it should walk.)
     #[cold]
     #[inline(never)]
-    fn pdf_by_walk(
+    #[doc(hidden)]
+    pub fn pdf_by_walk(
         &self,
         x: Point3,
         normal: Option<Vec3>,
