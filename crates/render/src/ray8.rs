@@ -91,12 +91,18 @@ impl HitKinds {
         ))
     }
 
+    /// Whether the hit `h` is of this kind.
+    #[inline(always)]
+    pub fn has(self, h: u32) -> bool {
+        (self.0 >> hit_key(h)) & 1 != 0
+    }
+
     /// The lanes whose hit in `hit` is of this kind.
     #[inline(always)]
     pub fn lanes(self, hit: &[u32; 8]) -> u8 {
         let mut lanes = 0;
         for (l, &h) in hit.iter().enumerate() {
-            lanes |= (((self.0 >> hit_key(h)) & 1) as u8) << l;
+            lanes |= (self.has(h) as u8) << l;
         }
         lanes
     }

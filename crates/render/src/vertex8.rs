@@ -30,11 +30,10 @@ type Row = [f64; 24];
 /// `k / 4`, the numbering of [`crate::ray8::Closest8::hit`]), for the vertex in the lanes.
 pub struct QuadSurfaces {
     rows: Vec<Row>,
-    /// Whether quad `k`'s material is Lambertian of a constant albedo.
-    lambertian: Vec<bool>,
     /// Quad `k`'s light, if its material is a light of constant radiance.
     lights: Vec<Option<QuadLight>>,
-    /// `lambertian` and `lights` as bits, for eight lanes' hits at once.
+    /// The quads whose material is Lambertian of a constant albedo, and those in `lights`, as bits
+    /// (for eight lanes' hits at once).
     lambertian_kind: HitKinds,
     light_kind: HitKinds,
 }
@@ -125,7 +124,6 @@ impl QuadSurfaces {
             lambertian_kind: kind(&|k| lambertian[k])?,
             light_kind: kind(&|k| lights[k].is_some())?,
             rows,
-            lambertian,
             lights,
         })
     }
@@ -147,7 +145,7 @@ impl QuadSurfaces {
     /// quad of constant albedo: a sphere's, or no hit, is not.
     #[inline(always)]
     pub fn lambertian(&self, h: u32) -> bool {
-        self.lambertian.get(h as usize).copied().unwrap_or(false)
+        self.lambertian_kind.has(h)
     }
 
     /// The light of constant radiance a lane's hit `h` is on, if it is on one.

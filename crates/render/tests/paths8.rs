@@ -1435,27 +1435,75 @@ fn a_light_met_without_its_record_gives_what_the_material_emits() {
     }
 }
 
-/// The lanes of each kind as [`rtl_render::ray8::HitKinds`] sorts them, and as the lookups one lane
-/// at a time do, over `hits`; how many lanes of any kind there were.
+/// What hit number `h` of the scene's first group is, read from its materials: a Lambertian quad of
+/// constant albedo, a light of constant radiance, a glass ball (a static dielectric sphere).
+fn kind_of(scene: &Scene, h: u32) -> [bool; 3] {
+    use rtl_render::ray8::SPHERE;
+    use rtl_render::scene::Object;
+    let group = &scene.groups[0];
+    let material = |m: &rtl_render::ids::MaterialId| &scene.materials[m.index()];
+    if h & SPHERE != 0 {
+        let spheres = group.accel.spheres.as_deref().unwrap_or(&[]);
+        let glass = spheres.get((h & !SPHERE) as usize).is_some_and(|(s, _)| {
+            matches!(material(&s.material), Material::Dielectric { .. }) && !s.is_moving()
+        });
+        return [false, false, glass];
+    }
+    let quad = group
+        .accel
+        .packets
+        .get(h as usize / 4)
+        .map(|p| p.index[h as usize % 4])
+        .and_then(|i| match group.objects.get(i as usize) {
+            Some(Object::Quad(q)) => Some(q),
+            _ => None,
+        });
+    let Some(q) = quad else {
+        return [false; 3];
+    };
+    [
+        matches!(
+            material(&q.material),
+            Material::Lambertian {
+                albedo: Albedo::Constant(_)
+            }
+        ),
+        matches!(
+            material(&q.material),
+            Material::DiffuseLight {
+                emit: Albedo::Constant(_),
+                ..
+            }
+        ),
+        false,
+    ]
+}
+
+/// The lanes of each kind as [`rtl_render::ray8::HitKinds`] sorts them (through `QuadSurfaces` and
+/// `GlassSpheres`), and as the scene's materials say, over `hits`; how many lanes of any kind there
+/// were.
 fn kind_mismatches(scene: &Scene, hits: &[[u32; 8]]) -> (usize, usize) {
     let g = GroupId(0);
     let s = rtl_render::vertex8::QuadSurfaces::new(scene, g).expect("Lambertian quads");
     let glass = rtl_render::glass8::GlassSpheres::new(scene, g).expect("a glass ball");
     let (mut wrong, mut some) = (0, 0);
     for hit in hits {
-        let one_at_a_time =
-            |is: &dyn Fn(u32) -> bool| (0..8).fold(0u8, |m, l| m | (is(hit[l]) as u8) << l);
-        let pairs = [
-            (s.lambertian_lanes(hit), one_at_a_time(&|h| s.lambertian(h))),
-            (s.light_lanes(hit), one_at_a_time(&|h| s.light(h).is_some())),
-            (
-                glass.glass_lanes(hit),
-                one_at_a_time(&|h| glass.is_glass(h)),
-            ),
+        let got = [
+            s.lambertian_lanes(hit),
+            s.light_lanes(hit),
+            glass.glass_lanes(hit),
         ];
-        for (got, want) in pairs {
+        for (k, got) in got.into_iter().enumerate() {
+            let want = (0..8).fold(0u8, |m, l| m | (kind_of(scene, hit[l])[k] as u8) << l);
             wrong += (got != want) as usize;
             some += want.count_ones() as usize;
+        }
+        // the one-lane forms, and the light's record where the bits say a light
+        for &h in hit {
+            let [lambertian, light, is_glass] = kind_of(scene, h);
+            wrong += (s.lambertian(h) != lambertian) as usize;
+            wrong += (s.light(h).is_some() != light) as usize;
+            wrong += (glass.is_glass(h) != is_glass) as usize;
         }
     }
     (wrong, some)
