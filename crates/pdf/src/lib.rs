@@ -52,7 +52,7 @@ pub use pdf::{CosinePdf, DirectionSample, HemispherePdf, Pdf, SpherePdf};
 pub use rtl_sampling::ONE_MINUS_EPSILON;
 pub use selection::{Choice, Selection, SelectionError, choose_uniform};
 pub use target::{
-    EDGE_ROUNDING, MAX_EDGE_SLACK, MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE,
+    EDGE_ROUNDING, MAX_EDGE_SLACK, MAX_SPHERICAL_RECTANGLE_SOLID_ANGLE, MIN_CONE_SIN2,
     MIN_SPHERICAL_RECTANGLE_SOLID_ANGLE, QuadSampling, QuadTarget, ShapeSampler, SphereTarget,
     SphereView,
 };

@@ -64,10 +64,20 @@ pub struct SphereTarget {
     radius: f64,
 }
 
+/// The narrowest cone a [`SphereTarget`] is sampled in: `sin^2 theta_max = 2^-64`, an angular
+/// radius of `2^-32` (2.3e-10 rad). Unit vectors in `f64` lie about 1e-16 apart, so a direction
+/// drawn in a cone of angular radius `theta` rounds to one outside it, where `pdf` is 0, about
+/// `3.5e-17 / theta` of the time: 1.5e-7 at this floor, and always below 1e-16 rad. A sphere
+/// narrower than this counts as too small to see, as one whose density overflows: no sample and
+/// density 0. Its share of the light arriving at a point is at most `pi 2^-64` sr (1.7e-19) times
+/// its radiance.
+pub const MIN_CONE_SIN2: f64 = 1.0 / (1u128 << 64) as f64;
+
 /// What a sphere looks like from a point: a cone (axis, `1 - cos theta_max`), or all around.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SphereView {
-    /// The point is outside: the sphere fills the cone about the unit `axis` with this `1 - cos theta_max`.
+    /// The point is outside: the sphere fills the cone about the unit `axis` with this `1 - cos
+    /// theta_max`, which is 0 for a sphere too small to see (below [`MIN_CONE_SIN2`]).
     Cone { axis: DVec3, one_minus_cos_max: f64 },
     /// The point is inside or on the sphere: every direction meets it; sampled uniformly.
     Surrounding,
@@ -104,7 +114,18 @@ impl SphereTarget {
         }
         SphereView::Cone {
             axis: to_center / d2.sqrt(),
-            one_minus_cos_max: warp::cone_one_minus_cos(r2 / d2),
+            one_minus_cos_max: Self::cone(r2 / d2),
+        }
+    }
+
+    /// `1 - cos theta_max` for `sin^2 theta_max`, or 0 (too small to see) below the directions'
+    /// resolution, [`MIN_CONE_SIN2`].
+    #[inline]
+    fn cone(sin2_theta_max: f64) -> f64 {
+        if sin2_theta_max >= MIN_CONE_SIN2 {
+            warp::cone_one_minus_cos(sin2_theta_max)
+        } else {
+            0.0
         }
     }
 
@@ -136,8 +157,9 @@ impl SphereTarget {
 
 // ANCHOR: sphere_target
 impl ShapeSampler for SphereTarget {
-    /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside (and 0 where that
-    /// density is not a finite number: a sphere too small to see, which `sample` never draws).
+    /// Uniform in the cone: `1 / (2 pi (1 - cos theta_max))` inside it, 0 outside (and 0 for a
+    /// sphere too small to see, which `sample` never draws: narrower than [`MIN_CONE_SIN2`], or so
+    /// small that the density is not a finite number).
     /// "Inside the cone" is the same as "the ray hits the sphere": the ray points towards the centre
     /// `c` and passes within `r` of it, `|(c - o) x d|^2 <= r^2` (a cross product, so no cancellation
     /// near the axis, and no square root or division before a hit). From inside the sphere:
@@ -151,9 +173,9 @@ impl ShapeSampler for SphereTarget {
         if to_center.dot(direction) <= 0.0 || to_center.cross(direction).length_squared() > r2 {
             return 0.0;
         }
-        let pdf = warp::uniform_cone_pdf(warp::cone_one_minus_cos(r2 / d2));
-        // a sphere too small to see (1 - cos theta_max underflowed to 0, or so small that its
-        // density overflows) is never sampled, so never hit: `sample` gives `None` there
+        let pdf = warp::uniform_cone_pdf(Self::cone(r2 / d2));
+        // a sphere too small to see (narrower than the directions' resolution, or so small that
+        // its density overflows) is never sampled, so never hit: `sample` gives `None` there
         if positive_finite(pdf) { pdf } else { 0.0 }
     }
 

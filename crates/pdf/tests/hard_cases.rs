@@ -7,8 +7,8 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rtl_pdf::chi2::{ChiSquareTest, ParallelogramDomain};
 use rtl_pdf::warp;
 use rtl_pdf::{
-    CosinePdf, HemispherePdf, HittablePdf, MixtureError, MixturePdf, Onb, Pdf, QuadTarget,
-    Selection, SelectionError, ShapeSampler, SpherePdf, SphereTarget, SphereView,
+    CosinePdf, HemispherePdf, HittablePdf, MIN_CONE_SIN2, MixtureError, MixturePdf, Onb, Pdf,
+    QuadTarget, Selection, SelectionError, ShapeSampler, SpherePdf, SphereTarget, SphereView,
 };
 use std::f64::consts::{PI, TAU};
 
@@ -278,6 +278,7 @@ fn sphere_light_beyond_the_squares_of_f64_is_the_scaled_cone() {
 
 /// A sphere so small that its density overflows (radius 1e-160 seen from 1): `sample` gives no
 /// direction, so `pdf` must be 0 for every direction, also straight at its centre (it was `inf`).
+/// (Below the floor of [`sphere_light_at_the_resolution_of_directions`] too, which says no first.)
 #[test]
 fn sphere_light_too_small_to_weigh_has_pdf_zero_where_it_gives_no_sample() {
     for r in [1e-160, 1e-170, 0.0] {
@@ -293,10 +294,37 @@ fn sphere_light_too_small_to_weigh_has_pdf_zero_where_it_gives_no_sample() {
         assert_eq!(h.pdf(DVec3::Z), 0.0);
         assert!(h.sample(DVec2::ZERO).is_none());
     }
-    // still seen (and weighed) where the density fits: radius 1e-153 from 1, density 3e305
-    let s = SphereTarget::new(DVec3::Z, 1e-153);
-    let sample = s.sample(DVec3::ZERO, DVec2::splat(0.5)).unwrap();
-    assert_eq!(s.pdf(DVec3::ZERO, DVec3::Z), sample.pdf);
+}
+
+/// The floor of the cones sampled, `MIN_CONE_SIN2` (`sin theta_max = 2^-32`): a sphere just wider
+/// is sampled, and its samples lie in their cone (rounded directions fall outside about
+/// `3.5e-17 / theta` of the time, 1.5e-7 here); one just narrower gives no sample and density 0
+/// (it gave samples its own density called misses: every one of them below about 1e-17 rad). At
+/// every scale of the scene, as the floor is a ratio.
+#[test]
+fn sphere_light_at_the_resolution_of_directions() {
+    assert_eq!(MIN_CONE_SIN2, 2f64.powi(-64));
+    let axis = DVec3::new(0.48, 0.6, -0.64);
+    for scale in [1.0, 1e-150, 1e12, 1e160] {
+        let o = DVec3::new(0.3, -0.2, 0.1) * scale;
+        let c = o + axis * 3.0 * scale;
+        let (wider, narrower) = (2f64.powf(-31.9), 2f64.powf(-32.1));
+        let s = SphereTarget::new(c, 3.0 * scale * wider);
+        let mut r = rng(104);
+        for _ in 0..10_000 {
+            let d = s.sample(o, DVec2::new(r.random(), r.random())).unwrap();
+            assert_eq!(s.pdf(o, d.direction), d.pdf, "scale {scale:e}");
+        }
+        let s = SphereTarget::new(c, 3.0 * scale * narrower);
+        for u in [
+            DVec2::ZERO,
+            DVec2::splat(0.5),
+            DVec2::splat(1.0 - f64::EPSILON / 2.0),
+        ] {
+            assert!(s.sample(o, u).is_none(), "scale {scale:e}");
+        }
+        assert_eq!(s.pdf(o, axis), 0.0, "scale {scale:e}");
+    }
 }
 
 // ---------------------------------------------------------------- quad light

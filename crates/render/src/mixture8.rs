@@ -235,7 +235,10 @@ pub(crate) mod wide {
                         r2 = r2.select(scaled, r * r);
                     }
                     let surrounding = d2.le(r2) | d2.eq(zero) | d2.is_nan();
-                    let omc = cone_one_minus_cos(r2 / d2);
+                    // (0 below the directions' resolution, as SphereTarget::view)
+                    let s2 = r2 / d2;
+                    let omc = cone_one_minus_cos(s2)
+                        .zero_unless(s2.ge(o.splat_like(rtl_pdf::MIN_CONE_SIN2)));
                     View8::Sphere {
                         to_center,
                         d2,
@@ -321,7 +324,8 @@ pub(crate) mod wide {
                     let c = cross(to_center, direction);
                     let missed = dot(to_center, direction).le(zero) | dot(c, c).gt(r2);
                     // (0 where the cone's density is not a finite number, as SphereTarget::pdf:
-                    // where 1 - cos theta_max is 0, and where it is so small the density overflows)
+                    // where 1 - cos theta_max is 0, below the directions' resolution or by
+                    // underflow, and where it is so small the density overflows)
                     let cone = cone_pdf.zero_unless(cone_pdf.positive_finite() & !missed);
                     cone.select(
                         surrounding,
@@ -783,21 +787,23 @@ pub(crate) mod wide {
 
         /// A sphere beyond the squares of f64 (1e200 away: `d^2` overflows) and one too small
         /// for `r^2` to be a normal number: the lanes rescale as `SphereTarget` does, and give its
-        /// density and samples to the bit, finite and positive towards the sphere.
+        /// density and samples to the bit, finite and positive towards a sphere wide enough to see
+        /// (`seen`: above `MIN_CONE_SIN2`), none and 0 towards one too narrow.
         #[test]
         fn a_sphere_beyond_the_squares_in_the_lanes_is_the_scalar_one_bit_for_bit() {
             let spheres = [
-                (DVec3::new(1e200, 3e199, -2e199), 1e198),
-                (DVec3::new(-4e180, 1e160, 7e175), 5e170),
-                (DVec3::new(0.5, -0.25, 2.0), 1e-160),
-                (DVec3::new(1e200, 0.0, 0.0), 1e150),
+                (DVec3::new(1e200, 3e199, -2e199), 1e198, true),
+                (DVec3::new(-4e180, 1e160, 7e175), 5e171, true),
+                (DVec3::new(0.5, -0.25, 2.0), 1e-160, false),
+                (DVec3::new(1e200, 0.0, 0.0), 1e191, true),
+                (DVec3::new(1e200, 0.0, 0.0), 1e150, false),
             ];
             let origins: [DVec3; 8] = std::array::from_fn(|i| {
                 DVec3::new(i as f64 - 3.0, 0.5 * i as f64, -1.0) * [1.0, 1e3, 1e-3, 1e100][i % 4]
             });
             let us: [DVec2; 8] =
                 std::array::from_fn(|i| DVec2::new(EDGE_US[i % 4], EDGE_US[(i / 2) % 4]));
-            for (centre, radius) in spheres {
+            for (centre, radius, seen) in spheres {
                 let target = LightTarget::Sphere(SphereTarget::new(centre, radius));
                 // (c - o scaled before it is normalised: its length overflows)
                 let towards: [DVec3; 8] = std::array::from_fn(|i| {
@@ -811,8 +817,9 @@ pub(crate) mod wide {
                 for i in 0..8 {
                     let p = target.pdf(origins[i], towards[i]);
                     let s = target.sample(origins[i], us[i]);
-                    if radius < 1e-150 {
-                        continue; // (too small to see from some origins)
+                    if !seen {
+                        assert!(p == 0.0 && s.is_none(), "{centre}, radius {radius}");
+                        continue;
                     }
                     assert!(
                         p > 0.0 && p.is_finite(),
