@@ -2,6 +2,7 @@
 //! (inner groups first) and the scene's [`Features`]; what cannot be built is a typed [`SceneError`].
 
 use crate::aabb::Aabb;
+use crate::boundary_pieces::{Piece, PieceKind};
 use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
 use crate::closed_surface::{LooseQuad, OpenQuad, first_open};
@@ -42,6 +43,14 @@ pub enum SceneError {
     InvalidMaterial { index: usize, what: &'static str },
     #[error("an object refers to material {0}, which does not exist")]
     UnknownMaterial(u32),
+}
+
+/// `b` grown to hold the corners of quad `q` placed by `to` (unpadded: the pieces of a boundary are
+/// compared to a tolerance of their own).
+fn corners(q: &Quad, to: Transform, b: Aabb) -> Aabb {
+    [q.q, q.q + q.u, q.q + q.v, q.q + q.u + q.v]
+        .into_iter()
+        .fold(b, |b, c| b.include(to.point(c)))
 }
 
 /// Builds a scene object by object, the way the books' `main` functions do.
@@ -203,6 +212,102 @@ impl SceneBuilder {
         })
     }
 
+    /// The closed pieces group `g` is made of, in `g`'s coordinates
+    /// ([`crate::boundary_pieces`]): each sphere, each box, each group of quads alone that encloses
+    /// a volume by itself, and the rest of the quads together as one surface; other groups and
+    /// instances are looked into. At most [`crate::limits::MAX_EXPANDED_OBJECTS`] objects are
+    /// looked at.
+    pub fn boundary_pieces(&self, g: GroupId) -> Vec<Piece> {
+        let mut out = Vec::new();
+        let mut loose = Aabb::EMPTY;
+        let mut budget = crate::limits::MAX_EXPANDED_OBJECTS as usize;
+        self.pieces_in(g, Transform::IDENTITY, &mut budget, &mut out, &mut loose);
+        if !loose.is_empty() {
+            out.push(Piece {
+                kind: PieceKind::Quads,
+                bounds: loose,
+            });
+        }
+        out
+    }
+
+    fn pieces_in(
+        &self,
+        g: GroupId,
+        to: Transform,
+        budget: &mut usize,
+        out: &mut Vec<Piece>,
+        loose: &mut Aabb,
+    ) {
+        for o in self.objects(g) {
+            if *budget == 0 {
+                return;
+            }
+            *budget -= 1;
+            let (inner, placed) = match o {
+                Object::Sphere(s) if s.is_moving() => {
+                    let r = Vec3::splat(s.radius.abs());
+                    let mut bounds = Aabb::EMPTY;
+                    for c in [s.center_at(0.0), s.center_at(1.0)] {
+                        bounds =
+                            bounds.union(&to.bounds(&Aabb::EMPTY.include(c - r).include(c + r)));
+                    }
+                    out.push(Piece {
+                        kind: PieceKind::MovingSphere,
+                        bounds,
+                    });
+                    continue;
+                }
+                Object::Sphere(s) => {
+                    out.push(Piece::ball(to.point(s.center), s.radius));
+                    continue;
+                }
+                Object::Quad(q) => {
+                    *loose = corners(q, to, *loose);
+                    continue;
+                }
+                Object::Medium(_) => continue,
+                Object::Group(inner) => (*inner, to),
+                Object::Instance { transform, group } => (*group, transform.then(to)),
+            };
+            let quads_alone = self
+                .objects(inner)
+                .iter()
+                .all(|o| matches!(o, Object::Quad(_)));
+            let kind = if self.boxes.contains(&inner.0) {
+                Some(PieceKind::Box)
+            } else if quads_alone && self.open_quad(inner).is_none() {
+                Some(PieceKind::Quads)
+            } else {
+                None
+            };
+            match kind {
+                Some(kind) => {
+                    let mut bounds = Aabb::EMPTY;
+                    for o in self.objects(inner) {
+                        if let Object::Quad(q) = o {
+                            bounds = corners(q, placed, bounds);
+                        }
+                    }
+                    out.push(Piece { kind, bounds });
+                }
+                None => self.pieces_in(inner, placed, budget, out, loose),
+            }
+        }
+    }
+
+    /// Whether group `g` is one convex piece: a sphere, a box, or a group or instance of one alone.
+    /// A ray crosses such a boundary at most twice, so a medium in it has one stretch a ray.
+    pub fn one_convex_piece(&self, g: GroupId) -> bool {
+        match self.objects(g) {
+            [Object::Sphere(_)] => true,
+            [Object::Group(inner)] | [Object::Instance { group: inner, .. }] => {
+                self.boxes.contains(&inner.0) || self.one_convex_piece(*inner)
+            }
+            _ => false,
+        }
+    }
+
     /// The quads of group `g` placed by `to`, but those of boxes and of groups that enclose a volume
     /// by themselves (`closed`: that, per group looked at).
     fn loose_quads(
@@ -306,6 +411,7 @@ impl SceneBuilder {
                 boundary,
                 neg_inv_density: -1.0 / density,
                 phase,
+                convex: false, // (decided when the scene is built, its boundary complete)
             }),
         );
         Ok(())
@@ -423,8 +529,17 @@ impl SceneBuilder {
             }
             let costs: Vec<ItemCost> = objects.iter().map(Object::cost).collect();
             let bvh = Bvh::build_with_costs(&bounds, &costs);
-            let objects_in_order: Vec<Object> =
-                bvh.order.iter().map(|&i| objects[i as usize]).collect();
+            let objects_in_order: Vec<Object> = bvh
+                .order
+                .iter()
+                .map(|&i| match objects[i as usize] {
+                    Object::Medium(m) => Object::Medium(ConstantMedium {
+                        convex: self.one_convex_piece(m.boundary),
+                        ..m
+                    }),
+                    o => o,
+                })
+                .collect();
             let bounds_in_order: Vec<Aabb> =
                 bvh.order.iter().map(|&i| bounds[i as usize]).collect();
             bounds_of[gi] = Some(bvh.bounds());

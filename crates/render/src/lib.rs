@@ -30,6 +30,7 @@
 #![cfg_attr(not(target_arch = "x86_64"), allow(unused_imports, dead_code))]
 
 pub mod aabb;
+pub mod boundary_pieces;
 pub mod builder;
 pub mod bvh;
 pub mod camera;

@@ -22,6 +22,9 @@ pub struct ConstantMedium {
     pub boundary: GroupId,
     pub neg_inv_density: f64,
     pub phase: MaterialId,
+    /// Whether the boundary is one convex piece (a sphere or a box, alone): a ray then crosses it
+    /// at most twice, and has one stretch inside, not a sequence of them.
+    pub convex: bool,
 }
 
 /// Something a ray can hit.

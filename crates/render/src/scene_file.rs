@@ -56,7 +56,8 @@
 //! which must enclose a volume: a sphere, a moving sphere, a box, a group or instance of them, or
 //! quads each of whose edges is an edge of exactly one other quad, as
 //! [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad) decides; an open one is
-//! refused at its `type`, naming its first open quad). Textures: `solid`, `checker`, `marble`,
+//! refused at its `type`, naming its first open quad; so are pieces of it that overlap or touch,
+//! [`crate::boundary_pieces`]). Textures: `solid`, `checker`, `marble`,
 //! `image` (`file`, relative to the scene file). Materials: `lambertian`, `metal`, `dielectric`,
 //! `light`, `isotropic`.
 //!

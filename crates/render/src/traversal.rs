@@ -829,9 +829,14 @@ impl Scene {
 
     /// Book 2's constant medium, made robust: find where the ray enters and leaves the boundary (the
     /// first hit on the whole line, then the next hit beyond it by more than the hit's error bound),
-    /// clip that segment to `range`, and scatter at an exponentially distributed distance if it falls
-    /// inside. A ray that starts inside the medium (its entry lies behind it) travels from its origin.
-    /// The boundary must be closed; a grazing ray whose entry and exit coincide passes through.
+    /// clip that stretch to `range`, and scatter at an exponentially distributed distance if it
+    /// falls inside. A ray that starts inside the medium (its entry lies behind it) travels from its
+    /// origin. The boundary must be closed; a grazing ray whose entry and exit coincide passes
+    /// through. A boundary that is not one convex piece (several balls, an L of quads) may be
+    /// crossed again: past each stretch the ray looks for the next entry, and so on, each stretch
+    /// drawing its own distance (the exponential distribution has no memory, so stretch after
+    /// stretch is the same as one draw over their sum). The pieces must lie apart
+    /// ([`crate::boundary_pieces`]), so that the crossings alternate in and out.
     fn hit_medium(
         &self,
         m: &ConstantMedium,
@@ -841,26 +846,55 @@ impl Scene {
     ) -> Option<Hit> {
         ctx.stats.medium_evaluations += 1;
         let len = ray.direction.length();
-        let (enter, exit) =
-            if let [Object::Sphere(s)] = &self.groups[m.boundary.0 as usize].objects[..] {
-                // A sphere's boundary (book 2's fog and subsurface sphere): both crossings from one
-                // solution of the quadratic, chosen exactly as the two queries below would choose them.
-                let roots = s.roots(ray)?;
-                let enter = Sphere::first_root_in(roots, Interval::UNIVERSE)?;
-                let gap = 8.0 * s.hit_error(ray.time) / len;
-                let exit = Sphere::first_root_in(roots, Interval::new(enter + gap, f64::INFINITY))?;
-                (enter, exit)
-            } else {
-                let enter = self.hit_group(m.boundary, ray, Interval::UNIVERSE, ctx)?;
-                let gap = 8.0 * enter.err / len;
-                let exit = self.hit_group(
-                    m.boundary,
-                    ray,
-                    Interval::new(enter.t + gap, f64::INFINITY),
-                    ctx,
-                )?;
-                (enter.t, exit.t)
-            };
+        if let [Object::Sphere(s)] = &self.groups[m.boundary.0 as usize].objects[..] {
+            // A sphere's boundary (book 2's fog and subsurface sphere): both crossings from one
+            // solution of the quadratic, chosen exactly as the two queries below would choose them.
+            let roots = s.roots(ray)?;
+            let enter = Sphere::first_root_in(roots, Interval::UNIVERSE)?;
+            let gap = 8.0 * s.hit_error(ray.time) / len;
+            let exit = Sphere::first_root_in(roots, Interval::new(enter + gap, f64::INFINITY))?;
+            return self.medium_stretch(m, ray, range, (enter, exit), ctx);
+        }
+        let mut from = f64::NEG_INFINITY;
+        loop {
+            let enter = self.hit_group(m.boundary, ray, Interval::new(from, f64::INFINITY), ctx)?;
+            if enter.t >= range.max {
+                return None;
+            }
+            let gap = 8.0 * enter.err / len;
+            let exit = self.hit_group(
+                m.boundary,
+                ray,
+                Interval::new(enter.t + gap, f64::INFINITY),
+                ctx,
+            )?;
+            if let Some(h) = self.medium_stretch(m, ray, range, (enter.t, exit.t), ctx) {
+                return Some(h);
+            }
+            if m.convex || exit.t >= range.max {
+                return None;
+            }
+            let next = exit.t + 8.0 * exit.err / len;
+            if next.is_nan() || next <= from {
+                return None; // (not a number, or no progress: nothing more to find)
+            }
+            from = next;
+        }
+    }
+
+    /// The medium `m` over the stretch `enter..exit` of `ray` (parameters) clipped to `range` and
+    /// to `t >= 0`: a point where the ray scatters, or `None` if it passes (a shadow ray records the
+    /// stretch for its transmittance instead).
+    #[inline]
+    fn medium_stretch(
+        &self,
+        m: &ConstantMedium,
+        ray: &Ray,
+        range: Interval,
+        (enter, exit): (f64, f64),
+        ctx: &mut Ctx,
+    ) -> Option<Hit> {
+        let len = ray.direction.length();
         let t0 = enter.max(range.min).max(0.0);
         let t1 = exit.min(range.max);
         if t0 >= t1 || t0.is_nan() || t1.is_nan() {

@@ -499,3 +499,97 @@ fn a_sliver_quad_whose_corners_meet_is_no_closed_surface() {
         ],
     );
 }
+
+/// The pieces of a boundary must lie apart: a medium takes the stretches between its boundary's
+/// crossings in pairs, in and out, which is its inside only where the pieces neither overlap nor
+/// touch. Refused at the boundary's `type`, naming both pieces: two balls that overlap, a ball
+/// inside another, a ball that reaches into a box, two boxes face to face, a ball placed by an
+/// instance onto another. Pieces apart load, also where their bounding boxes meet (two balls on a
+/// diagonal, a ball beside a box's corner) and two closed groups of quads apart.
+#[test]
+fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
+    let ball = |c: &str, r: &str| {
+        format!(
+            "[[objects.boundary.objects]]\ntype = \"sphere\"\ncenter = {c}\nradius = {r}\n\
+             material = \"white\"\n"
+        )
+    };
+    let cube = |a: &str, b: &str| {
+        format!(
+            "[[objects.boundary.objects]]\ntype = \"box\"\na = {a}\nb = {b}\nmaterial = \"white\"\n"
+        )
+    };
+    let place = ["some/dir/s.toml:13:8:", "must lie apart"];
+    for (what, objects, words) in [
+        (
+            "two balls that overlap",
+            ball("[0, 0, 0]", "1") + &ball("[1.5, 0, 0]", "1"),
+            &[
+                "the sphere at [0, 0, 0] of radius 1 and the sphere at [1.5, 0, 0] of radius 1",
+                "overlap or touch",
+                "give each a medium of its own",
+            ][..],
+        ),
+        (
+            "a ball inside another",
+            ball("[0, 0, 0]", "3") + &ball("[1, 0, 0]", "0.5"),
+            &["the sphere at [1, 0, 0] of radius 0.5"][..],
+        ),
+        (
+            "two balls that touch",
+            ball("[0, 0, 0]", "1") + &ball("[2, 0, 0]", "1"),
+            &["overlap or touch"][..],
+        ),
+        (
+            "a ball reaching into a box",
+            ball("[0, 0, 0]", "1") + &cube("[0.5, -1, -1]", "[2, 1, 1]"),
+            &[
+                "the box within [0.5, -1, -1] to [2, 1, 1]",
+                "bounding boxes",
+            ][..],
+        ),
+        (
+            "boxes face to face",
+            cube("[0, 0, 0]", "[1, 1, 1]") + &cube("[0, 1, 0]", "[1, 2, 1]"),
+            &["the box within"][..],
+        ),
+        (
+            "a ball placed by a transform onto another",
+            ball("[0, 0, 0]", "1")
+                + &ball("[5, 0, 0]", "1").replace(
+                    "material = \"white\"\n",
+                    "material = \"white\"\ntransform = [{ translate = [-4.5, 0, 0] }]\n",
+                ),
+            &["the sphere at [0.5, 0, 0] of radius 1"][..],
+        ),
+    ] {
+        let text = medium_in_group("", &objects);
+        let err = load(&text)
+            .err()
+            .unwrap_or_else(|| panic!("{what}: accepted"));
+        for w in place.iter().chain(words) {
+            assert!(err.contains(w), "{what}: wanted {w:?} in: {err}");
+        }
+    }
+    let d = 2.0 / 3f64.sqrt() + 1e-3;
+    for (what, objects) in [
+        (
+            "two balls on a diagonal",
+            ball("[0, 0, 0]", "1") + &ball(&format!("[{d}, {d}, {d}]"), "0.999"),
+        ),
+        (
+            "a ball beside a box's corner",
+            ball("[0, 0, 0]", "1") + &cube("[0.6, 0.6, 0.6]", "[2, 2, 2]"),
+        ),
+        (
+            "two boxes apart",
+            cube("[0, 0, 0]", "[1, 1, 1]") + &cube("[0, 1.01, 0]", "[1, 2, 1]"),
+        ),
+        (
+            "a ball and a box apart",
+            ball("[0, 0, 0]", "1") + &cube("[2, 0, 0]", "[3, 1, 1]"),
+        ),
+    ] {
+        load(&medium_in_group("", &objects)).unwrap_or_else(|e| panic!("{what}: {e}"));
+    }
+}

@@ -8,6 +8,7 @@ use super::doc::{
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
 use super::values::{Num, Real, Step};
+use crate::boundary_pieces::{Piece, PieceKind, first_touching};
 use crate::closed_surface::{OpenQuad, OpenSurface};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
@@ -373,6 +374,11 @@ impl Loader<'_> {
         if let Some(open) = self.b.open_quad(bounds) {
             return fail(place, self.open_boundary(open));
         }
+        // Nor do pieces that overlap or touch: the crossings no longer alternate in and out.
+        let pieces = self.b.boundary_pieces(bounds);
+        if let Some((i, j)) = first_touching(&pieces) {
+            return fail(place, touching_pieces(&pieces[i], &pieces[j]));
+        }
         let phase = self.b.material(Material::Isotropic { albedo });
         self.count(p.group, Some(bounds), &span, "this medium")?;
         self.b
@@ -499,6 +505,50 @@ impl Loader<'_> {
             }
         }
     }
+}
+
+/// Why a medium's boundary whose pieces `a` and `b` overlap or touch is refused.
+fn touching_pieces(a: &Piece, b: &Piece) -> String {
+    let name = |p: &Piece| match p.kind {
+        PieceKind::Ball { center, radius } => {
+            format!(
+                "the sphere at {} of radius {}",
+                Num::v3(center),
+                Num(radius)
+            )
+        }
+        PieceKind::MovingSphere => format!(
+            "the moving sphere that sweeps {} to {}",
+            Num::v3(p.bounds.min),
+            Num::v3(p.bounds.max)
+        ),
+        PieceKind::Box => format!(
+            "the box within {} to {}",
+            Num::v3(p.bounds.min),
+            Num::v3(p.bounds.max)
+        ),
+        PieceKind::Quads => format!(
+            "the quads within {} to {}",
+            Num::v3(p.bounds.min),
+            Num::v3(p.bounds.max)
+        ),
+    };
+    let how = if matches!(
+        (a.kind, b.kind),
+        (PieceKind::Ball { .. }, PieceKind::Ball { .. })
+    ) {
+        "overlap or touch"
+    } else {
+        "may overlap or touch (boxes and quads are compared by their bounding boxes)"
+    };
+    format!(
+        "the pieces of a medium's boundary must lie apart, and {} and {} (in the boundary's \
+         coordinates) {how}: a ray's crossings would no longer alternate in and out, and the \
+         medium would be wrong where they meet; move them apart, or give each a medium of its own \
+         (where media overlap, their densities add)",
+        name(a),
+        name(b)
+    )
 }
 
 /// What a medium's boundary may be.

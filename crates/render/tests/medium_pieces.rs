@@ -1,0 +1,117 @@
+//! A medium whose boundary is several closed pieces fills each of them: a ray through a ball and
+//! a box of one black medium keeps `exp(-sigma (l_ball + l_box))` of the light behind them, the
+//! same as through two media, one in each. (The boundary's first two crossings alone, book 2's
+//! way, gave `exp(-sigma l_ball)`: the box behind the ball was empty.) Camera rays by `cosine`
+//! and by `mis` (each sample passes or is absorbed: a Bernoulli variable, whose variance bounds
+//! `mis`'s too; z-tests at a false-failure rate of 1e-6).
+
+use rtl_render::Color;
+use rtl_render::camera::CameraSettings;
+use rtl_render::integrator::{MisOptions, Strategy};
+use rtl_render::material::{Albedo, Material};
+use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, render};
+use rtl_render::scene::{Background, Scene, SceneBuilder};
+use rtl_render::vec::Point3;
+
+
+const WIDTH: usize = 12;
+/// Two-sided z for a false-failure rate of 1e-6.
+const Z: f64 = 4.89;
+/// The chords along the axis: the ball's diameter and the box's depth.
+const BALL: f64 = 2.0;
+const BOX: f64 = 1.8;
+
+/// A ball (radius 1 about `(0, 0, -1.5)`) and a box (`z` from 0.6 to 2.4) on the camera's axis,
+/// black fog of density 1 in both: in one medium whose boundary holds both (`one`), or in a
+/// medium each. White background, a camera 10 away with a 1-degree view, so that every camera
+/// ray crosses the ball along at least 0.998 of its diameter and the box along its depth.
+fn ball_and_box(one: bool) -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let black = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::ZERO),
+    });
+    let ball = b.group();
+    b.sphere(ball, Point3::new(0.0, 0.0, -1.5), 1.0, glass)
+        .unwrap();
+    let cube = b
+        .box_group(
+            Point3::new(-1.0, -1.0, 0.6),
+            Point3::new(1.0, 1.0, 0.6 + BOX),
+            glass,
+        )
+        .unwrap();
+    if one {
+        let both = b.group();
+        b.add_to(both, rtl_render::scene::Object::Group(ball));
+        b.add_to(both, rtl_render::scene::Object::Group(cube));
+        b.medium(w, both, 1.0, black).unwrap();
+    } else {
+        b.medium(w, ball, 1.0, black).unwrap();
+        b.medium(w, cube, 1.0, black).unwrap();
+    }
+    b.camera = CameraSettings {
+        lookfrom: Point3::new(0.0, 0.0, -10.0),
+        lookat: Point3::ZERO,
+        vfov: 1.0,
+        aspect_ratio: 1.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ONE);
+    b.max_depth = 8;
+    b.build().unwrap()
+}
+
+/// The image's mean and the number of samples behind it.
+fn mean(scene: &Scene, strategy: Strategy, spp: u64) -> (f64, f64) {
+    let settings = RenderSettings {
+        width: WIDTH,
+        max_depth: 8,
+        seed: 3,
+        strategy,
+        mixture_weight: BOOK_MIXTURE_WEIGHT,
+    };
+    let (acc, stats) = render(scene, settings, spp);
+    assert_eq!(stats.non_finite, 0);
+    let sum: f64 = acc.sum.iter().map(|c| c.x).sum();
+    let n = acc.count.iter().sum::<u64>() as f64;
+    (sum / n, n)
+}
+
+/// `|mean - want|` in standard deviations of a Bernoulli mean of `n` samples, allowing the spread
+/// of the chords across the view (the ball's at least `0.998 BALL`: 0.4% of `want`).
+fn z(mean: f64, n: f64, want: f64) -> f64 {
+    let sd = (want * (1.0 - want) / n).sqrt();
+    ((mean - want).abs() - 0.004 * want).max(0.0) / sd
+}
+
+#[test]
+fn a_medium_in_a_ball_and_a_box_fills_both() {
+    let want = (-(BALL + BOX)).exp();
+    let wrong = (-BALL).exp();
+    for one in [true, false] {
+        let (m, n) = mean(&ball_and_box(one), Strategy::Cosine, 256);
+        assert!(
+            z(m, n, want) < Z,
+            "one boundary {one}: {m} of {n}, not {want}"
+        );
+        // the check can tell: the first stretch alone is far off
+        assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
+    }
+}
+
+#[test]
+fn mis_through_a_ball_and_a_box_sees_both() {
+    // `mis` (shadow rays that record each stretch crossed, forced scattering where one stretch is)
+    let want = (-(BALL + BOX)).exp();
+    let wrong = (-BALL).exp();
+    for one in [true, false] {
+        let (m, n) = mean(&ball_and_box(one), Strategy::Mis(MisOptions::DEFAULT), 256);
+        assert!(
+            z(m, n, want) < Z,
+            "one boundary {one}: {m} of {n}, not {want}"
+        );
+        assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
+    }
+}
