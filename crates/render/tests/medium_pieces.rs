@@ -13,7 +13,6 @@ use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, render};
 use rtl_render::scene::{Background, Scene, SceneBuilder};
 use rtl_render::vec::Point3;
 
-
 const WIDTH: usize = 12;
 /// Two-sided z for a false-failure rate of 1e-6.
 const Z: f64 = 4.89;
