@@ -2,7 +2,7 @@
 //! (inner groups first) and the scene's [`Features`]; what cannot be built is a typed [`SceneError`].
 
 use crate::aabb::Aabb;
-use crate::boundary_pieces::{Piece, PieceKind};
+use crate::boundary_pieces::{Piece, PieceKind, first_touching};
 use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
 use crate::closed_surface::{LooseQuad, OpenQuad, first_open};
@@ -39,6 +39,12 @@ pub enum SceneError {
     Incomplete(u32),
     #[error("the boundary {0} of a medium is not complete")]
     IncompleteBoundary(u32),
+    #[error(
+        "the boundary (group {boundary}) of a medium has pieces that overlap or touch, within {} to \
+         {} and within {} to {}: a ray's crossings would not alternate in and out",
+        a.min, a.max, b.min, b.max
+    )]
+    TouchingPieces { boundary: u32, a: Aabb, b: Aabb },
     #[error("material {index} is invalid: {what}")]
     InvalidMaterial { index: usize, what: &'static str },
     #[error("an object refers to material {0}, which does not exist")]
@@ -482,6 +488,29 @@ impl SceneBuilder {
         let mut draws_of = vec![false; n];
         let mut flattened_instances = 0;
         let order = self.build_order()?;
+        // Every medium's boundary in pieces that lie apart (the scene file's loader says so first,
+        // at the boundary's place; this is for scenes built in code)
+        let mut boundaries: Vec<u32> = self
+            .groups
+            .iter()
+            .flatten()
+            .filter_map(|o| match o {
+                Object::Medium(m) => Some(m.boundary.0),
+                _ => None,
+            })
+            .collect();
+        boundaries.sort_unstable();
+        boundaries.dedup();
+        for g in boundaries {
+            let pieces = self.boundary_pieces(GroupId(g));
+            if let Some((i, j)) = first_touching(&pieces) {
+                return Err(SceneError::TouchingPieces {
+                    boundary: g,
+                    a: pieces[i].bounds,
+                    b: pieces[j].bounds,
+                });
+            }
+        }
         for &gi in &order {
             // Whether a hit in this group may draw random numbers (a medium, here or nested): its
             // objects are then tested in the tree's order, which the random stream depends on.

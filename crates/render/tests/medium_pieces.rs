@@ -10,7 +10,7 @@ use rtl_render::camera::CameraSettings;
 use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, render};
-use rtl_render::scene::{Background, Scene, SceneBuilder};
+use rtl_render::scene::{Background, Object, Scene, SceneBuilder, SceneError};
 use rtl_render::vec::Point3;
 
 const WIDTH: usize = 12;
@@ -43,8 +43,8 @@ fn ball_and_box(one: bool) -> Scene {
         .unwrap();
     if one {
         let both = b.group();
-        b.add_to(both, rtl_render::scene::Object::Group(ball));
-        b.add_to(both, rtl_render::scene::Object::Group(cube));
+        b.add_to(both, Object::Group(ball));
+        b.add_to(both, Object::Group(cube));
         b.medium(w, both, 1.0, black).unwrap();
     } else {
         b.medium(w, ball, 1.0, black).unwrap();
@@ -113,4 +113,27 @@ fn mis_through_a_ball_and_a_box_sees_both() {
         );
         assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
     }
+}
+
+/// A scene built in code is held to the same rule as a scene file: a medium whose ball reaches
+/// into its box is no scene.
+#[test]
+fn pieces_that_overlap_build_no_scene() {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let fog = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.5)),
+    });
+    let both = b.group();
+    b.sphere(both, Point3::new(0.0, 0.0, 0.3), 1.0, glass)
+        .unwrap();
+    let cube = b
+        .box_group(Point3::new(-1.0, -1.0, 0.6), Point3::ONE, glass)
+        .unwrap();
+    b.add_to(both, Object::Group(cube));
+    b.medium(w, both, 1.0, fog).unwrap();
+    let err = b.build().map(|_| ()).unwrap_err();
+    assert!(matches!(err, SceneError::TouchingPieces { .. }), "{err}");
+    assert!(err.to_string().contains("overlap or touch"), "{err}");
 }
