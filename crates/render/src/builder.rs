@@ -45,6 +45,11 @@ pub enum SceneError {
         a.min, a.max, b.min, b.max
     )]
     TouchingPieces { boundary: u32, a: Aabb, b: Aabb },
+    #[error(
+        "the boundary (group {0}) of a medium holds a medium: a boundary is surfaces alone (each of \
+         its hits is a crossing, and a medium's hits are where it scatters)"
+    )]
+    MediumInBoundary(u32),
     #[error("material {index} is invalid: {what}")]
     InvalidMaterial { index: usize, what: &'static str },
     #[error("an object refers to material {0}, which does not exist")]
@@ -302,6 +307,29 @@ impl SceneBuilder {
         }
     }
 
+    /// Whether group `g` holds a medium, directly or in the groups and instances within it: a
+    /// medium's boundary must not, since its every hit counts as a crossing, and a medium's hits
+    /// are where it scatters.
+    pub fn holds_medium(&self, g: GroupId) -> bool {
+        let mut seen = HashSet::new();
+        let mut todo = vec![g.0];
+        while let Some(g) = todo.pop() {
+            if !seen.insert(g) {
+                continue;
+            }
+            for o in self.groups.get(g as usize).into_iter().flatten() {
+                match o {
+                    Object::Medium(_) => return true,
+                    Object::Group(inner) | Object::Instance { group: inner, .. } => {
+                        todo.push(inner.0)
+                    }
+                    Object::Sphere(_) | Object::Quad(_) => {}
+                }
+            }
+        }
+        false
+    }
+
     /// Whether group `g` is one convex piece: a sphere, a box, or a group or instance of one alone.
     /// A ray crosses such a boundary at most twice, so a medium in it has one stretch a ray.
     pub fn one_convex_piece(&self, g: GroupId) -> bool {
@@ -502,6 +530,9 @@ impl SceneBuilder {
         boundaries.sort_unstable();
         boundaries.dedup();
         for g in boundaries {
+            if self.holds_medium(GroupId(g)) {
+                return Err(SceneError::MediumInBoundary(g));
+            }
             let pieces = self.boundary_pieces(GroupId(g));
             if let Some((i, j)) = first_touching(&pieces) {
                 return Err(SceneError::TouchingPieces {

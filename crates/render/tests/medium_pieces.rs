@@ -137,3 +137,23 @@ fn pieces_that_overlap_build_no_scene() {
     assert!(matches!(err, SceneError::TouchingPieces { .. }), "{err}");
     assert!(err.to_string().contains("overlap or touch"), "{err}");
 }
+
+/// Nor is a medium whose boundary holds a medium (here through a group within it).
+#[test]
+fn a_medium_in_a_boundary_builds_no_scene() {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let fog = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(0.5)),
+    });
+    let (outer, inner, ball) = (b.group(), b.group(), b.group());
+    b.sphere(outer, Point3::ZERO, 1.0, glass).unwrap();
+    b.sphere(ball, Point3::new(0.0, 0.0, 5.0), 1.0, glass)
+        .unwrap();
+    b.medium(inner, ball, 2.0, fog).unwrap();
+    b.add_to(outer, Object::Group(inner));
+    b.medium(w, outer, 1.0, fog).unwrap();
+    let err = b.build().map(|_| ()).unwrap_err();
+    assert_eq!(err, SceneError::MediumInBoundary(outer.0), "{err}");
+}

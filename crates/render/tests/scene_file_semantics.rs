@@ -593,3 +593,21 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
         load(&medium_in_group("", &objects)).unwrap_or_else(|e| panic!("{what}: {e}"));
     }
 }
+
+/// A medium inside another's boundary would make its scattering points the boundary's crossings:
+/// refused at the boundary's `type`.
+#[test]
+fn a_medium_in_a_boundary_is_refused() {
+    let inner = "[[objects.boundary.objects]]\ntype = \"medium\"\ndensity = 2\nalbedo = 0.5\n\
+                 boundary = { type = \"sphere\", center = [0, 0, 5], radius = 1, material = \"white\" }\n";
+    let ball = "[[objects.boundary.objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n\
+                material = \"white\"\n";
+    refused(
+        &medium_in_group("", &format!("{ball}{inner}")),
+        &[
+            "some/dir/s.toml:13:8:",
+            "a medium's boundary is surfaces alone, and this one holds a medium",
+        ],
+    );
+    load(&medium_in_group("", ball)).unwrap();
+}

@@ -374,6 +374,15 @@ impl Loader<'_> {
         if let Some(open) = self.b.open_quad(bounds) {
             return fail(place, self.open_boundary(open));
         }
+        // A medium in the boundary: its scattering points would count as crossings.
+        if self.b.holds_medium(bounds) {
+            return fail(
+                place,
+                "a medium's boundary is surfaces alone, and this one holds a medium (each hit of a \
+                 boundary counts as a crossing, and a medium's hits are where it scatters); place \
+                 that medium in the scene instead",
+            );
+        }
         // Nor do pieces that overlap or touch: the crossings no longer alternate in and out.
         let pieces = self.b.boundary_pieces(bounds);
         if let Some((i, j)) = first_touching(&pieces) {
