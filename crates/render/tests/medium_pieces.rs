@@ -1,4 +1,5 @@
-//! A medium whose boundary is several closed pieces fills each of them: a ray through a ball and
+//! A medium whose boundary is several closed pieces (or one closed surface with a dent: an L of
+//! quads) fills each of them: a ray through a ball and
 //! a box of one black medium keeps `exp(-sigma (l_ball + l_box))` of the light behind them, the
 //! same as through two media, one in each. (The boundary's first two crossings alone, book 2's
 //! way, gave `exp(-sigma l_ball)`: the box behind the ball was empty.) Camera rays by `cosine`
@@ -11,7 +12,7 @@ use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, render};
 use rtl_render::scene::{Background, Object, Scene, SceneBuilder, SceneError};
-use rtl_render::vec::Point3;
+use rtl_render::vec::{Point3, Vec3};
 
 const WIDTH: usize = 12;
 /// Two-sided z for a false-failure rate of 1e-6.
@@ -156,4 +157,66 @@ fn a_medium_in_a_boundary_builds_no_scene() {
     b.medium(w, outer, 1.0, fog).unwrap();
     let err = b.build().map(|_| ()).unwrap_err();
     assert_eq!(err, SceneError::MediumInBoundary(outer.0), "{err}");
+}
+
+/// An L-shaped prism of 14 quads (three unit cells of a 2 x 2 square, `z` from 0 to 1): one closed
+/// surface, not convex. A ray that crosses the cell at `(1, 0)`, the missing cell at `(1, 1)`, then
+/// the cell at `(0, 1)` spends `0.6 sqrt 2` in each arm: `exp(-1.2 sqrt 2)` of the light gets
+/// through, where the first stretch alone let `exp(-0.6 sqrt 2)` through.
+fn l_prism() -> Scene {
+    let mut b = SceneBuilder::new();
+    let w = b.world();
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let black = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::ZERO),
+    });
+    let l = b.group();
+    let (x, y, z) = (Vec3::X, Vec3::Y, Vec3::Z);
+    let cells = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
+    for (cx, cy) in cells {
+        for cz in [0.0, 1.0] {
+            b.quad(l, Point3::new(cx, cy, cz), x, y, glass).unwrap();
+        }
+    }
+    // the eight unit walls around the L: (corner, along)
+    let walls = [
+        (Point3::new(0.0, 0.0, 0.0), x),
+        (Point3::new(1.0, 0.0, 0.0), x),
+        (Point3::new(2.0, 0.0, 0.0), y),
+        (Point3::new(1.0, 1.0, 0.0), x),
+        (Point3::new(1.0, 1.0, 0.0), y),
+        (Point3::new(0.0, 2.0, 0.0), x),
+        (Point3::new(0.0, 0.0, 0.0), y),
+        (Point3::new(0.0, 1.0, 0.0), y),
+    ];
+    for (q, along) in walls {
+        b.quad(l, q, along, z, glass).unwrap();
+    }
+    assert!(b.open_quad(l).is_none(), "the L is closed");
+    b.medium(w, l, 1.0, black).unwrap();
+    // looking along (-1, 1, 0) through (1.9, 0.5, 0.5), from 20 away
+    let d = Vec3::new(-1.0, 1.0, 0.0).normalize();
+    let at = Point3::new(1.9, 0.5, 0.5);
+    b.camera = CameraSettings {
+        lookfrom: at - 20.0 * d,
+        lookat: at,
+        vfov: 0.05,
+        aspect_ratio: 1.0,
+        ..CameraSettings::default()
+    };
+    b.background = Background::Solid(Color::ONE);
+    b.max_depth = 8;
+    b.build().unwrap()
+}
+
+#[test]
+fn a_medium_in_an_l_fills_both_arms() {
+    let want = (-1.2 * 2f64.sqrt()).exp();
+    let wrong = (-0.6 * 2f64.sqrt()).exp();
+    let scene = l_prism();
+    for strategy in [Strategy::Cosine, Strategy::Mis(MisOptions::DEFAULT)] {
+        let (m, n) = mean(&scene, strategy, 256);
+        assert!(z(m, n, want) < Z, "{strategy:?}: {m} of {n}, not {want}");
+        assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
+    }
 }
