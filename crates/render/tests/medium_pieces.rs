@@ -1,10 +1,9 @@
 //! A medium whose boundary is several closed pieces (or one closed surface with a dent: an L of
-//! quads) fills each of them: a ray through a ball and
-//! a box of one black medium keeps `exp(-sigma (l_ball + l_box))` of the light behind them, the
-//! same as through two media, one in each. (The boundary's first two crossings alone, book 2's
-//! way, gave `exp(-sigma l_ball)`: the box behind the ball was empty.) Camera rays by `cosine`
-//! and by `mis` (each sample passes or is absorbed: a Bernoulli variable, whose variance bounds
-//! `mis`'s too; z-tests at a false-failure rate of 1e-6).
+//! quads) fills each of them: a ray through a ball and a box of one black medium keeps `exp(-sigma
+//! (l_ball + l_box))` of the light behind them, the same as through two media, one in each. (The
+//! boundary's first two crossings alone, book 2's way, gave `exp(-sigma l_ball)`: the box behind
+//! the ball was empty.) Camera rays by `cosine` and by `mis` (each sample passes or is absorbed: a
+//! Bernoulli variable, whose variance bounds `mis`'s too; z-tests at a false-failure rate of 1e-6).
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
