@@ -85,33 +85,20 @@ fn z(mean: f64, n: f64, want: f64) -> f64 {
     ((mean - want).abs() - 0.004 * want).max(0.0) / sd
 }
 
+/// By `cosine` (book 2's distance sampling) and by `mis` (shadow rays that record each stretch
+/// crossed, forced scattering where there is one), one boundary or two.
 #[test]
 fn a_medium_in_a_ball_and_a_box_fills_both() {
     let want = (-(BALL + BOX)).exp();
     let wrong = (-BALL).exp();
-    for one in [true, false] {
-        let (m, n) = mean(&ball_and_box(one), Strategy::Cosine, 256);
-        assert!(
-            z(m, n, want) < Z,
-            "one boundary {one}: {m} of {n}, not {want}"
-        );
-        // the check can tell: the first stretch alone is far off
-        assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
-    }
-}
-
-#[test]
-fn mis_through_a_ball_and_a_box_sees_both() {
-    // `mis` (shadow rays that record each stretch crossed, forced scattering where one stretch is)
-    let want = (-(BALL + BOX)).exp();
-    let wrong = (-BALL).exp();
-    for one in [true, false] {
-        let (m, n) = mean(&ball_and_box(one), Strategy::Mis(MisOptions::DEFAULT), 256);
-        assert!(
-            z(m, n, want) < Z,
-            "one boundary {one}: {m} of {n}, not {want}"
-        );
-        assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
+    for strategy in [Strategy::Cosine, Strategy::Mis(MisOptions::DEFAULT)] {
+        for one in [true, false] {
+            let (m, n) = mean(&ball_and_box(one), strategy, 256);
+            let what = format!("{strategy:?}, one boundary {one}");
+            assert!(z(m, n, want) < Z, "{what}: {m} of {n}, not {want}");
+            // the check can tell: the first stretch alone is far off
+            assert!(z(m, n, wrong) > Z, "{what}: {m} is also {wrong}");
+        }
     }
 }
 
