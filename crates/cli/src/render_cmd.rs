@@ -254,7 +254,15 @@ fn explain(
         "  participating media : {}",
         yes_no(
             f.media > 0,
-            &format!("({} constant media)", f.media),
+            &if f.media_in_pieces == 0 {
+                format!("({} constant media)", f.media)
+            } else {
+                format!(
+                    "({} constant media; {} of them in several pieces or not convex: every \
+                     stretch a ray crosses is taken, at two more traversals a stretch)",
+                    f.media, f.media_in_pieces
+                )
+            },
             "(no media: nothing tested or sampled for them)"
         )
     );

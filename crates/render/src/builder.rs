@@ -333,6 +333,9 @@ impl SceneBuilder {
     /// Whether group `g` is one convex piece: a sphere, a box, or a group or instance of one alone.
     /// A ray crosses such a boundary at most twice, so a medium in it has one stretch a ray.
     pub fn one_convex_piece(&self, g: GroupId) -> bool {
+        if self.boxes.contains(&g.0) {
+            return true;
+        }
         match self.objects(g) {
             [Object::Sphere(_)] => true,
             [Object::Group(inner)] | [Object::Instance { group: inner, .. }] => {
@@ -660,8 +663,9 @@ impl SceneBuilder {
                     }
                     Object::Quad(q) => Some(q.material),
                     Object::Instance { .. } | Object::Group(_) => None,
-                    Object::Medium(_) => {
+                    Object::Medium(m) => {
                         features.media += 1;
+                        features.media_in_pieces += !m.convex as usize;
                         None
                     }
                 };

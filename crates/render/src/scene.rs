@@ -109,6 +109,9 @@ pub struct Features {
     pub motion: bool,
     /// Number of constant media.
     pub media: usize,
+    /// How many of them have a boundary that is not one convex piece (several pieces, or a closed
+    /// surface with a dent): a ray may cross it more than twice, and each stretch inside is taken.
+    pub media_in_pieces: usize,
     /// Number of textures that are not a plain colour.
     pub textures: usize,
     /// Number of emitting objects (primitives with a light material, instanced copies counted once).

@@ -91,6 +91,9 @@ fn z(mean: f64, n: f64, want: f64) -> f64 {
 fn a_medium_in_a_ball_and_a_box_fills_both() {
     let want = (-(BALL + BOX)).exp();
     let wrong = (-BALL).exp();
+    // (what --explain reports: the one medium of the two pieces, none of the two media)
+    assert_eq!(ball_and_box(true).features.media_in_pieces, 1);
+    assert_eq!(ball_and_box(false).features.media_in_pieces, 0);
     for strategy in [Strategy::Cosine, Strategy::Mis(MisOptions::DEFAULT)] {
         for one in [true, false] {
             let (m, n) = mean(&ball_and_box(one), strategy, 256);
@@ -200,6 +203,7 @@ fn a_medium_in_an_l_fills_both_arms() {
     let want = (-1.2 * 2f64.sqrt()).exp();
     let wrong = (-0.6 * 2f64.sqrt()).exp();
     let scene = l_prism();
+    assert_eq!(scene.features.media_in_pieces, 1);
     for strategy in [Strategy::Cosine, Strategy::Mis(MisOptions::DEFAULT)] {
         let (m, n) = mean(&scene, strategy, 256);
         assert!(z(m, n, want) < Z, "{strategy:?}: {m} of {n}, not {want}");
