@@ -5,7 +5,7 @@ use crate::aabb::Aabb;
 use crate::boundary_pieces::{Piece, PieceKind, first_touching};
 use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
-use crate::closed_surface::{LooseQuad, OpenQuad, first_open};
+use crate::closed_surface::{LooseQuad, OpenQuad, closed_components, first_open};
 use crate::flatten::flatten_instances_marked;
 use crate::ids::{GroupId, MaterialId, TextureId};
 use crate::material::{Albedo, Material};
@@ -224,21 +224,35 @@ impl SceneBuilder {
     }
 
     /// The closed pieces group `g` is made of, in `g`'s coordinates
-    /// ([`crate::boundary_pieces`]): each sphere, each box, each group of quads alone that encloses
-    /// a volume by itself, and the rest of the quads together as one surface; other groups and
-    /// instances are looked into. At most [`crate::limits::MAX_EXPANDED_OBJECTS`] objects are
+    /// ([`crate::boundary_pieces`]): each sphere, each box, and the quads by the closed surfaces
+    /// they form, wherever the groups and instances within `g` place them (joined by shared edges;
+    /// all as one if they do not close). At most [`crate::limits::MAX_EXPANDED_OBJECTS`] objects are
     /// looked at.
     pub fn boundary_pieces(&self, g: GroupId) -> Vec<Piece> {
         let mut out = Vec::new();
-        let mut loose = Aabb::EMPTY;
+        let (mut loose, mut bounds) = (Vec::new(), Vec::new());
         let mut budget = crate::limits::MAX_EXPANDED_OBJECTS as usize;
-        self.pieces_in(g, Transform::IDENTITY, &mut budget, &mut out, &mut loose);
-        if !loose.is_empty() {
-            out.push(Piece {
-                kind: PieceKind::Quads,
-                bounds: loose,
-            });
+        self.pieces_in(
+            g,
+            Transform::IDENTITY,
+            &mut budget,
+            &mut out,
+            &mut (&mut loose, &mut bounds),
+        );
+        if loose.is_empty() {
+            return out;
         }
+        // the loose quads by the closed surfaces they form (all as one if they do not close)
+        let component = closed_components(&loose).unwrap_or_else(|| vec![0; loose.len()]);
+        let n = component.iter().max().map_or(0, |&c| c + 1);
+        let mut each = vec![Aabb::EMPTY; n];
+        for (&c, b) in component.iter().zip(&bounds) {
+            each[c] = each[c].union(b);
+        }
+        out.extend(each.into_iter().map(|bounds| Piece {
+            kind: PieceKind::Quads,
+            bounds,
+        }));
         out
     }
 
@@ -248,9 +262,9 @@ impl SceneBuilder {
         to: Transform,
         budget: &mut usize,
         out: &mut Vec<Piece>,
-        loose: &mut Aabb,
+        loose: &mut (&mut Vec<LooseQuad>, &mut Vec<Aabb>),
     ) {
-        for o in self.objects(g) {
+        for (index, o) in self.objects(g).iter().enumerate() {
             if *budget == 0 {
                 return;
             }
@@ -274,35 +288,27 @@ impl SceneBuilder {
                     continue;
                 }
                 Object::Quad(q) => {
-                    *loose = corners(q, to, *loose);
+                    loose.0.push(LooseQuad::new(q, to, g, index));
+                    loose.1.push(corners(q, to, Aabb::EMPTY));
                     continue;
                 }
                 Object::Medium(_) => continue,
                 Object::Group(inner) => (*inner, to),
                 Object::Instance { transform, group } => (*group, transform.then(to)),
             };
-            let quads_alone = self
-                .objects(inner)
-                .iter()
-                .all(|o| matches!(o, Object::Quad(_)));
-            let kind = if self.boxes.contains(&inner.0) {
-                Some(PieceKind::Box)
-            } else if quads_alone && self.open_quad(inner).is_none() {
-                Some(PieceKind::Quads)
-            } else {
-                None
-            };
-            match kind {
-                Some(kind) => {
-                    let mut bounds = Aabb::EMPTY;
-                    for o in self.objects(inner) {
-                        if let Object::Quad(q) = o {
-                            bounds = corners(q, placed, bounds);
-                        }
+            if self.boxes.contains(&inner.0) {
+                let mut bounds = Aabb::EMPTY;
+                for o in self.objects(inner) {
+                    if let Object::Quad(q) = o {
+                        bounds = corners(q, placed, bounds);
                     }
-                    out.push(Piece { kind, bounds });
                 }
-                None => self.pieces_in(inner, placed, budget, out, loose),
+                out.push(Piece {
+                    kind: PieceKind::Box,
+                    bounds,
+                });
+            } else {
+                self.pieces_in(inner, placed, budget, out, loose);
             }
         }
     }

@@ -123,6 +123,56 @@ pub(crate) fn first_open_counted(
     quads: &[LooseQuad],
     max_lookups: usize,
 ) -> (Option<(usize, OpenSurface)>, usize) {
+    let (open, compared, _) = surface(quads, max_lookups);
+    (open, compared)
+}
+
+/// For quads that close a surface, which closed surface each is part of: the same number for two
+/// quads joined by a chain of shared edges (numbered from 0 in order of first appearance); `None`
+/// if they do not close a surface ([`first_open`]).
+pub(crate) fn closed_components(quads: &[LooseQuad]) -> Option<Vec<usize>> {
+    let (open, _, vertex) = surface(quads, MAX_LOOKUPS);
+    if open.is_some() {
+        return None;
+    }
+    // union-find over the quads, joined at each edge they share
+    let mut parent: Vec<usize> = (0..quads.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut first_at: HashMap<(usize, usize), usize> = HashMap::new();
+    for q in 0..quads.len() {
+        for (a, b) in EDGES {
+            let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
+            let other = *first_at.entry((a.min(b), a.max(b))).or_insert(q);
+            let (r, s) = (root(&mut parent, q), root(&mut parent, other));
+            parent[r] = s;
+        }
+    }
+    let mut number: HashMap<usize, usize> = HashMap::new();
+    Some(
+        (0..quads.len())
+            .map(|q| {
+                let r = root(&mut parent, q);
+                let next = number.len();
+                *number.entry(r).or_insert(next)
+            })
+            .collect(),
+    )
+}
+
+/// The corners at the same edge of a quad, by their index among its four.
+const EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
+
+/// [`first_open_counted`], and each corner's vertex (the first corner found at its place).
+fn surface(
+    quads: &[LooseQuad],
+    max_lookups: usize,
+) -> (Option<(usize, OpenSurface)>, usize, Vec<usize>) {
     // Corners within CLOSE of each other (of the larger scale of their two quads) are one vertex.
     // Quads are taken by their scale's level (the power of two at or above it), largest first; a
     // corner is looked for among the vertices already kept, which are all of its level or a larger
@@ -161,7 +211,11 @@ pub(crate) fn first_open_counted(
             looked += 1;
             if looked > max_lookups {
                 let levels = present.len();
-                return (Some((i / 4, OpenSurface::Unchecked { levels })), compared);
+                return (
+                    Some((i / 4, OpenSurface::Unchecked { levels })),
+                    compared,
+                    vertex,
+                );
             }
             let (reach, cell, at, k) = place_in(l, p);
             // per axis, the neighbouring cells the corner is near (-1, 0 or 1 besides its own)
@@ -213,7 +267,6 @@ pub(crate) fn first_open_counted(
             }
         }
     }
-    const EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
     let edge = |q: usize, (a, b): (usize, usize)| {
         let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
         (a.min(b), a.max(b))
@@ -229,20 +282,24 @@ pub(crate) fn first_open_counted(
         let mut place: [usize; 4] = std::array::from_fn(|c| vertex[4 * q + c]);
         place.sort_unstable();
         if place.windows(2).any(|w| w[0] == w[1]) {
-            return (Some((q, OpenSurface::Sliver)), compared);
+            return (Some((q, OpenSurface::Sliver)), compared, vertex);
         }
         for e in EDGES {
             let others = edges[&edge(q, e)] - 1;
             if others != 1 {
                 let (from, to) = (quad.corners[e.0], quad.corners[e.1]);
-                return (Some((q, OpenSurface::Edge { from, to, others })), compared);
+                return (
+                    Some((q, OpenSurface::Edge { from, to, others })),
+                    compared,
+                    vertex,
+                );
             }
         }
         if *places.entry(place).or_insert(q) != q {
-            return (Some((q, OpenSurface::Coincident)), compared);
+            return (Some((q, OpenSurface::Coincident)), compared, vertex);
         }
     }
-    (None, compared)
+    (None, compared, vertex)
 }
 
 #[cfg(test)]
@@ -330,5 +387,32 @@ mod tests {
         // (the face at x = d has scale d + 1 > 2: a level above the others)
         assert!(level(quads[3].scale) > level(quads[0].scale));
         assert_eq!(first_open(&quads), None);
+    }
+
+    /// Two boxes of six quads apart are two closed surfaces, numbered in order; one box is one;
+    /// quads that leave a gap are none.
+    #[test]
+    fn closed_surfaces_are_told_apart_by_shared_edges() {
+        let (x, y, z) = (Vec3::X, Vec3::Y, Vec3::Z);
+        let cube = |o: Point3, k: usize| {
+            [
+                loose(o, x, y, k),
+                loose(o + z, x, y, k + 1),
+                loose(o, y, z, k + 2),
+                loose(o + x, y, z, k + 3),
+                loose(o, x, z, k + 4),
+                loose(o + y, x, z, k + 5),
+            ]
+        };
+        let one = cube(Point3::ZERO, 0);
+        assert_eq!(closed_components(&one), Some(vec![0; 6]));
+        let two: Vec<LooseQuad> = cube(Point3::new(3.0, 0.0, 0.0), 0)
+            .into_iter()
+            .chain(cube(Point3::ZERO, 6))
+            .collect();
+        let mut want = vec![0; 6];
+        want.extend([1; 6]);
+        assert_eq!(closed_components(&two), Some(want));
+        assert_eq!(closed_components(&one[1..]), None);
     }
 }

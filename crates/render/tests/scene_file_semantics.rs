@@ -611,3 +611,21 @@ fn a_medium_in_a_boundary_is_refused() {
     );
     load(&medium_in_group("", ball)).unwrap();
 }
+
+/// Quads written one by one are sorted into the closed surfaces they form (joined by shared
+/// edges), each a piece: two hand-made cubes that cross each other are refused, two apart load.
+#[test]
+fn closed_surfaces_of_loose_quads_are_pieces_of_their_own() {
+    let cube = |lo: [&str; 3], hi: [&str; 3]| box_faces(lo, hi, ["1", "1", "1"], 0);
+    let crossing = cube(["0", "0", "0"], ["1", "1", "1"])
+        + &cube(["0.5", "0.5", "0.5"], ["1.5", "1.5", "1.5"]);
+    refused(
+        &medium_in_group("", &crossing),
+        &[
+            "some/dir/s.toml:13:8:",
+            "the quads within [0, 0, 0] to [1, 1, 1] and the quads within [0.5, 0.5, 0.5] to [1.5, 1.5, 1.5]",
+        ],
+    );
+    let apart = cube(["0", "0", "0"], ["1", "1", "1"]) + &cube(["2", "0", "0"], ["3", "1", "1"]);
+    load(&medium_in_group("", &apart)).unwrap();
+}
