@@ -7,6 +7,7 @@
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
+use rtl_render::ids::MaterialId;
 use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, render};
@@ -20,6 +21,16 @@ const Z: f64 = 4.89;
 const BALL: f64 = 2.0;
 const BOX: f64 = 1.8;
 
+/// A glass material for the boundaries' surfaces (what the media ignore) and an isotropic phase
+/// function of this albedo for the media.
+fn glass_and_fog(b: &mut SceneBuilder, albedo: f64) -> (MaterialId, MaterialId) {
+    let glass = b.material(Material::Dielectric { ior: 1.5 });
+    let fog = b.material(Material::Isotropic {
+        albedo: Albedo::Constant(Color::splat(albedo)),
+    });
+    (glass, fog)
+}
+
 /// A ball (radius 1 about `(0, 0, -1.5)`) and a box (`z` from 0.6 to 2.4) on the camera's axis,
 /// black fog of density 1 in both: in one medium whose boundary holds both (`one`), or in a
 /// medium each. White background, a camera 10 away with a 1-degree view, so that every camera
@@ -27,10 +38,7 @@ const BOX: f64 = 1.8;
 fn ball_and_box(one: bool) -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
-    let glass = b.material(Material::Dielectric { ior: 1.5 });
-    let black = b.material(Material::Isotropic {
-        albedo: Albedo::Constant(Color::ZERO),
-    });
+    let (glass, black) = glass_and_fog(&mut b, 0.0);
     let ball = b.group();
     b.sphere(ball, Point3::new(0.0, 0.0, -1.5), 1.0, glass)
         .unwrap();
@@ -111,10 +119,7 @@ fn a_medium_in_a_ball_and_a_box_fills_both() {
 fn pieces_that_overlap_build_no_scene() {
     let mut b = SceneBuilder::new();
     let w = b.world();
-    let glass = b.material(Material::Dielectric { ior: 1.5 });
-    let fog = b.material(Material::Isotropic {
-        albedo: Albedo::Constant(Color::splat(0.5)),
-    });
+    let (glass, fog) = glass_and_fog(&mut b, 0.5);
     let both = b.group();
     b.sphere(both, Point3::new(0.0, 0.0, 0.3), 1.0, glass)
         .unwrap();
@@ -133,10 +138,7 @@ fn pieces_that_overlap_build_no_scene() {
 fn a_medium_in_a_boundary_builds_no_scene() {
     let mut b = SceneBuilder::new();
     let w = b.world();
-    let glass = b.material(Material::Dielectric { ior: 1.5 });
-    let fog = b.material(Material::Isotropic {
-        albedo: Albedo::Constant(Color::splat(0.5)),
-    });
+    let (glass, fog) = glass_and_fog(&mut b, 0.5);
     let (outer, inner, ball) = (b.group(), b.group(), b.group());
     b.sphere(outer, Point3::ZERO, 1.0, glass).unwrap();
     b.sphere(ball, Point3::new(0.0, 0.0, 5.0), 1.0, glass)
@@ -155,10 +157,7 @@ fn a_medium_in_a_boundary_builds_no_scene() {
 fn l_prism() -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
-    let glass = b.material(Material::Dielectric { ior: 1.5 });
-    let black = b.material(Material::Isotropic {
-        albedo: Albedo::Constant(Color::ZERO),
-    });
+    let (glass, black) = glass_and_fog(&mut b, 0.0);
     let l = b.group();
     let (x, y, z) = (Vec3::X, Vec3::Y, Vec3::Z);
     let cells = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)];
