@@ -58,10 +58,16 @@ fn ball_and_box(one: bool) -> Scene {
         b.medium(w, ball, 1.0, black).unwrap();
         b.medium(w, cube, 1.0, black).unwrap();
     }
+    seen_against_white(b, Point3::new(0.0, 0.0, -10.0), Point3::ZERO, 1.0)
+}
+
+/// The scene of `b`, seen from `lookfrom` towards `lookat` through a square view `vfov` degrees
+/// high, against a white background.
+fn seen_against_white(mut b: SceneBuilder, lookfrom: Point3, lookat: Point3, vfov: f64) -> Scene {
     b.camera = CameraSettings {
-        lookfrom: Point3::new(0.0, 0.0, -10.0),
-        lookat: Point3::ZERO,
-        vfov: 1.0,
+        lookfrom,
+        lookat,
+        vfov,
         aspect_ratio: 1.0,
         ..CameraSettings::default()
     };
@@ -185,16 +191,7 @@ fn l_prism() -> Scene {
     // looking along (-1, 1, 0) through (1.9, 0.5, 0.5), from 20 away
     let d = Vec3::new(-1.0, 1.0, 0.0).normalize();
     let at = Point3::new(1.9, 0.5, 0.5);
-    b.camera = CameraSettings {
-        lookfrom: at - 20.0 * d,
-        lookat: at,
-        vfov: 0.05,
-        aspect_ratio: 1.0,
-        ..CameraSettings::default()
-    };
-    b.background = Background::Solid(Color::ONE);
-    b.max_depth = 8;
-    b.build().unwrap()
+    seen_against_white(b, at - 20.0 * d, at, 0.05)
 }
 
 #[test]
