@@ -56,14 +56,6 @@ pub enum SceneError {
     UnknownMaterial(u32),
 }
 
-/// `b` grown to hold the corners of quad `q` placed by `to` (unpadded: the pieces of a boundary are
-/// compared to a tolerance of their own).
-fn corners(q: &Quad, to: Transform, b: Aabb) -> Aabb {
-    [q.q, q.q + q.u, q.q + q.v, q.q + q.u + q.v]
-        .into_iter()
-        .fold(b, |b, c| b.include(to.point(c)))
-}
-
 /// Builds a scene object by object, the way the books' `main` functions do.
 #[derive(Debug)]
 pub struct SceneBuilder {
@@ -230,15 +222,9 @@ impl SceneBuilder {
     /// looked at.
     pub fn boundary_pieces(&self, g: GroupId) -> Vec<Piece> {
         let mut out = Vec::new();
-        let (mut loose, mut bounds) = (Vec::new(), Vec::new());
+        let mut loose = Vec::new();
         let mut budget = crate::limits::MAX_EXPANDED_OBJECTS as usize;
-        self.pieces_in(
-            g,
-            Transform::IDENTITY,
-            &mut budget,
-            &mut out,
-            &mut (&mut loose, &mut bounds),
-        );
+        self.pieces_in(g, Transform::IDENTITY, &mut budget, &mut out, &mut loose);
         if loose.is_empty() {
             return out;
         }
@@ -246,8 +232,8 @@ impl SceneBuilder {
         let component = closed_components(&loose).unwrap_or_else(|| vec![0; loose.len()]);
         let n = component.iter().max().map_or(0, |&c| c + 1);
         let mut each = vec![Aabb::EMPTY; n];
-        for (&c, b) in component.iter().zip(&bounds) {
-            each[c] = each[c].union(b);
+        for (&c, q) in component.iter().zip(&loose) {
+            each[c] = each[c].union(&q.bounds());
         }
         out.extend(each.into_iter().map(|bounds| Piece {
             kind: PieceKind::Quads,
@@ -262,7 +248,7 @@ impl SceneBuilder {
         to: Transform,
         budget: &mut usize,
         out: &mut Vec<Piece>,
-        loose: &mut (&mut Vec<LooseQuad>, &mut Vec<Aabb>),
+        loose: &mut Vec<LooseQuad>,
     ) {
         for (index, o) in self.objects(g).iter().enumerate() {
             if *budget == 0 {
@@ -288,8 +274,7 @@ impl SceneBuilder {
                     continue;
                 }
                 Object::Quad(q) => {
-                    loose.0.push(LooseQuad::new(q, to, g, index));
-                    loose.1.push(corners(q, to, Aabb::EMPTY));
+                    loose.push(LooseQuad::new(q, to, g, index));
                     continue;
                 }
                 Object::Medium(_) => continue,
@@ -298,9 +283,9 @@ impl SceneBuilder {
             };
             if self.boxes.contains(&inner.0) {
                 let mut bounds = Aabb::EMPTY;
-                for o in self.objects(inner) {
+                for (k, o) in self.objects(inner).iter().enumerate() {
                     if let Object::Quad(q) = o {
-                        bounds = corners(q, placed, bounds);
+                        bounds = bounds.union(&LooseQuad::new(q, placed, inner, k).bounds());
                     }
                 }
                 out.push(Piece {
@@ -345,7 +330,7 @@ impl SceneBuilder {
         match self.objects(g) {
             [Object::Sphere(_)] => true,
             [Object::Group(inner)] | [Object::Instance { group: inner, .. }] => {
-                self.boxes.contains(&inner.0) || self.one_convex_piece(*inner)
+                self.one_convex_piece(*inner)
             }
             _ => false,
         }

@@ -4,6 +4,7 @@
 //! gathers a boundary's quads where its instances put them (boxes and groups that close by
 //! themselves left out) and asks `first_open`.
 
+use crate::aabb::Aabb;
 use crate::ids::GroupId;
 use crate::shapes::Quad;
 use crate::transform::Transform;
@@ -83,6 +84,11 @@ impl LooseQuad {
             group,
             index,
         }
+    }
+
+    /// The box of its placed corners (unpadded).
+    pub(crate) fn bounds(&self) -> Aabb {
+        self.corners.iter().fold(Aabb::EMPTY, |b, &c| b.include(c))
     }
 }
 

@@ -548,7 +548,7 @@ fn touching_pieces(a: &Piece, b: &Piece) -> String {
     ) {
         "overlap or touch"
     } else {
-        "may overlap or touch (boxes and quads are compared by their bounding boxes)"
+        "may overlap or touch (boxes, quads and moving spheres are compared by their bounding boxes)"
     };
     format!(
         "the pieces of a medium's boundary must lie apart, and {} and {} (in the boundary's \
