@@ -12,12 +12,17 @@
 //! ([`first_touching`]); each piece can be a medium of its own instead (where media overlap,
 //! their densities add).
 //!
-//! Balls are compared exactly (`|c1 - c2| > r1 + r2`); a box (turned, it is compared by its
-//! bounding box), a moving sphere (the box it sweeps) and a surface of quads are compared by
-//! their bounding boxes, which may refuse pieces that are apart but close: the message says so.
+//! Balls and boxes, turned or not, are compared exactly: two balls by their centres' distance
+//! (`|c1 - c2| > r1 + r2`), a ball and a box by the distance from the centre to the box, two boxes
+//! by the separating axis theorem (two convex solids are apart exactly where their projections onto
+//! some line are; for two boxes one of fifteen lines will do, the six faces' normals and the nine
+//! cross products of an edge of each, Gottschalk, Lin and Manocha's OBBTree, 1996). A moving
+//! sphere (by the box it sweeps) and a surface of quads are compared by their bounding boxes,
+//! which may refuse pieces that are apart but close: the message says so.
 
 use crate::aabb::Aabb;
-use crate::vec::Point3;
+use crate::vec::{Point3, Vec3};
+use glam::DMat3;
 
 /// How close two pieces may come, relative to their coordinates' magnitude, and still be apart:
 /// far above the rounding of a crossing (a few ulps), far below any gap a scene means.
@@ -34,8 +39,13 @@ pub enum PieceKind {
     Ball { center: Point3, radius: f64 },
     /// A moving sphere, by the box it sweeps.
     MovingSphere,
-    /// A box (six quads), by its bounding box.
-    Box,
+    /// A box (six quads) as it is placed: its centre, its edges' unit directions (the columns of
+    /// `axes`, a rotation) and half its size along each. Compared exactly.
+    Box {
+        center: Point3,
+        axes: DMat3,
+        half: Vec3,
+    },
     /// A closed surface of loose quads, by its bounding box.
     Quads,
 }
@@ -60,6 +70,41 @@ impl Piece {
         }
     }
 
+    /// The box from `lo` to `hi` (its own coordinates) placed by `rotation` then `translation`.
+    pub fn placed_box(lo: Point3, hi: Point3, rotation: DMat3, translation: Vec3) -> Piece {
+        let (center, half) = ((lo + hi) * 0.5, (hi - lo).abs() * 0.5);
+        let mut bounds = Aabb::EMPTY;
+        for i in 0..8 {
+            let c = Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            bounds = bounds.include(rotation * c + translation);
+        }
+        Piece {
+            kind: PieceKind::Box {
+                center: rotation * center + translation,
+                axes: rotation,
+                half,
+            },
+            bounds,
+        }
+    }
+
+    /// The piece as a box (centre, axes, half sizes): a box as it is, anything else but a ball by
+    /// its bounding box.
+    fn solid(&self) -> (Point3, DMat3, Vec3) {
+        match self.kind {
+            PieceKind::Box { center, axes, half } => (center, axes, half),
+            _ => (
+                (self.bounds.min + self.bounds.max) * 0.5,
+                DMat3::IDENTITY,
+                (self.bounds.max - self.bounds.min) * 0.5,
+            ),
+        }
+    }
+
     /// The largest magnitude of the piece's coordinates (the scale of [`TOUCH`]).
     fn magnitude(&self) -> f64 {
         self.bounds
@@ -71,7 +116,7 @@ impl Piece {
 
     /// Whether the two pieces lie more than [`TOUCH`] of their magnitude apart: balls by their
     /// centres' distance, a ball and a box by the distance from the centre to the box, boxes by a
-    /// gap along some axis.
+    /// gap along one of fifteen axes.
     pub fn apart(&self, other: &Piece) -> bool {
         let tol = TOUCH * self.magnitude().max(other.magnitude());
         match (self.kind, other.kind) {
@@ -86,22 +131,43 @@ impl Piece {
                 },
             ) => (a - b).length() > ra + rb + tol,
             (PieceKind::Ball { center, radius }, _) => {
-                distance_to_box(center, &other.bounds) > radius + tol
+                distance_to_box(center, other.solid()) > radius + tol
             }
             (_, PieceKind::Ball { center, radius }) => {
-                distance_to_box(center, &self.bounds) > radius + tol
+                distance_to_box(center, self.solid()) > radius + tol
             }
-            _ => {
-                let (a, b) = (&self.bounds, &other.bounds);
-                (0..3).any(|k| a.max[k] + tol < b.min[k] || b.max[k] + tol < a.min[k])
-            }
+            _ => boxes_apart(self.solid(), other.solid(), tol),
         }
     }
 }
 
-/// The Euclidean distance from `p` to the box `b` (0 inside it).
-fn distance_to_box(p: Point3, b: &Aabb) -> f64 {
-    (b.min - p).max(p - b.max).max(Point3::ZERO).length()
+/// The Euclidean distance from `p` to the box of centre `c`, unit edge directions `axes` (a
+/// rotation's columns) and half sizes `half` (0 inside it): in the box's own frame, the length of
+/// how far each coordinate lies beyond the box's half size.
+fn distance_to_box(p: Point3, (c, axes, half): (Point3, DMat3, Vec3)) -> f64 {
+    let local = axes.transpose() * (p - c);
+    (local.abs() - half).max(Vec3::ZERO).length()
+}
+
+/// Whether two boxes (centre, unit edge directions, half sizes) have projections more than `tol`
+/// apart on some line: one of the six faces' normals or the nine cross products of an edge of
+/// each (the separating axis theorem). Cross products of edges within 1e-6 of parallel are skipped:
+/// where edges are parallel, the faces' normals already hold every separating direction needed.
+fn boxes_apart(a: (Point3, DMat3, Vec3), b: (Point3, DMat3, Vec3), tol: f64) -> bool {
+    let ((ca, ra, ha), (cb, rb, hb)) = (a, b);
+    let d = cb - ca;
+    // the gap between the two projections on the unit line `n`
+    let gap = |n: Vec3| {
+        let reach = |r: &DMat3, h: Vec3| (0..3).map(|i| h[i] * r.col(i).dot(n).abs()).sum::<f64>();
+        d.dot(n).abs() - reach(&ra, ha) - reach(&rb, hb)
+    };
+    let faces = (0..3).flat_map(|i| [ra.col(i), rb.col(i)]);
+    let edges = (0..9).filter_map(|k| {
+        let n = ra.col(k / 3).cross(rb.col(k % 3));
+        let len = n.length();
+        (len > 1e-6).then(|| n / len)
+    });
+    faces.chain(edges).any(|n| gap(n) > tol)
 }
 
 /// The first pair of `pieces` (by their order along x) that overlap or touch ([`Piece::apart`]),
@@ -132,6 +198,7 @@ pub fn first_touching(pieces: &[Piece]) -> Option<(usize, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     fn solid(kind: PieceKind, a: [f64; 3], b: [f64; 3]) -> Piece {
         Piece {
@@ -140,6 +207,17 @@ mod tests {
                 .include(Point3::from(a))
                 .include(Point3::from(b)),
         }
+    }
+
+    /// The box from `a` to `b`, not turned.
+    fn cube(a: [f64; 3], b: [f64; 3]) -> Piece {
+        Piece::placed_box(a.into(), b.into(), DMat3::IDENTITY, Vec3::ZERO)
+    }
+
+    /// The box of half sizes `half` turned by `r` and centred at `c`.
+    fn turned(half: [f64; 3], r: DMat3, c: Vec3) -> Piece {
+        let h = Vec3::from(half);
+        Piece::placed_box(-h, h, r, c)
     }
 
     #[test]
@@ -159,22 +237,122 @@ mod tests {
     #[test]
     fn a_ball_and_a_box_by_the_distance_to_the_box() {
         let a = Piece::ball(Point3::ZERO, 1.0);
-        let corner = solid(PieceKind::Box, [0.6, 0.6, 0.6], [2.0, 2.0, 2.0]);
+        let corner = cube([0.6, 0.6, 0.6], [2.0, 2.0, 2.0]);
         // the box's corner lies 0.6 sqrt 3 = 1.04 from the centre: apart, though the boxes meet
         assert!(a.apart(&corner) && corner.apart(&a));
-        let face = solid(PieceKind::Box, [0.99, -5.0, -5.0], [2.0, 5.0, 5.0]);
+        let face = cube([0.99, -5.0, -5.0], [2.0, 5.0, 5.0]);
         assert!(!a.apart(&face) && !face.apart(&a));
         let around = solid(PieceKind::Quads, [-3.0; 3], [3.0; 3]);
         assert!(!a.apart(&around));
+        // a unit cube turned 45 degrees about y, a face towards the ball along the diagonal of x
+        // and z: the face lies 2.1 - 0.5 = 1.6 from the centre, the corner of its bounding box
+        // 2.1 - 1 = 1.1
+        let diagonal = Vec3::new(1.0, 0.0, 1.0).normalize();
+        let diamond = turned([0.5; 3], DMat3::from_rotation_y(0.25 * PI), diagonal * 2.1);
+        let ball = |r: f64| Piece::ball(Point3::ZERO, r);
+        assert!(!ball(1.5).apart(&solid(
+            PieceKind::Quads,
+            diamond.bounds.min.into(),
+            diamond.bounds.max.into()
+        )));
+        assert!(ball(1.5).apart(&diamond) && diamond.apart(&ball(1.5)));
+        assert!(!ball(1.65).apart(&diamond) && !diamond.apart(&ball(1.65)));
     }
 
     #[test]
     fn boxes_by_a_gap_along_some_axis() {
-        let a = solid(PieceKind::Box, [0.0; 3], [1.0; 3]);
-        assert!(a.apart(&solid(PieceKind::Box, [0.0, 1.001, 0.0], [1.0, 2.0, 1.0])));
+        let a = cube([0.0; 3], [1.0; 3]);
+        assert!(a.apart(&cube([0.0, 1.001, 0.0], [1.0, 2.0, 1.0])));
         // face to face: the shared face would be crossed twice at one place
-        assert!(!a.apart(&solid(PieceKind::Box, [0.0, 1.0, 0.0], [1.0, 2.0, 1.0])));
+        assert!(!a.apart(&cube([0.0, 1.0, 0.0], [1.0, 2.0, 1.0])));
         assert!(!a.apart(&solid(PieceKind::MovingSphere, [0.5; 3], [4.0; 3])));
+        // a box turned 45 degrees about z off the cube's edge at x = y = 1, a face towards it,
+        // `t` from the edge to the box's centre: 0.01 apart at t = 0.51, though their bounding
+        // boxes overlap; touching at 0.5; overlapping at 0.49
+        let diagonal = Vec3::new(1.0, 1.0, 0.0).normalize();
+        for (t, apart) in [(0.51, true), (0.5, false), (0.49, false)] {
+            let c = Vec3::new(1.0, 1.0, 0.5) + diagonal * t;
+            let diamond = turned([0.5; 3], DMat3::from_rotation_z(0.25 * PI), c);
+            assert!(diamond.bounds.min.x < 1.0 && diamond.bounds.min.y < 1.0);
+            assert_eq!(a.apart(&diamond), apart, "t {t}");
+            assert_eq!(diamond.apart(&a), apart, "t {t}");
+        }
+    }
+
+    /// Two boxes, one with an edge along z turned towards +x, the other with an edge along y
+    /// turned towards -x: only the cross product of the two edges (the x axis) separates them; a
+    /// test of the six faces' normals alone would call them touching.
+    #[test]
+    fn boxes_apart_by_the_cross_product_of_two_edges() {
+        let s = 2f64.sqrt();
+        let a = turned([1.0; 3], DMat3::from_rotation_z(0.25 * PI), Vec3::ZERO);
+        let b = |x: f64| turned([1.0; 3], DMat3::from_rotation_y(0.25 * PI), Vec3::X * x);
+        assert!(a.apart(&b(2.0 * s + 0.01)));
+        assert!(!a.apart(&b(2.0 * s - 0.01)));
+        let (ca, ra, ha) = a.solid();
+        let (cb, rb, hb) = b(2.0 * s + 0.01).solid();
+        let d = cb - ca;
+        let faces_only = (0..3).flat_map(|i| [ra.col(i), rb.col(i)]).any(|n| {
+            let reach =
+                |r: DMat3, h: Vec3| (0..3).map(|i| h[i] * r.col(i).dot(n).abs()).sum::<f64>();
+            d.dot(n).abs() - reach(ra, ha) - reach(rb, hb) > 0.0
+        });
+        assert!(
+            !faces_only,
+            "the faces' normals alone separate them: not the case this tests"
+        );
+    }
+
+    /// Random turned boxes placed against each other with a corner of one on a face of the
+    /// other: touching (not apart), and 1e-6 beyond the face along its normal, with the corner
+    /// that reaches furthest against it: apart. A test that took turned boxes for their bounding
+    /// boxes fails the second half; one that skipped an axis or took a box's half size for its
+    /// whole the first.
+    #[test]
+    fn random_boxes_touching_and_just_apart() {
+        let mut state = 0x5eed_u64;
+        let mut next = move || {
+            // SplitMix64
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let rotation = |next: &mut dyn FnMut() -> f64| {
+            let q = glam::DQuat::from_xyzw(next() - 0.5, next() - 0.5, next() - 0.5, next() - 0.5);
+            DMat3::from_quat(q.normalize())
+        };
+        for _ in 0..2000 {
+            let ha = Vec3::new(0.1 + next(), 0.1 + next(), 0.1 + next());
+            let hb = Vec3::new(0.1 + next(), 0.1 + next(), 0.1 + next());
+            let (ra, rb) = (rotation(&mut next), rotation(&mut next));
+            let ca = Vec3::new(next(), next(), next()) * 4.0 - 2.0;
+            let a = turned(ha.into(), ra, ca);
+            // a point on one of a's faces (axis k, side s) and that face's outward normal
+            let (k, s) = (
+                (next() * 3.0) as usize % 3,
+                if next() < 0.5 { -1.0 } else { 1.0 },
+            );
+            let mut local = Vec3::new(next(), next(), next()) * 2.0 - 1.0;
+            local[k] = s;
+            let p = ca + ra * (local * ha);
+            let n = ra.col(k) * s;
+            // b's corner furthest along -n, put at p and then 1e-6 beyond it
+            let sign = |x: f64| if x < 0.0 { 1.0 } else { -1.0 };
+            let corner = Vec3::new(
+                sign(rb.col(0).dot(n)),
+                sign(rb.col(1).dot(n)),
+                sign(rb.col(2).dot(n)),
+            ) * hb;
+            let at = |q: Vec3| turned(hb.into(), rb, q - rb * corner);
+            assert!(!a.apart(&at(p)) && !at(p).apart(&a), "a corner on a face");
+            let beyond = at(p + n * 1e-6);
+            assert!(
+                a.apart(&beyond) && beyond.apart(&a),
+                "a corner 1e-6 beyond a face"
+            );
+        }
     }
 
     #[test]

@@ -282,16 +282,19 @@ impl SceneBuilder {
                 Object::Instance { transform, group } => (*group, transform.then(to)),
             };
             if self.boxes.contains(&inner.0) {
-                let mut bounds = Aabb::EMPTY;
+                // the box in its own coordinates (its quads' corners), then placed
+                let mut own = Aabb::EMPTY;
                 for (k, o) in self.objects(inner).iter().enumerate() {
                     if let Object::Quad(q) = o {
-                        bounds = bounds.union(&LooseQuad::new(q, placed, inner, k).bounds());
+                        own = own.union(&LooseQuad::new(q, Transform::IDENTITY, inner, k).bounds());
                     }
                 }
-                out.push(Piece {
-                    kind: PieceKind::Box,
-                    bounds,
-                });
+                out.push(Piece::placed_box(
+                    own.min,
+                    own.max,
+                    placed.rotation,
+                    placed.translation,
+                ));
             } else {
                 self.pieces_in(inner, placed, budget, out, loose);
             }

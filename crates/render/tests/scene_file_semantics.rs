@@ -519,6 +519,18 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
             "[[objects.boundary.objects]]\ntype = \"box\"\na = {a}\nb = {b}\nmaterial = \"white\"\n"
         )
     };
+    // a unit cube turned 45 degrees about y and moved to `at`, a face towards the origin when `at`
+    // is on the diagonal of x and z
+    let turned = |at: &str| {
+        cube("[-0.5, -0.5, -0.5]", "[0.5, 0.5, 0.5]").replace(
+            "material = \"white\"\n",
+            &format!(
+                "material = \"white\"\ntransform = [{{ rotate_y = 45 }}, {{ translate = {at} }}]\n"
+            ),
+        )
+    };
+    // 2.1 along that diagonal: the face 1.6 from the origin, the corner of its bounding box 1.1
+    let diagonal = 2.1 / 2f64.sqrt();
     let place = ["some/dir/s.toml:13:8:", "must lie apart"];
     for (what, objects, words) in [
         (
@@ -545,7 +557,25 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
             ball("[0, 0, 0]", "1") + &cube("[0.5, -1, -1]", "[2, 1, 1]"),
             &[
                 "the box within [0.5, -1, -1] to [2, 1, 1]",
-                "bounding boxes",
+                "overlap or touch",
+            ][..],
+        ),
+        (
+            "a turned box reaching into a ball",
+            ball("[0, 0, 0]", "1.65") + &turned(&format!("[{diagonal}, 0, {diagonal}]")),
+            &[
+                "the sphere at [0, 0, 0] of radius 1.65",
+                "the turned box of size [1, 1, 1] centred at [1.48",
+                "overlap or touch",
+            ][..],
+        ),
+        (
+            "a ball reaching into a closed surface of quads",
+            ball("[0, 0, 0]", "1")
+                + &box_faces(["0.5", "-1", "-1"], ["2", "1", "1"], ["1.5", "2", "2"], 0),
+            &[
+                "the quads within [0.5, -1, -1] to [2, 1, 1]",
+                "compared by their bounding boxes",
             ][..],
         ),
         (
@@ -588,6 +618,15 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
         (
             "a ball and a box apart",
             ball("[0, 0, 0]", "1") + &cube("[2, 0, 0]", "[3, 1, 1]"),
+        ),
+        (
+            "a turned box beside a ball, within its bounding box's reach",
+            ball("[0, 0, 0]", "1.5") + &turned(&format!("[{diagonal}, 0, {diagonal}]")),
+        ),
+        (
+            "a turned box's face 0.01 from a box's edge, within its bounding box's reach",
+            cube("[-0.5, -0.5, -0.5]", "[0.5, 0.5, 0.5]")
+                + &turned(&format!("[{e}, 0, {e}]", e = 0.5 + 0.51 / 2f64.sqrt())),
         ),
     ] {
         load(&medium_in_group("", &objects)).unwrap_or_else(|e| panic!("{what}: {e}"));

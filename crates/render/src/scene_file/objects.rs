@@ -531,8 +531,15 @@ fn touching_pieces(a: &Piece, b: &Piece) -> String {
             Num::v3(p.bounds.min),
             Num::v3(p.bounds.max)
         ),
-        PieceKind::Box => format!(
+        PieceKind::Box { axes, .. } if axes == glam::DMat3::IDENTITY => format!(
             "the box within {} to {}",
+            Num::v3(p.bounds.min),
+            Num::v3(p.bounds.max)
+        ),
+        PieceKind::Box { center, half, .. } => format!(
+            "the turned box of size {} centred at {} (within {} to {})",
+            Num::v3(half * 2.0),
+            Num::v3(center),
             Num::v3(p.bounds.min),
             Num::v3(p.bounds.max)
         ),
@@ -542,13 +549,11 @@ fn touching_pieces(a: &Piece, b: &Piece) -> String {
             Num::v3(p.bounds.max)
         ),
     };
-    let how = if matches!(
-        (a.kind, b.kind),
-        (PieceKind::Ball { .. }, PieceKind::Ball { .. })
-    ) {
+    let exact = |p: &Piece| matches!(p.kind, PieceKind::Ball { .. } | PieceKind::Box { .. });
+    let how = if exact(a) && exact(b) {
         "overlap or touch"
     } else {
-        "may overlap or touch (boxes, quads and moving spheres are compared by their bounding boxes)"
+        "may overlap or touch (quads and moving spheres are compared by their bounding boxes)"
     };
     format!(
         "the pieces of a medium's boundary must lie apart, and {} and {} (in the boundary's \
