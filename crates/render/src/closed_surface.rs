@@ -40,6 +40,15 @@ pub enum OpenSurface {
         to: Point3,
         others: usize,
     },
+    /// Its edge from `from` to `to`, an edge of no other quad, runs along part of an edge of the
+    /// quad `other` (its group and index) without sharing both corners: a T-junction, where a face
+    /// was split and its neighbour was not. The surface may well be closed, but quads must share
+    /// whole edges to be seen to close it.
+    Junction {
+        from: Point3,
+        to: Point3,
+        other: (GroupId, usize),
+    },
     /// It lies where another quad does: the two enclose no volume.
     Coincident,
     /// Two of its own corners are one corner (within [`CLOSE`]): it is a sliver that encloses
@@ -294,11 +303,15 @@ fn surface(
             let others = edges[&edge(q, e)] - 1;
             if others != 1 {
                 let (from, to) = (quad.corners[e.0], quad.corners[e.1]);
-                return (
-                    Some((q, OpenSurface::Edge { from, to, others })),
-                    compared,
-                    vertex,
-                );
+                let problem = match (others, along(quads, q, from, to)) {
+                    (0, Some(r)) => OpenSurface::Junction {
+                        from,
+                        to,
+                        other: (quads[r].group, quads[r].index),
+                    },
+                    _ => OpenSurface::Edge { from, to, others },
+                };
+                return (Some((q, problem)), compared, vertex);
             }
         }
         if *places.entry(place).or_insert(q) != q {
@@ -306,6 +319,30 @@ fn surface(
         }
     }
     (None, compared, vertex)
+}
+
+/// A quad other than `q` with an edge along part of the segment from `from` to `to` (both its
+/// ends within [`CLOSE`] of the segment's line, overlapping it by more than that): where an open
+/// edge is a T-junction rather than a gap. Looked for once, when a boundary is refused.
+fn along(quads: &[LooseQuad], q: usize, from: Point3, to: Point3) -> Option<usize> {
+    let d = to - from;
+    let len = d.length();
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let dir = d / len;
+    (0..quads.len()).filter(|&r| r != q).find(|&r| {
+        let tol = CLOSE * quads[q].scale.max(quads[r].scale);
+        let c = &quads[r].corners;
+        EDGES.iter().any(|&(a, b)| {
+            let (pa, pb) = (c[a] - from, c[b] - from);
+            let (ta, tb) = (pa.dot(dir), pb.dot(dir));
+            let off = |p: Point3, t: f64| (p - dir * t).length();
+            off(pa, ta) <= tol
+                && off(pb, tb) <= tol
+                && ta.max(tb).min(len) - ta.min(tb).max(0.0) > tol
+        })
+    })
 }
 
 #[cfg(test)]

@@ -651,6 +651,61 @@ fn a_medium_in_a_boundary_is_refused() {
     load(&medium_in_group("", ball)).unwrap();
 }
 
+/// A face split in two beside whole faces closes the volume, but its quads' edges meet the whole
+/// faces' edges along part of their length, not corner to corner (T-junctions): refused with both
+/// quads named and the way to mend it; split the neighbours to match and it loads. A gap of 1e-6
+/// beside such an edge is still a gap.
+#[test]
+fn a_t_junction_in_a_boundary_of_quads_is_named_as_one() {
+    let quad = |q: &str, u: &str, v: &str| {
+        format!(
+            "[[objects.boundary.objects]]\ntype = \"quad\"\nq = {q}\nu = {u}\nv = {v}\nmaterial = \"white\"\n"
+        )
+    };
+    // the unit cube, its face at z = 1 in two halves (at lines 15 and 21), then the other five
+    let halves = quad("[0, 0, 1]", "[0.5, 0, 0]", "[0, 1, 0]")
+        + &quad("[0.5, 0, 1]", "[0.5, 0, 0]", "[0, 1, 0]");
+    let (right, back, left) = (
+        quad("[1, 0, 1]", "[0, 0, -1]", "[0, 1, 0]"),
+        quad("[1, 0, 0]", "[-1, 0, 0]", "[0, 1, 0]"),
+        quad("[0, 0, 0]", "[0, 0, 1]", "[0, 1, 0]"),
+    );
+    let whole = |top: &str, bottom: &str| format!("{right}{back}{left}{top}{bottom}");
+    let (top, bottom) = (
+        quad("[0, 1, 1]", "[1, 0, 0]", "[0, 0, -1]"),
+        quad("[0, 0, 0]", "[1, 0, 0]", "[0, 0, 1]"),
+    );
+    refused(
+        &medium_in_group("", &(halves.clone() + &whole(&top, &bottom))),
+        &[
+            "some/dir/s.toml:13:8:",
+            "the edge of the quad at line 15:1 from [0, 0, 1] to [0.5, 0, 1]",
+            "runs along part of an edge of the quad at line 51:1",
+            "(a T-junction)",
+            "split the quad with the longer edge",
+        ],
+    );
+    // the top, bottom and back split to match: closed, corner to corner
+    let split = |q: [&str; 2], u: &str, v: &str| quad(q[0], u, v) + &quad(q[1], u, v);
+    let top = split(["[0, 1, 1]", "[0.5, 1, 1]"], "[0.5, 0, 0]", "[0, 0, -1]");
+    let bottom = split(["[0, 0, 0]", "[0.5, 0, 0]"], "[0.5, 0, 0]", "[0, 0, 1]");
+    let back = split(["[1, 0, 0]", "[0.5, 0, 0]"], "[-0.5, 0, 0]", "[0, 1, 0]");
+    let whole = |top: &str, bottom: &str| format!("{right}{back}{left}{top}{bottom}");
+    load(&medium_in_group(
+        "",
+        &(halves.clone() + &whole(&top, &bottom)),
+    ))
+    .unwrap();
+    // a half moved 1e-6 off the cube's face: a gap, not a junction
+    let off = halves.replacen("q = [0, 0, 1]", "q = [0, 0, 1.000001]", 1);
+    let text = medium_in_group("", &(off + &whole(&top, &bottom)));
+    let err = load(&text).err().expect("a gap of 1e-6 refused");
+    assert!(
+        err.contains("is an edge of no other quad") && !err.contains("T-junction"),
+        "{err}"
+    );
+}
+
 /// Quads written one by one are sorted into the closed surfaces they form (joined by shared
 /// edges), each a piece: two hand-made cubes that cross each other are refused, two apart load.
 #[test]

@@ -419,6 +419,20 @@ impl Loader<'_> {
                     Num::v3(to)
                 )
             }
+            OpenSurface::Junction { from, to, other } => {
+                let other = match self.quad_spans.get(&(other.0.0, other.1)) {
+                    Some(s) => format!("the quad at {}", self.at(s.start)),
+                    None => "another quad".to_owned(),
+                };
+                format!(
+                    "the edge of {quad} from {} to {} (in the boundary's coordinates) runs along \
+                     part of an edge of {other} without meeting it corner to corner (a T-junction): \
+                     quads are seen to close a surface only where they share whole edges, so split \
+                     the quad with the longer edge where the shorter edges' corners lie",
+                    Num::v3(from),
+                    Num::v3(to)
+                )
+            }
             OpenSurface::Sliver => format!(
                 "two corners of {quad} are one corner (to within a part in 1e9 of its \
                  coordinates): it encloses no volume, and the medium inside it would be invisible"
