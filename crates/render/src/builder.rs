@@ -202,8 +202,8 @@ impl SceneBuilder {
     /// ([`closed_surface`](crate::closed_surface): every edge of each quad an edge of exactly one
     /// other quad, corners equal to within a rounding error, so that a box written out as six
     /// quads, rotated or not, closes; no two quads at the same place). Media in `g` are left out
-    /// (their own boundaries are theirs). An edge that meets another quad's in its middle (a
-    /// T-junction) is not taken for shared.
+    /// (their own boundaries are theirs). An edge along which other quads' corners lie (a
+    /// T-junction) is shared stretch by stretch, each stretch with exactly one other quad.
     pub fn open_quad(&self, g: GroupId) -> Option<OpenQuad> {
         let mut closed = HashMap::new();
         let mut quads = Vec::new();

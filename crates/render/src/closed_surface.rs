@@ -1,7 +1,8 @@
 //! Whether quads close a surface, as a medium's boundary must: every edge of each quad an edge of
 //! exactly one other, corners equal to within a rounding error ([`CLOSE`]), no two quads at one
-//! place. [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)
-//! gathers a boundary's quads where its instances put them (boxes and groups that close by
+//! place. An edge may also be shared stretch by stretch with several quads whose corners lie along
+//! it (T-junctions: a face split in two beside a whole one), each stretch with exactly one.
+//! [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad) gathers a boundary's quads where its instances put them (boxes and groups that close by
 //! themselves left out) and asks `first_open`.
 
 use crate::aabb::Aabb;
@@ -40,10 +41,10 @@ pub enum OpenSurface {
         to: Point3,
         others: usize,
     },
-    /// Its edge from `from` to `to`, an edge of no other quad, runs along part of an edge of the
-    /// quad `other` (its group and index) without sharing both corners: a T-junction, where a face
-    /// was split and its neighbour was not. The surface may well be closed, but quads must share
-    /// whole edges to be seen to close it.
+    /// Its edge (or the stretch of it) from `from` to `to` is an edge of no other quad, and runs
+    /// along part of an edge of the quad `other` (its group and index), yet the edges along that
+    /// line do not pair up stretch by stretch: the surface is open there or overlaps itself. (Edges
+    /// that meet at T-junctions, a face split in two beside a whole one, do pair up.)
     Junction {
         from: Point3,
         to: Point3,
@@ -59,6 +60,10 @@ pub enum OpenSurface {
     /// every level at and above its own). Not known to be open; refused because it could not be
     /// shown closed in reasonable time.
     Unchecked { levels: usize },
+    /// The check gave up at this quad: looking whether `edges` edges that are edges of no other
+    /// quad run along each other's (T-junctions) took more than [`MAX_LOOKUPS`] comparisons. Not
+    /// known to be open; refused because it could not be shown closed in reasonable time.
+    UncheckedJunctions { edges: usize },
 }
 
 /// The most looks at a level's grid ([`OpenSurface::Unchecked`] beyond): a boundary of 2^20 quads
@@ -68,6 +73,7 @@ pub const MAX_LOOKUPS: usize = 1 << 26;
 
 /// A quad placed in the space of the group looked at
 /// ([`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad)).
+#[derive(Clone)]
 pub(crate) struct LooseQuad {
     /// `q`, `q + u`, `q + v`, `q + u + v`.
     corners: [Point3; 4],
@@ -138,7 +144,7 @@ pub(crate) fn first_open_counted(
     quads: &[LooseQuad],
     max_lookups: usize,
 ) -> (Option<(usize, OpenSurface)>, usize) {
-    let (open, compared, _) = surface(quads, max_lookups);
+    let (open, compared, _, _) = surface(quads, max_lookups);
     (open, compared)
 }
 
@@ -146,7 +152,7 @@ pub(crate) fn first_open_counted(
 /// quads joined by a chain of shared edges (numbered from 0 in order of first appearance); `None`
 /// if they do not close a surface ([`first_open`]).
 pub(crate) fn closed_components(quads: &[LooseQuad]) -> Option<Vec<usize>> {
-    let (open, _, vertex) = surface(quads, MAX_LOOKUPS);
+    let (open, _, vertex, split) = surface(quads, MAX_LOOKUPS);
     if open.is_some() {
         return None;
     }
@@ -161,11 +167,17 @@ pub(crate) fn closed_components(quads: &[LooseQuad]) -> Option<Vec<usize>> {
     }
     let mut first_at: HashMap<(usize, usize), usize> = HashMap::new();
     for q in 0..quads.len() {
-        for (a, b) in EDGES {
+        for (k, (a, b)) in EDGES.into_iter().enumerate() {
             let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
-            let other = *first_at.entry((a.min(b), a.max(b))).or_insert(q);
-            let (r, s) = (root(&mut parent, q), root(&mut parent, other));
-            parent[r] = s;
+            let whole = [a, b];
+            let path = split.get(&(q, k)).map_or(&whole[..], |p| &p[..]);
+            for w in path.windows(2) {
+                let other = *first_at
+                    .entry((w[0].min(w[1]), w[0].max(w[1])))
+                    .or_insert(q);
+                let (r, s) = (root(&mut parent, q), root(&mut parent, other));
+                parent[r] = s;
+            }
         }
     }
     let mut number: HashMap<usize, usize> = HashMap::new();
@@ -183,11 +195,15 @@ pub(crate) fn closed_components(quads: &[LooseQuad]) -> Option<Vec<usize>> {
 /// The corners at the same edge of a quad, by their index among its four.
 const EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
 
-/// [`first_open_counted`], and each corner's vertex (the first corner found at its place).
+/// The edges split at T-junctions: `(quad, edge)` to the vertices along it, its ends included.
+type Splits = HashMap<(usize, usize), Vec<usize>>;
+
+/// [`first_open_counted`], each corner's vertex (the first corner found at its place), and the
+/// edges split at T-junctions.
 fn surface(
     quads: &[LooseQuad],
     max_lookups: usize,
-) -> (Option<(usize, OpenSurface)>, usize, Vec<usize>) {
+) -> (Option<(usize, OpenSurface)>, usize, Vec<usize>, Splits) {
     // Corners within CLOSE of each other (of the larger scale of their two quads) are one vertex.
     // Quads are taken by their scale's level (the power of two at or above it), largest first; a
     // corner is looked for among the vertices already kept, which are all of its level or a larger
@@ -230,6 +246,7 @@ fn surface(
                     Some((i / 4, OpenSurface::Unchecked { levels })),
                     compared,
                     vertex,
+                    HashMap::new(),
                 );
             }
             let (reach, cell, at, k) = place_in(l, p);
@@ -293,37 +310,118 @@ fn surface(
             *edges.entry(edge(q, e)).or_default() += 1;
         }
     }
+    // T-junctions: an edge of no other quad may run along the edges of several (a face split in
+    // two beside a whole one). Such an edge is split at the ends of the other lone edges that lie
+    // on it (within CLOSE of it, of its quad's scale), and its pieces are counted in its place:
+    // each must then be an edge of exactly one other quad, as a whole edge must. The ends are
+    // kept sorted along each axis, and an edge looks through those within its reach along the
+    // axis it spans least (an edge along x, those of nearly its y).
+    let key = |a: usize, b: usize| (a.min(b), a.max(b));
+    let lone: Vec<(usize, usize)> = (0..quads.len())
+        .flat_map(|q| (0..4).map(move |k| (q, k)))
+        .filter(|&(q, k)| edges[&edge(q, EDGES[k])] == 1)
+        .collect();
+    let mut ends: Vec<usize> = lone
+        .iter()
+        .flat_map(|&(q, k)| [vertex[4 * q + EDGES[k].0], vertex[4 * q + EDGES[k].1]])
+        .collect();
+    ends.sort_unstable();
+    ends.dedup();
+    let by_axis: [Vec<(f64, usize)>; 3] = std::array::from_fn(|axis| {
+        let mut sorted: Vec<(f64, usize)> = ends.iter().map(|&v| (corner(v)[axis], v)).collect();
+        sorted.sort_by(|x, y| x.0.total_cmp(&y.0));
+        sorted
+    });
+    let mut split: Splits = HashMap::new();
+    for &(q, k) in &lone {
+        let (va, vb) = (vertex[4 * q + EDGES[k].0], vertex[4 * q + EDGES[k].1]);
+        let (a, b) = (corner(va), corner(vb));
+        let len = (b - a).length();
+        if !(len > 0.0 && len.is_finite()) {
+            continue;
+        }
+        let dir = (b - a) / len;
+        let tol = CLOSE * quads[q].scale;
+        let axis = (b - a).abs().min_position();
+        let (lo, hi) = (a[axis].min(b[axis]) - tol, a[axis].max(b[axis]) + tol);
+        let sorted = &by_axis[axis];
+        let first = sorted.partition_point(|&(x, _)| x < lo);
+        let mut on: Vec<(f64, usize)> = Vec::new();
+        for &(x, v) in &sorted[first..] {
+            if x > hi {
+                break;
+            }
+            looked += 1;
+            if looked > max_lookups {
+                let edges = lone.len();
+                return (
+                    Some((q, OpenSurface::UncheckedJunctions { edges })),
+                    compared,
+                    vertex,
+                    split,
+                );
+            }
+            let p = corner(v) - a;
+            let t = p.dot(dir);
+            if v != va && v != vb && t > tol && t < len - tol && (p - dir * t).length() <= tol {
+                on.push((t, v));
+            }
+        }
+        if on.is_empty() {
+            continue;
+        }
+        on.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let path: Vec<usize> = std::iter::once(va)
+            .chain(on.iter().map(|&(_, v)| v))
+            .chain(std::iter::once(vb))
+            .collect();
+        *edges.entry(key(va, vb)).or_default() -= 1;
+        for w in path.windows(2) {
+            *edges.entry(key(w[0], w[1])).or_default() += 1;
+        }
+        split.insert((q, k), path);
+    }
     for (q, quad) in quads.iter().enumerate() {
         let mut place: [usize; 4] = std::array::from_fn(|c| vertex[4 * q + c]);
         place.sort_unstable();
         if place.windows(2).any(|w| w[0] == w[1]) {
-            return (Some((q, OpenSurface::Sliver)), compared, vertex);
+            return (Some((q, OpenSurface::Sliver)), compared, vertex, split);
         }
-        for e in EDGES {
-            let others = edges[&edge(q, e)] - 1;
-            if others != 1 {
-                let (from, to) = (quad.corners[e.0], quad.corners[e.1]);
-                let problem = match (others, along(quads, q, from, to)) {
-                    (0, Some(r)) => OpenSurface::Junction {
-                        from,
-                        to,
-                        other: (quads[r].group, quads[r].index),
-                    },
-                    _ => OpenSurface::Edge { from, to, others },
-                };
-                return (Some((q, problem)), compared, vertex);
+        for (k, e) in EDGES.into_iter().enumerate() {
+            let whole = [vertex[4 * q + e.0], vertex[4 * q + e.1]];
+            let path = split.get(&(q, k)).map_or(&whole[..], |p| &p[..]);
+            // the ends of piece `i` of the edge: the quad's own corners at the edge's ends
+            let end = |i: usize| match i {
+                0 => quad.corners[e.0],
+                i if i + 1 == path.len() => quad.corners[e.1],
+                i => corner(path[i]),
+            };
+            for (i, w) in path.windows(2).enumerate() {
+                let others = edges[&key(w[0], w[1])] - 1;
+                if others != 1 {
+                    let (from, to) = (end(i), end(i + 1));
+                    let problem = match (others, along(quads, q, from, to)) {
+                        (0, Some(r)) => OpenSurface::Junction {
+                            from,
+                            to,
+                            other: (quads[r].group, quads[r].index),
+                        },
+                        _ => OpenSurface::Edge { from, to, others },
+                    };
+                    return (Some((q, problem)), compared, vertex, split);
+                }
             }
         }
         if *places.entry(place).or_insert(q) != q {
-            return (Some((q, OpenSurface::Coincident)), compared, vertex);
+            return (Some((q, OpenSurface::Coincident)), compared, vertex, split);
         }
     }
-    (None, compared, vertex)
+    (None, compared, vertex, split)
 }
 
 /// A quad other than `q` with an edge along part of the segment from `from` to `to` (both its
 /// ends within [`CLOSE`] of the segment's line, overlapping it by more than that): where an open
-/// edge is a T-junction rather than a gap. Looked for once, when a boundary is refused.
+/// edge is a mismatch along a line rather than a gap. Looked for once, when a boundary is refused.
 fn along(quads: &[LooseQuad], q: usize, from: Point3, to: Point3) -> Option<usize> {
     let d = to - from;
     let len = d.length();
@@ -414,6 +512,74 @@ mod tests {
 
     /// Levels do not part corners that are one: a box whose faces have scales a level apart (a
     /// corner at 1, one at 1 + 2^-40) closes, corners that meet across levels found from below.
+    /// The unit cube at `o` turned by `to`, its face at z = 1 in two halves (cut at x = `cut`) and
+    /// its bottom cut at x = 0.4: nine quads with T-junctions along four of its edges.
+    fn split_cube(o: Point3, cut: f64, to: Transform, index: usize) -> Vec<LooseQuad> {
+        let (x, y, z) = (Vec3::X, Vec3::Y, Vec3::Z);
+        let faces = [
+            (Point3::new(0.0, 0.0, 1.0), cut * x, y),
+            (Point3::new(cut, 0.0, 1.0), (1.0 - cut) * x, y),
+            (Point3::new(1.0, 0.0, 1.0), -z, y),
+            (Point3::new(1.0, 0.0, 0.0), -x, y),
+            (Point3::ZERO, z, y),
+            (Point3::new(0.0, 1.0, 1.0), x, -z),
+            (Point3::ZERO, 0.4 * x, z),
+            (Point3::new(0.4, 0.0, 0.0), 0.6 * x, z),
+        ];
+        faces
+            .iter()
+            .enumerate()
+            .map(|(k, &(q, u, v))| {
+                let quad = Quad::new(o + q, u, v, MaterialId(0)).unwrap();
+                LooseQuad::new(&quad, to, GroupId(0), index + k)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn faces_split_beside_whole_ones_close_stretch_by_stretch() {
+        let turn = Transform::rotate_y(15.0).then(Transform::translate(Vec3::new(0.1, 0.7, 3.0)));
+        for to in [Transform::IDENTITY, turn] {
+            for cut in [0.5, 0.4, 1.0 / 3.0] {
+                let one = split_cube(Point3::ZERO, cut, to, 0);
+                assert_eq!(first_open(&one), None, "cut at {cut}");
+                // two of them apart are two closed surfaces
+                let mut two = one.clone();
+                two.extend(split_cube(Point3::new(3.0, 0.0, 0.0), cut, to, 8));
+                let c = closed_components(&two).expect("closed");
+                assert!(c[..8].iter().all(|&k| k == c[0]) && c[8..].iter().all(|&k| k == c[8]));
+                assert_ne!(c[0], c[8]);
+                // without the first half, open along the stretch it covered
+                let open = first_open(&one[1..]);
+                assert!(
+                    matches!(open, Some((_, OpenSurface::Edge { others: 0, .. }))),
+                    "{open:?}"
+                );
+            }
+        }
+    }
+
+    /// Many lone edges along one line (a row of quads apart, each with edges on the line y = 0):
+    /// looking for the corners along each edge stops at the budget, with its own reason.
+    #[test]
+    fn a_search_for_junctions_past_its_budget_gives_up() {
+        let quads: Vec<LooseQuad> = (0..2000)
+            .map(|k| {
+                loose(
+                    Point3::new(k as f64 * 0.25, 0.0, 0.0),
+                    Vec3::X * 0.5,
+                    Vec3::Z,
+                    k,
+                )
+            })
+            .collect();
+        let (open, _) = first_open_counted(&quads, 1 << 16);
+        assert!(
+            matches!(open, Some((_, OpenSurface::UncheckedJunctions { .. }))),
+            "{open:?}"
+        );
+    }
+
     #[test]
     fn corners_of_quads_of_different_levels_meet() {
         let d = 1.0 + 2f64.powi(-40);

@@ -159,8 +159,10 @@ fn a_medium_in_a_boundary_builds_no_scene() {
 /// An L-shaped prism of 14 quads (three unit cells of a 2 x 2 square, `z` from 0 to 1): one closed
 /// surface, not convex. A ray that crosses the cell at `(1, 0)`, the missing cell at `(1, 1)`, then
 /// the cell at `(0, 1)` spends `0.6 sqrt 2` in each arm: `exp(-1.2 sqrt 2)` of the light gets
-/// through, where the first stretch alone let `exp(-0.6 sqrt 2)` through.
-fn l_prism() -> Scene {
+/// through, where the first stretch alone let `exp(-0.6 sqrt 2)` through. With `long_walls` the two
+/// outer walls along x and y are one quad of length 2 each (12 quads), whose edges meet the floor's
+/// and the ceiling's cells midway: T-junctions, closed all the same.
+fn l_prism(long_walls: bool) -> Scene {
     let mut b = SceneBuilder::new();
     let w = b.world();
     let (glass, black) = glass_and_fog(&mut b, 0.0);
@@ -183,8 +185,13 @@ fn l_prism() -> Scene {
         (Point3::new(0.0, 0.0, 0.0), y),
         (Point3::new(0.0, 1.0, 0.0), y),
     ];
-    for (q, along) in walls {
-        b.quad(l, q, along, z, glass).unwrap();
+    for (k, (q, along)) in walls.into_iter().enumerate() {
+        match (long_walls, k) {
+            // the outer walls at y = 0 and at x = 0 as one quad each, from the origin
+            (true, 0 | 6) => b.quad(l, q, 2.0 * along, z, glass).unwrap(),
+            (true, 1 | 7) => continue,
+            _ => b.quad(l, q, along, z, glass).unwrap(),
+        };
     }
     assert!(b.open_quad(l).is_none(), "the L is closed");
     b.medium(w, l, 1.0, black).unwrap();
@@ -198,11 +205,14 @@ fn l_prism() -> Scene {
 fn a_medium_in_an_l_fills_both_arms() {
     let want = (-1.2 * 2f64.sqrt()).exp();
     let wrong = (-0.6 * 2f64.sqrt()).exp();
-    let scene = l_prism();
-    assert_eq!(scene.features.media_in_pieces, 1);
-    for strategy in [Strategy::Cosine, Strategy::Mis(MisOptions::DEFAULT)] {
-        let (m, n) = mean(&scene, strategy, 256);
-        assert!(z(m, n, want) < Z, "{strategy:?}: {m} of {n}, not {want}");
-        assert!(z(m, n, wrong) > Z, "{m} is also {wrong}");
+    for long_walls in [false, true] {
+        let scene = l_prism(long_walls);
+        assert_eq!(scene.features.media_in_pieces, 1);
+        for strategy in [Strategy::Cosine, Strategy::Mis(MisOptions::DEFAULT)] {
+            let (m, n) = mean(&scene, strategy, 256);
+            let what = format!("{strategy:?}, long walls {long_walls}");
+            assert!(z(m, n, want) < Z, "{what}: {m} of {n}, not {want}");
+            assert!(z(m, n, wrong) > Z, "{what}: {m} is also {wrong}");
+        }
     }
 }

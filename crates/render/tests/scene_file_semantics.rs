@@ -651,59 +651,62 @@ fn a_medium_in_a_boundary_is_refused() {
     load(&medium_in_group("", ball)).unwrap();
 }
 
-/// A face split in two beside whole faces closes the volume, but its quads' edges meet the whole
-/// faces' edges along part of their length, not corner to corner (T-junctions): refused with both
-/// quads named and the way to mend it; split the neighbours to match and it loads. A gap of 1e-6
-/// beside such an edge is still a gap.
+/// A face split in two beside whole faces closes the volume: the halves' edges meet the whole
+/// faces' edges along part of their length (T-junctions), and each whole edge is taken in the
+/// pieces the halves' corners cut it into. Loads: the face at z = 1 in halves, the bottom too (cut
+/// at x = 0.4, so that the cuts along their shared edge differ), the bottom's halves joined by the
+/// back face's whole edge. Refused: a half missing (open where it was), two halves that overlap
+/// (three quads meet along the overlap), a half 1e-6 off the face (a gap).
 #[test]
-fn a_t_junction_in_a_boundary_of_quads_is_named_as_one() {
+fn a_face_split_beside_whole_faces_closes_a_boundary() {
     let quad = |q: &str, u: &str, v: &str| {
         format!(
             "[[objects.boundary.objects]]\ntype = \"quad\"\nq = {q}\nu = {u}\nv = {v}\nmaterial = \"white\"\n"
         )
     };
-    // the unit cube, its face at z = 1 in two halves (at lines 15 and 21), then the other five
-    let halves = quad("[0, 0, 1]", "[0.5, 0, 0]", "[0, 1, 0]")
-        + &quad("[0.5, 0, 1]", "[0.5, 0, 0]", "[0, 1, 0]");
-    let (right, back, left) = (
+    let (right, back, left, top) = (
         quad("[1, 0, 1]", "[0, 0, -1]", "[0, 1, 0]"),
         quad("[1, 0, 0]", "[-1, 0, 0]", "[0, 1, 0]"),
         quad("[0, 0, 0]", "[0, 0, 1]", "[0, 1, 0]"),
-    );
-    let whole = |top: &str, bottom: &str| format!("{right}{back}{left}{top}{bottom}");
-    let (top, bottom) = (
         quad("[0, 1, 1]", "[1, 0, 0]", "[0, 0, -1]"),
-        quad("[0, 0, 0]", "[1, 0, 0]", "[0, 0, 1]"),
     );
+    // the face at z = 1 as two quads from x = 0 to `cut` and from `from` to 1
+    let front = |cut: &str, from: &str| {
+        quad("[0, 0, 1]", &format!("[{cut}, 0, 0]"), "[0, 1, 0]")
+            + &quad(
+                &format!("[{from}, 0, 1]"),
+                &format!("[{}, 0, 0]", 1.0 - from.parse::<f64>().unwrap()),
+                "[0, 1, 0]",
+            )
+    };
+    let bottom = quad("[0, 0, 0]", "[0.4, 0, 0]", "[0, 0, 1]")
+        + &quad("[0.4, 0, 0]", "[0.6, 0, 0]", "[0, 0, 1]");
+    let cube =
+        |front: &str| medium_in_group("", &format!("{front}{right}{back}{left}{top}{bottom}"));
+    load(&cube(&front("0.5", "0.5"))).unwrap_or_else(|e| panic!("halves: {e}"));
+    // one half only: the open edge is the kept half's edge at x = 0.5 (line 15 is its quad)
+    let one = quad("[0, 0, 1]", "[0.5, 0, 0]", "[0, 1, 0]");
     refused(
-        &medium_in_group("", &(halves.clone() + &whole(&top, &bottom))),
+        &cube(&one),
         &[
             "some/dir/s.toml:13:8:",
-            "the edge of the quad at line 15:1 from [0, 0, 1] to [0.5, 0, 1]",
-            "runs along part of an edge of the quad at line 51:1",
-            "(a T-junction)",
-            "split the quad with the longer edge",
+            "the edge of the quad at line 15:1 from [0.5, 0, 1] to [0.5, 1, 1]",
+            "is an edge of no other quad",
         ],
     );
-    // the top, bottom and back split to match: closed, corner to corner
-    let split = |q: [&str; 2], u: &str, v: &str| quad(q[0], u, v) + &quad(q[1], u, v);
-    let top = split(["[0, 1, 1]", "[0.5, 1, 1]"], "[0.5, 0, 0]", "[0, 0, -1]");
-    let bottom = split(["[0, 0, 0]", "[0.5, 0, 0]"], "[0.5, 0, 0]", "[0, 0, 1]");
-    let back = split(["[1, 0, 0]", "[0.5, 0, 0]"], "[-0.5, 0, 0]", "[0, 1, 0]");
-    let whole = |top: &str, bottom: &str| format!("{right}{back}{left}{top}{bottom}");
-    load(&medium_in_group(
-        "",
-        &(halves.clone() + &whole(&top, &bottom)),
-    ))
-    .unwrap();
-    // a half moved 1e-6 off the cube's face: a gap, not a junction
-    let off = halves.replacen("q = [0, 0, 1]", "q = [0, 0, 1.000001]", 1);
-    let text = medium_in_group("", &(off + &whole(&top, &bottom)));
-    let err = load(&text).err().expect("a gap of 1e-6 refused");
-    assert!(
-        err.contains("is an edge of no other quad") && !err.contains("T-junction"),
-        "{err}"
+    // (the second half's edge along the bottom is the bottom's second half's, corner to corner;
+    // the first half's stretch from 0.4 to 0.6 along it is left over)
+    refused(
+        &cube(&front("0.6", "0.4")),
+        &[
+            "the edge of the quad at line 15:1 from [0.4, 0, 1] to [0.6, 0, 1]",
+            "runs along part of an edge of the quad at line 21:1",
+            "do not pair up",
+            "open there or overlaps itself",
+        ],
     );
+    let off = front("0.5", "0.5").replacen("q = [0, 0, 1]", "q = [0, 0, 1.000001]", 1);
+    refused(&cube(&off), &["is an edge of no other quad"]);
 }
 
 /// Quads written one by one are sorted into the closed surfaces they form (joined by shared

@@ -426,9 +426,10 @@ impl Loader<'_> {
                 };
                 format!(
                     "the edge of {quad} from {} to {} (in the boundary's coordinates) runs along \
-                     part of an edge of {other} without meeting it corner to corner (a T-junction): \
-                     quads are seen to close a surface only where they share whole edges, so split \
-                     the quad with the longer edge where the shorter edges' corners lie",
+                     part of an edge of {other}, but the quads' edges along that line do not pair \
+                     up (each stretch of an edge must be an edge of exactly one other quad, where \
+                     edges meet corner to corner or one runs along part of another): the surface \
+                     is open there or overlaps itself",
                     Num::v3(from),
                     Num::v3(to)
                 )
@@ -441,6 +442,12 @@ impl Loader<'_> {
                 "its quads come in {levels} scales (powers of two apart), and finding which of their \
                  corners meet would take more than {} looks (stopped at {quad}): a medium's boundary \
                  needs far fewer kinds of quad",
+                crate::closed_surface::MAX_LOOKUPS
+            ),
+            OpenSurface::UncheckedJunctions { edges } => format!(
+                "{edges} edges of its quads are edges of no other quad, and finding which run along \
+                 which (T-junctions) would take more than {} comparisons (stopped at {quad}): make \
+                 the boundary's quads meet corner to corner",
                 crate::closed_surface::MAX_LOOKUPS
             ),
             OpenSurface::Coincident => format!(
