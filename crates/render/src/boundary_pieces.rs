@@ -12,13 +12,15 @@
 //! ([`first_touching`]); each piece can be a medium of its own instead (where media overlap,
 //! their densities add).
 //!
-//! Balls and boxes, turned or not, are compared exactly: two balls by their centres' distance
-//! (`|c1 - c2| > r1 + r2`), a ball and a box by the distance from the centre to the box, two boxes
-//! by the separating axis theorem (two convex solids are apart exactly where their projections onto
-//! some line are; for two boxes one of fifteen lines will do, the six faces' normals and the nine
-//! cross products of an edge of each, Gottschalk, Lin and Manocha's OBBTree, 1996). A moving
-//! sphere (by the box it sweeps) and a surface of quads are compared by their bounding boxes,
-//! which may refuse pieces that are apart but close: the message says so.
+//! Balls, moving spheres and boxes, turned or not, are compared exactly: two balls by their
+//! centres' distance (`|c1 - c2| > r1 + r2`), a ball and a box by the distance from the centre to
+//! the box, a moving sphere by the least such distance over its shutter's times (against a ball,
+//! the distance from a point to a segment; against another moving sphere, the least distance of
+//! the two centres at one time), two boxes by the separating axis theorem (two convex solids are
+//! apart exactly where their projections onto some line are; for two boxes one of fifteen lines
+//! will do, the six faces' normals and the nine cross products of an edge of each, Gottschalk, Lin
+//! and Manocha's OBBTree, 1996). A surface of quads is compared by its bounding box, which may
+//! refuse pieces that are apart but close: the message says so.
 
 use crate::aabb::Aabb;
 use crate::vec::{Point3, Vec3};
@@ -37,8 +39,13 @@ pub const MAX_PAIRS: usize = 10_000_000;
 pub enum PieceKind {
     /// A sphere (static): compared exactly.
     Ball { center: Point3, radius: f64 },
-    /// A moving sphere, by the box it sweeps.
-    MovingSphere,
+    /// A moving sphere: its centre at times 0 and 1 (it moves along the segment between them at
+    /// a steady speed) and its radius. Compared exactly, at every time.
+    MovingSphere {
+        from: Point3,
+        to: Point3,
+        radius: f64,
+    },
     /// A box (six quads) as it is placed: its centre, its edges' unit directions (the columns of
     /// `axes`, a rotation) and half its size along each. Compared exactly.
     Box {
@@ -70,6 +77,21 @@ impl Piece {
         }
     }
 
+    /// A sphere of `radius` whose centre moves from `from` at time 0 to `to` at time 1.
+    pub fn moving_ball(from: Point3, to: Point3, radius: f64) -> Piece {
+        let r = Point3::splat(radius.abs());
+        Piece {
+            kind: PieceKind::MovingSphere {
+                from,
+                to,
+                radius: radius.abs(),
+            },
+            bounds: Aabb::EMPTY
+                .include(from.min(to) - r)
+                .include(from.max(to) + r),
+        }
+    }
+
     /// The box from `lo` to `hi` (its own coordinates) placed by `rotation` then `translation`.
     pub fn placed_box(lo: Point3, hi: Point3, rotation: DMat3, translation: Vec3) -> Piece {
         let (center, half) = ((lo + hi) * 0.5, (hi - lo).abs() * 0.5);
@@ -92,8 +114,8 @@ impl Piece {
         }
     }
 
-    /// The piece as a box (centre, axes, half sizes): a box as it is, anything else but a ball by
-    /// its bounding box.
+    /// The piece as a box (centre, axes, half sizes): a box as it is, a surface of quads by its
+    /// bounding box (balls and moving spheres are not asked).
     fn solid(&self) -> (Point3, DMat3, Vec3) {
         match self.kind {
             PieceKind::Box { center, axes, half } => (center, axes, half),
@@ -130,11 +152,40 @@ impl Piece {
                     radius: rb,
                 },
             ) => (a - b).length() > ra + rb + tol,
+            // a ball and a moving one: the distance from the ball's centre to the path of the
+            // other's; two moving ones: the least distance between their centres at one time,
+            // which is that of the origin from the path of their difference
+            (
+                PieceKind::Ball { center, radius: r },
+                PieceKind::MovingSphere { from, to, radius },
+            )
+            | (
+                PieceKind::MovingSphere { from, to, radius },
+                PieceKind::Ball { center, radius: r },
+            ) => segment_distance(center, from, to) > r + radius + tol,
+            (
+                PieceKind::MovingSphere {
+                    from: fa,
+                    to: ta,
+                    radius: ra,
+                },
+                PieceKind::MovingSphere {
+                    from: fb,
+                    to: tb,
+                    radius: rb,
+                },
+            ) => segment_distance(Point3::ZERO, fa - fb, ta - tb) > ra + rb + tol,
             (PieceKind::Ball { center, radius }, _) => {
                 distance_to_box(center, other.solid()) > radius + tol
             }
             (_, PieceKind::Ball { center, radius }) => {
                 distance_to_box(center, self.solid()) > radius + tol
+            }
+            (PieceKind::MovingSphere { from, to, radius }, _) => {
+                path_to_box(from, to, other.solid()) > radius + tol
+            }
+            (_, PieceKind::MovingSphere { from, to, radius }) => {
+                path_to_box(from, to, self.solid()) > radius + tol
             }
             _ => boxes_apart(self.solid(), other.solid(), tol),
         }
@@ -147,6 +198,37 @@ impl Piece {
 fn distance_to_box(p: Point3, (c, axes, half): (Point3, DMat3, Vec3)) -> f64 {
     let local = axes.transpose() * (p - c);
     (local.abs() - half).max(Vec3::ZERO).length()
+}
+
+/// The distance from `p` to the segment from `a` to `b`.
+fn segment_distance(p: Point3, a: Point3, b: Point3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 && len2.is_finite() {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + ab * t)).length()
+}
+
+/// The least distance from the segment from `a` to `b` to a box (as [`distance_to_box`]): the
+/// distance from a point moving along a line to a convex set is a convex function of where the
+/// point is, so a golden-section search finds its least value (80 steps narrow the segment by
+/// 0.618^80 = 2e-17, far below [`TOUCH`]).
+fn path_to_box(a: Point3, b: Point3, solid: (Point3, DMat3, Vec3)) -> f64 {
+    let at = |t: f64| distance_to_box(a + (b - a) * t, solid);
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..80 {
+        let (x, y) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if at(x) <= at(y) {
+            hi = y;
+        } else {
+            lo = x;
+        }
+    }
+    at(0.5 * (lo + hi)).min(at(0.0)).min(at(1.0))
 }
 
 /// Whether two boxes (centre, unit edge directions, half sizes) have projections more than `tol`
@@ -265,7 +347,9 @@ mod tests {
         assert!(a.apart(&cube([0.0, 1.001, 0.0], [1.0, 2.0, 1.0])));
         // face to face: the shared face would be crossed twice at one place
         assert!(!a.apart(&cube([0.0, 1.0, 0.0], [1.0, 2.0, 1.0])));
-        assert!(!a.apart(&solid(PieceKind::MovingSphere, [0.5; 3], [4.0; 3])));
+        // a moving sphere starting sqrt 3 from the cube's corner
+        let moving = |r: f64| Piece::moving_ball(Point3::splat(2.0), Point3::splat(4.0), r);
+        assert!(a.apart(&moving(1.7)) && !a.apart(&moving(1.8)));
         // a box turned 45 degrees about z off the cube's edge at x = y = 1, a face towards it,
         // `t` from the edge to the box's centre: 0.01 apart at t = 0.51, though their bounding
         // boxes overlap; touching at 0.5; overlapping at 0.49
@@ -277,6 +361,39 @@ mod tests {
             assert_eq!(a.apart(&diamond), apart, "t {t}");
             assert_eq!(diamond.apart(&a), apart, "t {t}");
         }
+    }
+
+    /// Moving spheres are apart where their centres, at each time, are: two whose paths cross at
+    /// different times (the first passes the origin at time 1/2, the second reaches it at time 1:
+    /// their centres come within sqrt 2 of each other, at time 3/4), a ball beside a diagonal
+    /// path, a path passing a box's edge 0.354 away (0.5 - 2 + 2 over sqrt 2) at time 3/4. Each
+    /// apart at a radius just below, touching just above, though their bounding boxes overlap.
+    #[test]
+    fn moving_spheres_by_their_centres_at_each_time() {
+        let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
+        let across = |r: f64| Piece::moving_ball(p(-2.0, 0.0), p(2.0, 0.0), r);
+        let up = |r: f64| Piece::moving_ball(p(0.0, -4.0), p(0.0, 0.0), r);
+        let h = 0.5 * 2f64.sqrt();
+        assert!(across(h - 1e-6).apart(&up(h - 1e-6)));
+        assert!(!across(h + 1e-6).apart(&up(h + 1e-6)));
+        let (a, b) = (across(0.5).bounds, up(0.5).bounds);
+        assert!((0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k]));
+        let diagonal = |r: f64| Piece::moving_ball(p(-5.0, -5.0), p(5.0, 5.0), r);
+        let ball = Piece::ball(p(2.0, -2.0), 1.0);
+        let gap = 2.0 * 2f64.sqrt() - 1.0;
+        assert!(diagonal(gap - 1e-6).apart(&ball) && ball.apart(&diagonal(gap - 1e-6)));
+        assert!(!diagonal(gap + 1e-6).apart(&ball));
+        let cube = Piece::placed_box(
+            Point3::new(0.5, 0.5, -1.0),
+            Point3::new(2.0, 2.0, 1.0),
+            DMat3::IDENTITY,
+            Vec3::ZERO,
+        );
+        let past = |r: f64| Piece::moving_ball(p(-2.0, 0.0), p(1.0, 3.0), r);
+        let d = 0.5 / 2f64.sqrt();
+        assert!(past(d - 1e-6).apart(&cube) && cube.apart(&past(d - 1e-6)));
+        assert!(!past(d + 1e-6).apart(&cube) && !cube.apart(&past(d + 1e-6)));
+        assert!(past(0.3).bounds.min.x < 0.5 && past(0.3).bounds.max.y > 0.5);
     }
 
     /// Two boxes, one with an edge along z turned towards +x, the other with an edge along y

@@ -257,16 +257,8 @@ impl SceneBuilder {
             *budget -= 1;
             let (inner, placed) = match o {
                 Object::Sphere(s) if s.is_moving() => {
-                    let r = Vec3::splat(s.radius.abs());
-                    let mut bounds = Aabb::EMPTY;
-                    for c in [s.center_at(0.0), s.center_at(1.0)] {
-                        bounds =
-                            bounds.union(&to.bounds(&Aabb::EMPTY.include(c - r).include(c + r)));
-                    }
-                    out.push(Piece {
-                        kind: PieceKind::MovingSphere,
-                        bounds,
-                    });
+                    let (from, to_) = (to.point(s.center_at(0.0)), to.point(s.center_at(1.0)));
+                    out.push(Piece::moving_ball(from, to_, s.radius));
                     continue;
                 }
                 Object::Sphere(s) => {

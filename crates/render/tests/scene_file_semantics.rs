@@ -504,8 +504,10 @@ fn a_sliver_quad_whose_corners_meet_is_no_closed_surface() {
 /// crossings in pairs, in and out, which is its inside only where the pieces neither overlap nor
 /// touch. Refused at the boundary's `type`, naming both pieces: two balls that overlap, a ball
 /// inside another, a ball that reaches into a box, two boxes face to face, a ball placed by an
-/// instance onto another. Pieces apart load, also where their bounding boxes meet (two balls on a
-/// diagonal, a ball beside a box's corner) and two closed groups of quads apart.
+/// instance onto another, two moving spheres that meet halfway. Pieces apart load, also where their
+/// bounding boxes meet (two balls on a diagonal, a ball beside a box's corner, a turned box beside a
+/// ball or a box, moving spheres whose paths cross at different times) and two closed groups of
+/// quads apart.
 #[test]
 fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
     let ball = |c: &str, r: &str| {
@@ -527,6 +529,12 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
             &format!(
                 "material = \"white\"\ntransform = [{{ rotate_y = 45 }}, {{ translate = {at} }}]\n"
             ),
+        )
+    };
+    let moving = |c0: &str, c1: &str, r: &str| {
+        format!(
+            "[[objects.boundary.objects]]\ntype = \"moving_sphere\"\ncenter0 = {c0}\ncenter1 = {c1}\n\
+             radius = {r}\nmaterial = \"white\"\n"
         )
     };
     // 2.1 along that diagonal: the face 1.6 from the origin, the corner of its bounding box 1.1
@@ -566,6 +574,15 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
             &[
                 "the sphere at [0, 0, 0] of radius 1.65",
                 "the turned box of size [1, 1, 1] centred at [1.48",
+                "overlap or touch",
+            ][..],
+        ),
+        (
+            "two moving spheres that meet halfway",
+            moving("[-2, 0, 0]", "[2, 0, 0]", "1") + &moving("[0, -2, 0]", "[0, 2, 0]", "1"),
+            &[
+                "the sphere of radius 1 moving from [-2, 0, 0] to [2, 0, 0]",
+                "the sphere of radius 1 moving from [0, -2, 0] to [0, 2, 0]",
                 "overlap or touch",
             ][..],
         ),
@@ -614,6 +631,10 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
         (
             "two boxes apart",
             cube("[0, 0, 0]", "[1, 1, 1]") + &cube("[0, 1.01, 0]", "[1, 2, 1]"),
+        ),
+        (
+            "two moving spheres whose paths cross at different times",
+            moving("[-2, 0, 0]", "[2, 0, 0]", "0.5") + &moving("[0, -4, 0]", "[0, 0, 0]", "0.5"),
         ),
         (
             "a ball and a box apart",

@@ -547,10 +547,11 @@ fn touching_pieces(a: &Piece, b: &Piece) -> String {
                 Num(radius)
             )
         }
-        PieceKind::MovingSphere => format!(
-            "the moving sphere that sweeps {} to {}",
-            Num::v3(p.bounds.min),
-            Num::v3(p.bounds.max)
+        PieceKind::MovingSphere { from, to, radius } => format!(
+            "the sphere of radius {} moving from {} to {}",
+            Num(radius),
+            Num::v3(from),
+            Num::v3(to)
         ),
         PieceKind::Box { axes, .. } if axes == glam::DMat3::IDENTITY => format!(
             "the box within {} to {}",
@@ -570,11 +571,11 @@ fn touching_pieces(a: &Piece, b: &Piece) -> String {
             Num::v3(p.bounds.max)
         ),
     };
-    let exact = |p: &Piece| matches!(p.kind, PieceKind::Ball { .. } | PieceKind::Box { .. });
+    let exact = |p: &Piece| !matches!(p.kind, PieceKind::Quads);
     let how = if exact(a) && exact(b) {
         "overlap or touch"
     } else {
-        "may overlap or touch (quads and moving spheres are compared by their bounding boxes)"
+        "may overlap or touch (surfaces of quads are compared by their bounding boxes)"
     };
     format!(
         "the pieces of a medium's boundary must lie apart, and {} and {} (in the boundary's \
