@@ -1,5 +1,5 @@
-//! The pieces of a medium's boundary: the closed shapes it is made of (balls, boxes, closed
-//! surfaces of quads), and whether they lie apart.
+//! The pieces of a medium's boundary: the closed shapes it is made of (balls, moving spheres,
+//! boxes, closed surfaces of quads), and whether they lie apart.
 //!
 //! A constant medium takes the stretches of a ray between its crossings of the boundary, in
 //! pairs: in at the first, out at the next, in again at the one after, and so on
@@ -12,17 +12,20 @@
 //! ([`first_touching`]); each piece can be a medium of its own instead (where media overlap,
 //! their densities add).
 //!
-//! Balls, moving spheres and boxes, turned or not, are compared exactly: two balls by their
-//! centres' distance (`|c1 - c2| > r1 + r2`), a ball and a box by the distance from the centre to
-//! the box, a moving sphere by the least such distance over its shutter's times (against a ball,
-//! the distance from a point to a segment; against another moving sphere, the least distance of
-//! the two centres at one time), two boxes by the separating axis theorem (two convex solids are
-//! apart exactly where their projections onto some line are; for two boxes one of fifteen lines
-//! will do, the six faces' normals and the nine cross products of an edge of each, Gottschalk, Lin
-//! and Manocha's OBBTree, 1996). A surface of quads is compared by its bounding box, which may
-//! refuse pieces that are apart but close: the message says so.
+//! Pieces are compared exactly ([`crate::separation`]): two balls by their centres' distance
+//! (`|c1 - c2| > r1 + r2`), a ball and a box by the distance from the centre to the box, a moving
+//! sphere by the least such distance over its shutter's times (against a ball, the distance from a
+//! point to a segment; against another moving sphere, the least distance of the two centres at one
+//! time), two boxes by the separating axis theorem. A surface of quads is apart from another piece
+//! where none of its quads comes near it and neither lies inside the other (a point of each tested
+//! against the other). Past [`MAX_QUAD_TESTS`] tests of quads a surface is compared by its
+//! bounding box, which may refuse pieces that are apart but close: the message says so.
 
 use crate::aabb::Aabb;
+use crate::separation::{
+    Solid, distance_to_box, inside, least_along, parallelogram_distance, segment_distance,
+    solids_apart,
+};
 use crate::vec::{Point3, Vec3};
 use glam::DMat3;
 
@@ -34,27 +37,31 @@ pub const TOUCH: f64 = 1e-9;
 /// meet): a boundary of more pieces that close together is accepted unchecked past it.
 pub const MAX_PAIRS: usize = 10_000_000;
 
+/// At most this many tests of a quad against another piece or quad, over a whole boundary; past
+/// them surfaces of quads are compared by their bounding boxes.
+pub const MAX_QUAD_TESTS: usize = 10_000_000;
+
 /// What a piece of a boundary is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PieceKind {
-    /// A sphere (static): compared exactly.
+    /// A sphere (static).
     Ball { center: Point3, radius: f64 },
     /// A moving sphere: its centre at times 0 and 1 (it moves along the segment between them at
-    /// a steady speed) and its radius. Compared exactly, at every time.
+    /// a steady speed) and its radius.
     MovingSphere {
         from: Point3,
         to: Point3,
         radius: f64,
     },
     /// A box (six quads) as it is placed: its centre, its edges' unit directions (the columns of
-    /// `axes`, a rotation) and half its size along each. Compared exactly.
+    /// `axes`, a rotation) and half its size along each.
     Box {
         center: Point3,
         axes: DMat3,
         half: Vec3,
     },
-    /// A closed surface of loose quads, by its bounding box.
-    Quads,
+    /// A closed surface of quads: `count` of [`Pieces::quads`] from `first`.
+    Quads { first: usize, count: usize },
 }
 
 /// One closed piece of a boundary, in the boundary's coordinates.
@@ -62,6 +69,16 @@ pub enum PieceKind {
 pub struct Piece {
     pub kind: PieceKind,
     pub bounds: Aabb,
+}
+
+/// A quad as placed in the boundary: corners `q`, `q + u`, `q + v`, `q + u + v`.
+pub type Parallelogram = (Point3, Vec3, Vec3);
+
+/// A boundary's pieces, and the quads its surfaces of quads are made of.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Pieces {
+    pub pieces: Vec<Piece>,
+    pub quads: Vec<Parallelogram>,
 }
 
 impl Piece {
@@ -114,16 +131,15 @@ impl Piece {
         }
     }
 
-    /// The piece as a box (centre, axes, half sizes): a box as it is, a surface of quads by its
-    /// bounding box (balls and moving spheres are not asked).
-    fn solid(&self) -> (Point3, DMat3, Vec3) {
+    /// The piece's box (a box as it is, anything else by its bounding box).
+    fn solid(&self) -> Solid {
         match self.kind {
-            PieceKind::Box { center, axes, half } => (center, axes, half),
-            _ => (
-                (self.bounds.min + self.bounds.max) * 0.5,
-                DMat3::IDENTITY,
-                (self.bounds.max - self.bounds.min) * 0.5,
-            ),
+            PieceKind::Box { center, axes, half } => Solid::Box { center, axes, half },
+            _ => Solid::Box {
+                center: (self.bounds.min + self.bounds.max) * 0.5,
+                axes: DMat3::IDENTITY,
+                half: (self.bounds.max - self.bounds.min) * 0.5,
+            },
         }
     }
 
@@ -136,12 +152,32 @@ impl Piece {
             .max_element()
     }
 
-    /// Whether the two pieces lie more than [`TOUCH`] of their magnitude apart: balls by their
-    /// centres' distance, a ball and a box by the distance from the centre to the box, boxes by a
-    /// gap along one of fifteen axes.
+    /// Whether the two pieces lie more than [`TOUCH`] of their magnitude apart, a surface of quads
+    /// taken by its bounding box (as [`Pieces`] takes it past its budget).
     pub fn apart(&self, other: &Piece) -> bool {
+        self.apart_in(other, &[], &mut 0)
+    }
+
+    /// [`Piece::apart`], surfaces of quads by their quads in `quads` while `budget` lasts.
+    fn apart_in(&self, other: &Piece, quads: &[Parallelogram], budget: &mut usize) -> bool {
         let tol = TOUCH * self.magnitude().max(other.magnitude());
+        let (a, b) = (&self.bounds, &other.bounds);
+        if (0..3).any(|k| a.max[k] + tol < b.min[k] || b.max[k] + tol < a.min[k]) {
+            return true; // (their bounding boxes are apart)
+        }
+        let of =
+            |first: usize, count: usize| quads.get(first..first + count).filter(|a| !a.is_empty());
         match (self.kind, other.kind) {
+            (PieceKind::Quads { first, count }, _) => {
+                if let Some(a) = of(first, count) {
+                    match surface_apart(a, other, quads, tol, budget) {
+                        Some(apart) => return apart,
+                        None => *budget = 0, // (spent: by bounding boxes from here on)
+                    }
+                }
+                solids_apart(&self.solid(), &other.solid(), tol)
+            }
+            (_, PieceKind::Quads { .. }) => other.apart_in(self, quads, budget),
             (
                 PieceKind::Ball {
                     center: a,
@@ -175,112 +211,168 @@ impl Piece {
                     radius: rb,
                 },
             ) => segment_distance(Point3::ZERO, fa - fb, ta - tb) > ra + rb + tol,
-            (PieceKind::Ball { center, radius }, _) => {
-                distance_to_box(center, other.solid()) > radius + tol
+            (PieceKind::Ball { center, radius }, PieceKind::Box { .. }) => {
+                box_distance(center, other) > radius + tol
             }
-            (_, PieceKind::Ball { center, radius }) => {
-                distance_to_box(center, self.solid()) > radius + tol
+            (PieceKind::Box { .. }, PieceKind::Ball { center, radius }) => {
+                box_distance(center, self) > radius + tol
             }
-            (PieceKind::MovingSphere { from, to, radius }, _) => {
-                path_to_box(from, to, other.solid()) > radius + tol
+            (PieceKind::MovingSphere { from, to, radius }, PieceKind::Box { .. }) => {
+                least_along(from, to, |p| box_distance(p, other)) > radius + tol
             }
-            (_, PieceKind::MovingSphere { from, to, radius }) => {
-                path_to_box(from, to, self.solid()) > radius + tol
+            (PieceKind::Box { .. }, PieceKind::MovingSphere { from, to, radius }) => {
+                least_along(from, to, |p| box_distance(p, self)) > radius + tol
             }
-            _ => boxes_apart(self.solid(), other.solid(), tol),
+            (PieceKind::Box { .. }, PieceKind::Box { .. }) => {
+                solids_apart(&self.solid(), &other.solid(), tol)
+            }
         }
     }
 }
 
-/// The Euclidean distance from `p` to the box of centre `c`, unit edge directions `axes` (a
-/// rotation's columns) and half sizes `half` (0 inside it): in the box's own frame, the length of
-/// how far each coordinate lies beyond the box's half size.
-fn distance_to_box(p: Point3, (c, axes, half): (Point3, DMat3, Vec3)) -> f64 {
-    let local = axes.transpose() * (p - c);
-    (local.abs() - half).max(Vec3::ZERO).length()
+/// The distance from `p` to the box of `piece`.
+fn box_distance(p: Point3, piece: &Piece) -> f64 {
+    match piece.solid() {
+        Solid::Box { center, axes, half } => distance_to_box(p, center, axes, half),
+        Solid::Flat { .. } => unreachable!("a piece's solid is a box"),
+    }
 }
 
-/// The distance from `p` to the segment from `a` to `b`.
-fn segment_distance(p: Point3, a: Point3, b: Point3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 && len2.is_finite() {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
+/// Whether the closed surface of the quads `a` lies more than `tol` from `other` (whose own quads,
+/// if it is a surface of them, are in `all`): none of `a`'s quads within `tol` of it, and neither
+/// inside the other (a point of each tested against the other). `None` once `budget` tests of a
+/// quad are spent.
+fn surface_apart(
+    a: &[Parallelogram],
+    other: &Piece,
+    all: &[Parallelogram],
+    tol: f64,
+    budget: &mut usize,
+) -> Option<bool> {
+    let near = |b: &Aabb, c: &Aabb| {
+        (0..3).all(|k| b.min[k] <= c.max[k] + tol && c.min[k] <= b.max[k] + tol)
     };
-    (p - (a + ab * t)).length()
-}
-
-/// The least distance from the segment from `a` to `b` to a box (as [`distance_to_box`]): the
-/// distance from a point moving along a line to a convex set is a convex function of where the
-/// point is, so a golden-section search finds its least value (80 steps narrow the segment by
-/// 0.618^80 = 2e-17, far below [`TOUCH`]).
-fn path_to_box(a: Point3, b: Point3, solid: (Point3, DMat3, Vec3)) -> f64 {
-    let at = |t: f64| distance_to_box(a + (b - a) * t, solid);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..80 {
-        let (x, y) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if at(x) <= at(y) {
-            hi = y;
-        } else {
-            lo = x;
+    let bounds = |&(q, u, v): &Parallelogram| {
+        [q + u, q + v, q + u + v]
+            .into_iter()
+            .fold(Aabb::EMPTY.include(q), |b, c| b.include(c))
+    };
+    let others = match other.kind {
+        PieceKind::Quads { first, count } => all.get(first..first + count)?,
+        _ => &[],
+    };
+    for quad @ &(q, u, v) in a {
+        let qb = bounds(quad);
+        if !near(&qb, &other.bounds) {
+            continue;
+        }
+        *budget = budget.checked_sub(1)?;
+        let flat = Solid::Flat { q, u, v };
+        let touches = match other.kind {
+            PieceKind::Ball { center, radius } => {
+                parallelogram_distance(center, q, u, v) <= radius + tol
+            }
+            PieceKind::MovingSphere { from, to, radius } => {
+                least_along(from, to, |p| parallelogram_distance(p, q, u, v)) <= radius + tol
+            }
+            PieceKind::Box { .. } => !solids_apart(&flat, &other.solid(), tol),
+            PieceKind::Quads { .. } => {
+                let mut touches = false;
+                for other_quad @ &(q2, u2, v2) in others {
+                    if !near(&qb, &bounds(other_quad)) {
+                        continue;
+                    }
+                    *budget = budget.checked_sub(1)?;
+                    if !solids_apart(
+                        &flat,
+                        &Solid::Flat {
+                            q: q2,
+                            u: u2,
+                            v: v2,
+                        },
+                        tol,
+                    ) {
+                        touches = true;
+                        break;
+                    }
+                }
+                touches
+            }
+        };
+        if touches {
+            return Some(false);
         }
     }
-    at(0.5 * (lo + hi)).min(at(0.0)).min(at(1.0))
-}
-
-/// Whether two boxes (centre, unit edge directions, half sizes) have projections more than `tol`
-/// apart on some line: one of the six faces' normals or the nine cross products of an edge of
-/// each (the separating axis theorem). Cross products of edges within 1e-6 of parallel are skipped:
-/// where edges are parallel, the faces' normals already hold every separating direction needed.
-fn boxes_apart(a: (Point3, DMat3, Vec3), b: (Point3, DMat3, Vec3), tol: f64) -> bool {
-    let ((ca, ra, ha), (cb, rb, hb)) = (a, b);
-    let d = cb - ca;
-    // the gap between the two projections on the unit line `n`
-    let gap = |n: Vec3| {
-        let reach = |r: &DMat3, h: Vec3| (0..3).map(|i| h[i] * r.col(i).dot(n).abs()).sum::<f64>();
-        d.dot(n).abs() - reach(&ra, ha) - reach(&rb, hb)
+    // No quad comes near: `other` lies wholly inside the surface, wholly outside, or around it.
+    *budget = budget.checked_sub(a.len() + others.len())?;
+    let point = match other.kind {
+        PieceKind::Ball { center, .. } => center,
+        PieceKind::MovingSphere { from, .. } => from,
+        PieceKind::Box { center, .. } => center,
+        PieceKind::Quads { .. } => others.first()?.0,
     };
-    let faces = (0..3).flat_map(|i| [ra.col(i), rb.col(i)]);
-    let edges = (0..9).filter_map(|k| {
-        let n = ra.col(k / 3).cross(rb.col(k % 3));
-        let len = n.length();
-        (len > 1e-6).then(|| n / len)
-    });
-    faces.chain(edges).any(|n| gap(n) > tol)
+    let margin = tol.max(f64::MIN_POSITIVE);
+    let within = |p: Point3| inside(p, a, margin).unwrap_or(true);
+    let corner = a.first()?.0;
+    let around = match other.kind {
+        PieceKind::Ball { center, radius } => (corner - center).length() < radius,
+        // (at time 0: had the sphere reached it at another time, it would have met a quad)
+        PieceKind::MovingSphere { from, radius, .. } => (corner - from).length() < radius,
+        PieceKind::Box { .. } => box_distance(corner, other) == 0.0,
+        PieceKind::Quads { .. } => inside(corner, others, margin).unwrap_or(true),
+    };
+    Some(!within(point) && !around)
 }
 
-/// The first pair of `pieces` (by their order along x) that overlap or touch ([`Piece::apart`]),
-/// comparing only pairs whose x ranges meet, at most [`MAX_PAIRS`] of them.
+impl Pieces {
+    /// The first pair of pieces (by their order along x) that overlap or touch
+    /// ([`Piece::apart`], surfaces of quads by their quads for the first [`MAX_QUAD_TESTS`] tests),
+    /// comparing only pairs whose x ranges meet, at most [`MAX_PAIRS`] of them; and whether the
+    /// pair was compared exactly (not by a surface of quads' bounding box).
+    pub fn first_touching(&self) -> Option<(usize, usize, bool)> {
+        let pieces = &self.pieces;
+        let mut order: Vec<usize> = (0..pieces.len()).collect();
+        order.sort_by(|&i, &j| pieces[i].bounds.min.x.total_cmp(&pieces[j].bounds.min.x));
+        let mut pairs = 0;
+        let mut budget = MAX_QUAD_TESTS;
+        for (k, &i) in order.iter().enumerate() {
+            let a = &pieces[i];
+            for &j in &order[k + 1..] {
+                let b = &pieces[j];
+                if b.bounds.min.x > a.bounds.max.x + TOUCH * a.magnitude().max(b.magnitude()) {
+                    break; // (nor do the rest, further along x)
+                }
+                if !a.apart_in(b, &self.quads, &mut budget) {
+                    let quads = |p: &Piece| matches!(p.kind, PieceKind::Quads { .. });
+                    let exact = !(quads(a) || quads(b)) || budget > 0;
+                    return Some((i.min(j), i.max(j), exact));
+                }
+                pairs += 1;
+                if pairs >= MAX_PAIRS {
+                    return None;
+                }
+            }
+        }
+        None
+    }
+}
+
+/// [`Pieces::first_touching`] of pieces without surfaces of quads.
 pub fn first_touching(pieces: &[Piece]) -> Option<(usize, usize)> {
-    let mut order: Vec<usize> = (0..pieces.len()).collect();
-    order.sort_by(|&i, &j| pieces[i].bounds.min.x.total_cmp(&pieces[j].bounds.min.x));
-    let mut pairs = 0;
-    for (k, &i) in order.iter().enumerate() {
-        let a = &pieces[i];
-        for &j in &order[k + 1..] {
-            let b = &pieces[j];
-            if b.bounds.min.x > a.bounds.max.x + TOUCH * a.magnitude().max(b.magnitude()) {
-                break; // (nor do the rest, further along x)
-            }
-            if !a.apart(b) {
-                return Some((i.min(j), i.max(j)));
-            }
-            pairs += 1;
-            if pairs >= MAX_PAIRS {
-                return None;
-            }
-        }
-    }
-    None
+    let all = Pieces {
+        pieces: pieces.to_vec(),
+        quads: Vec::new(),
+    };
+    all.first_touching().map(|(i, j, _)| (i, j))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// A surface of quads without its quads (compared by its bounding box).
+    const QUADS: PieceKind = PieceKind::Quads { first: 0, count: 0 };
 
     fn solid(kind: PieceKind, a: [f64; 3], b: [f64; 3]) -> Piece {
         Piece {
@@ -324,7 +416,7 @@ mod tests {
         assert!(a.apart(&corner) && corner.apart(&a));
         let face = cube([0.99, -5.0, -5.0], [2.0, 5.0, 5.0]);
         assert!(!a.apart(&face) && !face.apart(&a));
-        let around = solid(PieceKind::Quads, [-3.0; 3], [3.0; 3]);
+        let around = solid(QUADS, [-3.0; 3], [3.0; 3]);
         assert!(!a.apart(&around));
         // a unit cube turned 45 degrees about y, a face towards the ball along the diagonal of x
         // and z: the face lies 2.1 - 0.5 = 1.6 from the centre, the corner of its bounding box
@@ -333,7 +425,7 @@ mod tests {
         let diamond = turned([0.5; 3], DMat3::from_rotation_y(0.25 * PI), diagonal * 2.1);
         let ball = |r: f64| Piece::ball(Point3::ZERO, r);
         assert!(!ball(1.5).apart(&solid(
-            PieceKind::Quads,
+            QUADS,
             diamond.bounds.min.into(),
             diamond.bounds.max.into()
         )));
@@ -406,8 +498,12 @@ mod tests {
         let b = |x: f64| turned([1.0; 3], DMat3::from_rotation_y(0.25 * PI), Vec3::X * x);
         assert!(a.apart(&b(2.0 * s + 0.01)));
         assert!(!a.apart(&b(2.0 * s - 0.01)));
-        let (ca, ra, ha) = a.solid();
-        let (cb, rb, hb) = b(2.0 * s + 0.01).solid();
+        let parts = |p: &Piece| match p.kind {
+            PieceKind::Box { center, axes, half } => (center, axes, half),
+            _ => unreachable!(),
+        };
+        let (ca, ra, ha) = parts(&a);
+        let (cb, rb, hb) = parts(&b(2.0 * s + 0.01));
         let d = cb - ca;
         let faces_only = (0..3).flat_map(|i| [ra.col(i), rb.col(i)]).any(|n| {
             let reach =
@@ -470,6 +566,146 @@ mod tests {
                 "a corner 1e-6 beyond a face"
             );
         }
+    }
+
+    /// A box and the same box written as six quads must be told apart from anything alike: 3000
+    /// random turned boxes, each against a random ball, moving sphere and turned box (inside it,
+    /// around it, touching it or apart), compared once as a box and once as a surface of quads.
+    /// A surface test that missed a quad, took a point inside for outside or skipped an axis of the
+    /// separating axis test would disagree somewhere.
+    #[test]
+    fn a_box_written_as_quads_is_apart_where_the_box_is() {
+        let mut state = 0xb0c5_u64;
+        let mut next = move || {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let point = |next: &mut dyn FnMut() -> f64, scale: f64| {
+            Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * scale
+        };
+        let rotation = |next: &mut dyn FnMut() -> f64| {
+            let q = glam::DQuat::from_xyzw(next() - 0.5, next() - 0.5, next() - 0.5, next() - 0.5);
+            DMat3::from_quat(q.normalize())
+        };
+        let (mut agreed, mut apart) = (0, 0);
+        for _ in 0..3000 {
+            let h = Vec3::new(0.2 + next(), 0.2 + next(), 0.2 + next());
+            let (r, c) = (rotation(&mut next), point(&mut next, 1.0));
+            let as_box = turned(h.into(), r, c);
+            // its six faces, each corner placed as the box's
+            let corner = |s: Vec3| r * (s * h) + c;
+            let faces: Vec<Parallelogram> = (0..3)
+                .flat_map(|k| {
+                    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+                    [-1.0, 1.0].map(|side| {
+                        let mut s = Vec3::splat(-1.0);
+                        s[k] = side;
+                        let q = corner(s);
+                        let (mut a, mut b) = (s, s);
+                        (a[i], b[j]) = (1.0, 1.0);
+                        (q, corner(a) - q, corner(b) - q)
+                    })
+                })
+                .collect();
+            let bounds = faces.iter().fold(Aabb::EMPTY, |b, &(q, u, v)| {
+                b.include(q)
+                    .include(q + u)
+                    .include(q + v)
+                    .include(q + u + v)
+            });
+            let surface = Piece {
+                kind: PieceKind::Quads { first: 0, count: 6 },
+                bounds,
+            };
+            let others = [
+                Piece::ball(point(&mut next, 4.0), 0.05 + 1.5 * next()),
+                Piece::moving_ball(point(&mut next, 4.0), point(&mut next, 4.0), 0.05 + next()),
+                turned(
+                    [0.05 + next(), 0.05 + next(), 0.05 + next()],
+                    rotation(&mut next),
+                    point(&mut next, 4.0),
+                ),
+            ];
+            for other in others {
+                let all = Pieces {
+                    pieces: vec![surface, other],
+                    quads: faces.clone(),
+                };
+                let by_quads = all.first_touching().is_none();
+                assert_eq!(
+                    by_quads,
+                    as_box.apart(&other),
+                    "{other:?} and the box {as_box:?}"
+                );
+                agreed += 1;
+                apart += by_quads as usize;
+            }
+        }
+        // both verdicts were asked often
+        assert!(
+            apart > 1500 && agreed - apart > 1500,
+            "{apart} apart of {agreed}"
+        );
+    }
+
+    /// A surface of quads inside another, apart from it, is not apart: a point of the inner one
+    /// lies inside the outer. Nor is a ball inside a surface, or a surface inside a ball.
+    #[test]
+    fn a_piece_inside_a_surface_of_quads_or_around_it_touches_it() {
+        let cube = |lo: f64, size: f64| -> Vec<Parallelogram> {
+            let (x, y, z) = (Vec3::X * size, Vec3::Y * size, Vec3::Z * size);
+            let o = Point3::splat(lo);
+            vec![
+                (o, y, x),
+                (o + z, x, y),
+                (o, x, z),
+                (o + y, z, x),
+                (o, z, y),
+                (o + x, y, z),
+            ]
+        };
+        let surface = |first: usize, lo: f64, size: f64| Piece {
+            kind: PieceKind::Quads { first, count: 6 },
+            bounds: Aabb::EMPTY
+                .include(Point3::splat(lo))
+                .include(Point3::splat(lo + size)),
+        };
+        let mut quads = cube(0.0, 4.0);
+        quads.extend(cube(1.0, 1.0));
+        let nested = Pieces {
+            pieces: vec![surface(0, 0.0, 4.0), surface(6, 1.0, 1.0)],
+            quads: quads.clone(),
+        };
+        assert_eq!(nested.first_touching(), Some((0, 1, true)));
+        let outer = |piece: Piece| Pieces {
+            pieces: vec![surface(0, 0.0, 4.0), piece],
+            quads: quads[..6].to_vec(),
+        };
+        assert!(
+            outer(Piece::ball(Point3::splat(2.0), 1.0))
+                .first_touching()
+                .is_some()
+        );
+        assert!(
+            outer(Piece::ball(Point3::splat(2.0), 5.0))
+                .first_touching()
+                .is_some()
+        );
+        assert!(
+            outer(Piece::ball(Point3::splat(6.0), 1.0))
+                .first_touching()
+                .is_none()
+        );
+        // beside the cube's corner, within its bounding box's reach
+        assert!(
+            outer(Piece::ball(Point3::splat(4.5), 0.8))
+                .first_touching()
+                .is_none()
+        );
+        assert!(!surface(0, 0.0, 4.0).apart(&Piece::ball(Point3::splat(4.5), 0.8)));
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! (inner groups first) and the scene's [`Features`]; what cannot be built is a typed [`SceneError`].
 
 use crate::aabb::Aabb;
-use crate::boundary_pieces::{Piece, PieceKind, first_touching};
+use crate::boundary_pieces::{Piece, PieceKind, Pieces};
 use crate::bvh::{Bvh, ItemCost};
 use crate::camera::CameraSettings;
 use crate::closed_surface::{LooseQuad, OpenQuad, closed_components, first_open};
@@ -220,26 +220,32 @@ impl SceneBuilder {
     /// they form, wherever the groups and instances within `g` place them (joined by shared edges;
     /// all as one if they do not close). At most [`crate::limits::MAX_EXPANDED_OBJECTS`] objects are
     /// looked at.
-    pub fn boundary_pieces(&self, g: GroupId) -> Vec<Piece> {
+    pub fn boundary_pieces(&self, g: GroupId) -> Pieces {
         let mut out = Vec::new();
         let mut loose = Vec::new();
         let mut budget = crate::limits::MAX_EXPANDED_OBJECTS as usize;
         self.pieces_in(g, Transform::IDENTITY, &mut budget, &mut out, &mut loose);
-        if loose.is_empty() {
-            return out;
+        let mut quads = Vec::with_capacity(loose.len());
+        if !loose.is_empty() {
+            // the loose quads by the closed surfaces they form (all as one if they do not close)
+            let component = closed_components(&loose).unwrap_or_else(|| vec![0; loose.len()]);
+            let mut order: Vec<usize> = (0..loose.len()).collect();
+            order.sort_by_key(|&k| component[k]);
+            for surface in order.chunk_by(|&i, &j| component[i] == component[j]) {
+                let first = quads.len();
+                let mut bounds = Aabb::EMPTY;
+                for &k in surface {
+                    bounds = bounds.union(&loose[k].bounds());
+                    quads.push(loose[k].parallelogram());
+                }
+                let count = quads.len() - first;
+                out.push(Piece {
+                    kind: PieceKind::Quads { first, count },
+                    bounds,
+                });
+            }
         }
-        // the loose quads by the closed surfaces they form (all as one if they do not close)
-        let component = closed_components(&loose).unwrap_or_else(|| vec![0; loose.len()]);
-        let n = component.iter().max().map_or(0, |&c| c + 1);
-        let mut each = vec![Aabb::EMPTY; n];
-        for (&c, q) in component.iter().zip(&loose) {
-            each[c] = each[c].union(&q.bounds());
-        }
-        out.extend(each.into_iter().map(|bounds| Piece {
-            kind: PieceKind::Quads,
-            bounds,
-        }));
-        out
+        Pieces { pieces: out, quads }
     }
 
     fn pieces_in(
@@ -523,11 +529,11 @@ impl SceneBuilder {
                 return Err(SceneError::MediumInBoundary(g));
             }
             let pieces = self.boundary_pieces(GroupId(g));
-            if let Some((i, j)) = first_touching(&pieces) {
+            if let Some((i, j, _)) = pieces.first_touching() {
                 return Err(SceneError::TouchingPieces {
                     boundary: g,
-                    a: pieces[i].bounds,
-                    b: pieces[j].bounds,
+                    a: pieces.pieces[i].bounds,
+                    b: pieces.pieces[j].bounds,
                 });
             }
         }

@@ -101,6 +101,12 @@ impl LooseQuad {
         }
     }
 
+    /// Its placed corner `q` and edges `u`, `v` (the corners `q + u` and `q + v` less `q`).
+    pub(crate) fn parallelogram(&self) -> crate::boundary_pieces::Parallelogram {
+        let [q, a, b, _] = self.corners;
+        (q, a - q, b - q)
+    }
+
     /// The box of its placed corners (unpadded).
     pub(crate) fn bounds(&self) -> Aabb {
         self.corners.iter().fold(Aabb::EMPTY, |b, &c| b.include(c))

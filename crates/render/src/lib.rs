@@ -63,6 +63,7 @@ pub mod sampler;
 pub mod scene;
 pub mod scene_file;
 pub mod scenes;
+pub mod separation;
 pub mod shapes;
 pub mod target_index;
 pub mod texture;

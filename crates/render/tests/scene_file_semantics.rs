@@ -504,10 +504,11 @@ fn a_sliver_quad_whose_corners_meet_is_no_closed_surface() {
 /// crossings in pairs, in and out, which is its inside only where the pieces neither overlap nor
 /// touch. Refused at the boundary's `type`, naming both pieces: two balls that overlap, a ball
 /// inside another, a ball that reaches into a box, two boxes face to face, a ball placed by an
-/// instance onto another, two moving spheres that meet halfway. Pieces apart load, also where their
-/// bounding boxes meet (two balls on a diagonal, a ball beside a box's corner, a turned box beside a
-/// ball or a box, moving spheres whose paths cross at different times) and two closed groups of
-/// quads apart.
+/// instance onto another, two moving spheres that meet halfway, a ball reaching into a closed
+/// surface of quads or inside one. Pieces apart load, also where their bounding boxes meet (two
+/// balls on a diagonal, a ball beside a box's corner or a closed surface of quads' corner, a turned
+/// box beside a ball or a box, moving spheres whose paths cross at different times) and two closed
+/// groups of quads apart.
 #[test]
 fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
     let ball = |c: &str, r: &str| {
@@ -592,7 +593,16 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
                 + &box_faces(["0.5", "-1", "-1"], ["2", "1", "1"], ["1.5", "2", "2"], 0),
             &[
                 "the quads within [0.5, -1, -1] to [2, 1, 1]",
-                "compared by their bounding boxes",
+                "overlap or touch",
+            ][..],
+        ),
+        (
+            "a ball inside a closed surface of quads",
+            ball("[0, 0, 0]", "0.5")
+                + &box_faces(["-1", "-1", "-1"], ["1", "1", "1"], ["2", "2", "2"], 0),
+            &[
+                "the quads within [-1, -1, -1] to [1, 1, 1]",
+                "overlap or touch",
             ][..],
         ),
         (
@@ -631,6 +641,16 @@ fn a_medium_whose_pieces_overlap_or_touch_is_refused_and_pieces_apart_load() {
         (
             "two boxes apart",
             cube("[0, 0, 0]", "[1, 1, 1]") + &cube("[0, 1.01, 0]", "[1, 2, 1]"),
+        ),
+        (
+            "a ball beside the corner of a closed surface of quads, within its bounding box's reach",
+            ball("[0, 0, 0]", "1")
+                + &box_faces(
+                    ["0.6", "0.6", "0.6"],
+                    ["2", "2", "2"],
+                    ["1.4", "1.4", "1.4"],
+                    0,
+                ),
         ),
         (
             "two moving spheres whose paths cross at different times",

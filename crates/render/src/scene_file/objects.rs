@@ -8,7 +8,7 @@ use super::doc::{
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
 use super::values::{Num, Real, Step};
-use crate::boundary_pieces::{Piece, PieceKind, first_touching};
+use crate::boundary_pieces::{Piece, PieceKind};
 use crate::closed_surface::{OpenQuad, OpenSurface};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
@@ -385,8 +385,9 @@ impl Loader<'_> {
         }
         // Nor do pieces that overlap or touch: the crossings no longer alternate in and out.
         let pieces = self.b.boundary_pieces(bounds);
-        if let Some((i, j)) = first_touching(&pieces) {
-            return fail(place, touching_pieces(&pieces[i], &pieces[j]));
+        if let Some((i, j, exact)) = pieces.first_touching() {
+            let (a, b) = (&pieces.pieces[i], &pieces.pieces[j]);
+            return fail(place, touching_pieces(a, b, exact));
         }
         let phase = self.b.material(Material::Isotropic { albedo });
         self.count(p.group, Some(bounds), &span, "this medium")?;
@@ -537,8 +538,9 @@ impl Loader<'_> {
     }
 }
 
-/// Why a medium's boundary whose pieces `a` and `b` overlap or touch is refused.
-fn touching_pieces(a: &Piece, b: &Piece) -> String {
+/// Why a medium's boundary whose pieces `a` and `b` overlap or touch is refused (`exact`: whether
+/// they were compared exactly, not by a surface of quads' bounding box).
+fn touching_pieces(a: &Piece, b: &Piece, exact: bool) -> String {
     let name = |p: &Piece| match p.kind {
         PieceKind::Ball { center, radius } => {
             format!(
@@ -565,17 +567,17 @@ fn touching_pieces(a: &Piece, b: &Piece) -> String {
             Num::v3(p.bounds.min),
             Num::v3(p.bounds.max)
         ),
-        PieceKind::Quads => format!(
+        PieceKind::Quads { .. } => format!(
             "the quads within {} to {}",
             Num::v3(p.bounds.min),
             Num::v3(p.bounds.max)
         ),
     };
-    let exact = |p: &Piece| !matches!(p.kind, PieceKind::Quads);
-    let how = if exact(a) && exact(b) {
+    let how = if exact {
         "overlap or touch"
     } else {
-        "may overlap or touch (surfaces of quads are compared by their bounding boxes)"
+        "may overlap or touch (past 10^7 tests of quads, surfaces of quads are compared by their \
+         bounding boxes)"
     };
     format!(
         "the pieces of a medium's boundary must lie apart, and {} and {} (in the boundary's \
