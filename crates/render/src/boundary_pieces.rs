@@ -371,6 +371,24 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
+    /// Uniform numbers in [0, 1) from SplitMix64 seeded with `seed`.
+    fn uniforms(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A rotation from four of `next`'s numbers (a normalised quaternion).
+    fn rotation(next: &mut dyn FnMut() -> f64) -> DMat3 {
+        let q = glam::DQuat::from_xyzw(next() - 0.5, next() - 0.5, next() - 0.5, next() - 0.5);
+        DMat3::from_quat(q.normalize())
+    }
+
     /// A surface of quads without its quads (compared by its bounding box).
     const QUADS: PieceKind = PieceKind::Quads { first: 0, count: 0 };
 
@@ -523,19 +541,7 @@ mod tests {
     /// whole the first.
     #[test]
     fn random_boxes_touching_and_just_apart() {
-        let mut state = 0x5eed_u64;
-        let mut next = move || {
-            // SplitMix64
-            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let rotation = |next: &mut dyn FnMut() -> f64| {
-            let q = glam::DQuat::from_xyzw(next() - 0.5, next() - 0.5, next() - 0.5, next() - 0.5);
-            DMat3::from_quat(q.normalize())
-        };
+        let mut next = uniforms(0x5eed);
         for _ in 0..2000 {
             let ha = Vec3::new(0.1 + next(), 0.1 + next(), 0.1 + next());
             let hb = Vec3::new(0.1 + next(), 0.1 + next(), 0.1 + next());
@@ -575,20 +581,9 @@ mod tests {
     /// separating axis test would disagree somewhere.
     #[test]
     fn a_box_written_as_quads_is_apart_where_the_box_is() {
-        let mut state = 0xb0c5_u64;
-        let mut next = move || {
-            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniforms(0xb0c5);
         let point = |next: &mut dyn FnMut() -> f64, scale: f64| {
             Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * scale
-        };
-        let rotation = |next: &mut dyn FnMut() -> f64| {
-            let q = glam::DQuat::from_xyzw(next() - 0.5, next() - 0.5, next() - 0.5, next() - 0.5);
-            DMat3::from_quat(q.normalize())
         };
         let (mut agreed, mut apart) = (0, 0);
         for _ in 0..3000 {

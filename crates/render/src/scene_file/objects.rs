@@ -12,6 +12,7 @@ use crate::boundary_pieces::{Piece, PieceKind};
 use crate::closed_surface::{OpenQuad, OpenSurface};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
+use crate::separation::segment_distance;
 use crate::shapes::{Quad, Sphere};
 use crate::vec::{Point3, Vec3};
 use toml::Spanned;
@@ -593,15 +594,3 @@ fn touching_pieces(a: &Piece, b: &Piece, exact: bool) -> String {
 const ENCLOSE: &str = "a medium's boundary must enclose a volume (a sphere, a moving sphere, a box, a \
      group or instance of them, or quads that close a surface: each edge of each quad an edge of \
      exactly one other)";
-
-/// The distance from `p` to the segment from `a` to `b`.
-fn segment_distance(p: Point3, a: Point3, b: Point3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 && len2.is_finite() {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * t)).length()
-}
