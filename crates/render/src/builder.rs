@@ -15,19 +15,29 @@ use crate::scene::{
 use crate::shapes::{Quad, Sphere, box_quads};
 use crate::texture::Texture;
 use crate::transform::Transform;
-use crate::vec::{Color, Point3, Vec3};
+use crate::vec::{Color, Num, Point3, Vec3};
 use std::collections::{HashMap, HashSet};
 
 /// Errors in building a scene.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SceneError {
-    #[error("zero-area or non-finite quad (Q {q}, u {u}, v {v})")]
+    #[error(
+        "zero-area or non-finite quad (Q {}, u {}, v {})",
+        Num::v3(*.q), Num::v3(*.u), Num::v3(*.v)
+    )]
     DegenerateQuad { q: Vec3, u: Vec3, v: Vec3 },
-    #[error("sphere with non-positive or non-finite radius {0} or non-finite centre")]
+    #[error(
+        "sphere with non-positive or non-finite radius {} or non-finite centre",
+        Num(*.0)
+    )]
     BadSphere(f64),
-    #[error("medium density must be positive and finite, got {0}")]
+    #[error("medium density must be positive and finite, got {}", Num(*.0))]
     BadDensity(f64),
-    #[error("the box with corners {a} and {b} is flat")]
+    #[error(
+        "the box with corners {} and {} is flat, or too small for its faces to have an area in \
+         floating point",
+        Num::v3(*.a), Num::v3(*.b)
+    )]
     FlatBox { a: Point3, b: Point3 },
     #[error("{0}")]
     TextureImage(String),
@@ -42,7 +52,7 @@ pub enum SceneError {
     #[error(
         "the boundary (group {boundary}) of a medium has pieces that overlap or touch, within {} to \
          {} and within {} to {}: a ray's crossings would not alternate in and out",
-        a.min, a.max, b.min, b.max
+        Num::v3(.a.min), Num::v3(.a.max), Num::v3(.b.min), Num::v3(.b.max)
     )]
     TouchingPieces { boundary: u32, a: Aabb, b: Aabb },
     #[error(
@@ -182,11 +192,7 @@ impl SceneBuilder {
         b: Point3,
         m: MaterialId,
     ) -> Result<GroupId, SceneError> {
-        let quads = box_quads(a, b, m).ok_or(SceneError::DegenerateQuad {
-            q: a,
-            u: b - a,
-            v: Vec3::ZERO,
-        })?;
+        let quads = box_quads(a, b, m).ok_or(SceneError::FlatBox { a, b })?;
         let g = self.group();
         for q in quads {
             self.add_to(g, Object::Quad(q));

@@ -50,3 +50,26 @@ mod tests {
         assert!((t.length() - 1.0).abs() < 1e-12 && t.y < 0.0);
     }
 }
+
+/// A number as a message shows it: as written for ordinary sizes (`0.5`, `-3`, `130`), in exponent
+/// form for very small or very large ones (`1e-70`, not seventy digits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Num(pub f64);
+
+impl Num {
+    /// A vector as `[x, y, z]`, each component as [`Num`] shows it.
+    pub fn v3(v: Vec3) -> String {
+        format!("[{}, {}, {}]", Num(v.x), Num(v.y), Num(v.z))
+    }
+}
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}

@@ -602,6 +602,17 @@ fn tiny_and_huge_numbers_print_short() {
         &["zero-area quad: u x v = 0 (u = [1e-70, 0, 0], v = [0, 1e-100, 0] are parallel or zero)"],
     );
     assert!(!err.contains("0.0000"), "{err}");
+    // a box too small for its faces' areas to be numbers: the builder's message, short too
+    let tiny = "[[objects]]\ntype = \"box\"\na = [1e-300, 1e-300, -1e-300]\nb = [2e-300, 2e-300, 1e-300]\nmaterial = \"white\"\n";
+    let err = refused(
+        &format!("{HEAD}\n{tiny}"),
+        9,
+        &[
+            "field `objects[0]`: the box with corners [1e-300, 1e-300, -1e-300] and [2e-300, 2e-300, \
+             1e-300] is flat, or too small for its faces to have an area",
+        ],
+    );
+    assert!(!err.contains("0.0000"), "{err}");
     let text = HEAD.replace("lookfrom = [0, 0, -10]", "lookfrom = [1e-300, 0, 0]")
         + "\n[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 1]\nradius = 1\nmaterial = \"white\"\n";
     refused(

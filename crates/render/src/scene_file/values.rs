@@ -9,28 +9,7 @@ use glam::DMat3;
 use serde::de::{self, Deserialize, Deserializer, SeqAccess, Visitor};
 use std::fmt;
 
-/// A number as a message shows it: as written for ordinary sizes (`0.5`, `-3`, `130`), in exponent
-/// form for very small or very large ones (`1e-70`, not seventy digits).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Num(pub f64);
-
-impl Num {
-    /// A vector as `[x, y, z]`, each component as [`Num`] shows it.
-    pub fn v3(v: Vec3) -> String {
-        format!("[{}, {}, {}]", Num(v.x), Num(v.y), Num(v.z))
-    }
-}
-
-impl fmt::Display for Num {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let a = self.0.abs();
-        if a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a) {
-            write!(f, "{}", self.0)
-        } else {
-            write!(f, "{:e}", self.0)
-        }
-    }
-}
+pub use crate::vec::Num;
 
 /// A finite real number of magnitude at most [`MAX_MAGNITUDE`] (integers are accepted: `radius = 90`).
 /// `nan`, `inf` and numbers such as `1e308`, whose squares and products would overflow, are refused.
