@@ -2,8 +2,9 @@
 //! exactly one other, corners equal to within a rounding error ([`CLOSE`]), no two quads at one
 //! place. An edge may also be shared stretch by stretch with several quads whose corners lie along
 //! it (T-junctions: a face split in two beside a whole one), each stretch with exactly one.
-//! [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad) gathers a boundary's quads where its instances put them (boxes and groups that close by
-//! themselves left out) and asks `first_open`.
+//! [`SceneBuilder::open_quad`](crate::builder::SceneBuilder::open_quad) gathers a boundary's
+//! quads where its instances put them (boxes and groups that close by themselves left out) and asks
+//! `first_open`.
 
 use crate::aabb::Aabb;
 use crate::ids::GroupId;
@@ -316,77 +317,12 @@ fn surface(
             *edges.entry(edge(q, e)).or_default() += 1;
         }
     }
-    // T-junctions: an edge of no other quad may run along the edges of several (a face split in
-    // two beside a whole one). Such an edge is split at the ends of the other lone edges that lie
-    // on it (within CLOSE of it, of its quad's scale), and its pieces are counted in its place:
-    // each must then be an edge of exactly one other quad, as a whole edge must. The ends are
-    // kept sorted along each axis, and an edge looks through those within its reach along the
-    // axis it spans least (an edge along x, those of nearly its y).
     let key = |a: usize, b: usize| (a.min(b), a.max(b));
-    let lone: Vec<(usize, usize)> = (0..quads.len())
-        .flat_map(|q| (0..4).map(move |k| (q, k)))
-        .filter(|&(q, k)| edges[&edge(q, EDGES[k])] == 1)
-        .collect();
-    let mut ends: Vec<usize> = lone
-        .iter()
-        .flat_map(|&(q, k)| [vertex[4 * q + EDGES[k].0], vertex[4 * q + EDGES[k].1]])
-        .collect();
-    ends.sort_unstable();
-    ends.dedup();
-    let by_axis: [Vec<(f64, usize)>; 3] = std::array::from_fn(|axis| {
-        let mut sorted: Vec<(f64, usize)> = ends.iter().map(|&v| (corner(v)[axis], v)).collect();
-        sorted.sort_by(|x, y| x.0.total_cmp(&y.0));
-        sorted
-    });
-    let mut split: Splits = HashMap::new();
-    for &(q, k) in &lone {
-        let (va, vb) = (vertex[4 * q + EDGES[k].0], vertex[4 * q + EDGES[k].1]);
-        let (a, b) = (corner(va), corner(vb));
-        let len = (b - a).length();
-        if !(len > 0.0 && len.is_finite()) {
-            continue;
-        }
-        let dir = (b - a) / len;
-        let tol = CLOSE * quads[q].scale;
-        let axis = (b - a).abs().min_position();
-        let (lo, hi) = (a[axis].min(b[axis]) - tol, a[axis].max(b[axis]) + tol);
-        let sorted = &by_axis[axis];
-        let first = sorted.partition_point(|&(x, _)| x < lo);
-        let mut on: Vec<(f64, usize)> = Vec::new();
-        for &(x, v) in &sorted[first..] {
-            if x > hi {
-                break;
-            }
-            looked += 1;
-            if looked > max_lookups {
-                let edges = lone.len();
-                return (
-                    Some((q, OpenSurface::UncheckedJunctions { edges })),
-                    compared,
-                    vertex,
-                    split,
-                );
-            }
-            let p = corner(v) - a;
-            let t = p.dot(dir);
-            if v != va && v != vb && t > tol && t < len - tol && (p - dir * t).length() <= tol {
-                on.push((t, v));
-            }
-        }
-        if on.is_empty() {
-            continue;
-        }
-        on.sort_by(|x, y| x.0.total_cmp(&y.0));
-        let path: Vec<usize> = std::iter::once(va)
-            .chain(on.iter().map(|&(_, v)| v))
-            .chain(std::iter::once(vb))
-            .collect();
-        *edges.entry(key(va, vb)).or_default() -= 1;
-        for w in path.windows(2) {
-            *edges.entry(key(w[0], w[1])).or_default() += 1;
-        }
-        split.insert((q, k), path);
-    }
+    let budget = max_lookups.saturating_sub(looked);
+    let split = match split_at_junctions(quads, &vertex, &mut edges, budget) {
+        Ok(split) => split,
+        Err(open) => return (Some(open), compared, vertex, HashMap::new()),
+    };
     for (q, quad) in quads.iter().enumerate() {
         let mut place: [usize; 4] = std::array::from_fn(|c| vertex[4 * q + c]);
         place.sort_unstable();
@@ -423,6 +359,90 @@ fn surface(
         }
     }
     (None, compared, vertex, split)
+}
+
+/// The edges of no other quad (counted in `edges`) split at T-junctions: such an edge may run
+/// along the edges of several quads (a face split in two beside a whole one), so it is split at the
+/// ends of the other lone edges that lie on it (within [`CLOSE`] of it, of its quad's scale), and
+/// its pieces are counted in `edges` in its place; each must then be an edge of exactly one other
+/// quad, as a whole edge must. The ends are kept sorted along each axis, and an edge looks through
+/// those within its reach along the axis it spans least (an edge along x, those of nearly its y).
+///
+/// Returns each edge split, `(quad, edge)` to the vertices along it (its ends included), or the
+/// quad at which the search gave up after `budget` looks.
+fn split_at_junctions(
+    quads: &[LooseQuad],
+    vertex: &[usize],
+    edges: &mut HashMap<(usize, usize), usize>,
+    budget: usize,
+) -> Result<Splits, (usize, OpenSurface)> {
+    let corner = |i: usize| quads[i / 4].corners[i % 4];
+    let edge = |q: usize, (a, b): (usize, usize)| {
+        let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
+        (a.min(b), a.max(b))
+    };
+    let key = |a: usize, b: usize| (a.min(b), a.max(b));
+    let lone: Vec<(usize, usize)> = (0..quads.len())
+        .flat_map(|q| (0..4).map(move |k| (q, k)))
+        .filter(|&(q, k)| edges[&edge(q, EDGES[k])] == 1)
+        .collect();
+    let mut ends: Vec<usize> = lone
+        .iter()
+        .flat_map(|&(q, k)| [vertex[4 * q + EDGES[k].0], vertex[4 * q + EDGES[k].1]])
+        .collect();
+    ends.sort_unstable();
+    ends.dedup();
+    let by_axis: [Vec<(f64, usize)>; 3] = std::array::from_fn(|axis| {
+        let mut sorted: Vec<(f64, usize)> = ends.iter().map(|&v| (corner(v)[axis], v)).collect();
+        sorted.sort_by(|x, y| x.0.total_cmp(&y.0));
+        sorted
+    });
+    let mut split: Splits = HashMap::new();
+    let mut looked = 0;
+    for &(q, k) in &lone {
+        let (va, vb) = (vertex[4 * q + EDGES[k].0], vertex[4 * q + EDGES[k].1]);
+        let (a, b) = (corner(va), corner(vb));
+        let len = (b - a).length();
+        if !(len > 0.0 && len.is_finite()) {
+            continue;
+        }
+        let dir = (b - a) / len;
+        let tol = CLOSE * quads[q].scale;
+        let axis = (b - a).abs().min_position();
+        let (lo, hi) = (a[axis].min(b[axis]) - tol, a[axis].max(b[axis]) + tol);
+        let sorted = &by_axis[axis];
+        let first = sorted.partition_point(|&(x, _)| x < lo);
+        let mut on: Vec<(f64, usize)> = Vec::new();
+        for &(x, v) in &sorted[first..] {
+            if x > hi {
+                break;
+            }
+            looked += 1;
+            if looked > budget {
+                let edges = lone.len();
+                return Err((q, OpenSurface::UncheckedJunctions { edges }));
+            }
+            let p = corner(v) - a;
+            let t = p.dot(dir);
+            if v != va && v != vb && t > tol && t < len - tol && (p - dir * t).length() <= tol {
+                on.push((t, v));
+            }
+        }
+        if on.is_empty() {
+            continue;
+        }
+        on.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let path: Vec<usize> = std::iter::once(va)
+            .chain(on.iter().map(|&(_, v)| v))
+            .chain(std::iter::once(vb))
+            .collect();
+        *edges.entry(key(va, vb)).or_default() -= 1;
+        for w in path.windows(2) {
+            *edges.entry(key(w[0], w[1])).or_default() += 1;
+        }
+        split.insert((q, k), path);
+    }
+    Ok(split)
 }
 
 /// A quad other than `q` with an edge along part of the segment from `from` to `to` (both its

@@ -6,9 +6,10 @@
 //!
 //! Two convex solids are apart exactly where their projections onto some line are (the separating
 //! axis theorem). For two convex polyhedra one of finitely many lines will do: the faces' normals
-//! of each and the cross products of an edge of each (Gottschalk, Lin and Manocha, "OBBTree", 1996).
-//! A box has three of each; a parallelogram, taken as the limit of a thin slab, has its normal and
-//! the two in-plane normals of its sides as faces, and its two sides and its normal as edges.
+//! of each and the cross products of an edge of each (Gottschalk, Lin and Manocha, "OBBTree",
+//! 1996). A box has three of each; a parallelogram, taken as the limit of a thin slab, has its
+//! normal and the two in-plane normals of its sides as faces, and its two sides and its normal as
+//! edges.
 
 use crate::vec::{Point3, Vec3};
 use glam::DMat3;
