@@ -679,27 +679,16 @@ mod tests {
             pieces: vec![surface(0, 0.0, 4.0), piece],
             quads: quads[..6].to_vec(),
         };
-        assert!(
-            outer(Piece::ball(Point3::splat(2.0), 1.0))
-                .first_touching()
-                .is_some()
-        );
-        assert!(
-            outer(Piece::ball(Point3::splat(2.0), 5.0))
-                .first_touching()
-                .is_some()
-        );
-        assert!(
-            outer(Piece::ball(Point3::splat(6.0), 1.0))
-                .first_touching()
-                .is_none()
-        );
-        // beside the cube's corner, within its bounding box's reach
-        assert!(
-            outer(Piece::ball(Point3::splat(4.5), 0.8))
-                .first_touching()
-                .is_none()
-        );
+        // inside, around, apart, and beside the cube's corner within its bounding box's reach
+        for (c, r, touches) in [
+            (2.0, 1.0, true),
+            (2.0, 5.0, true),
+            (6.0, 1.0, false),
+            (4.5, 0.8, false),
+        ] {
+            let ball = Piece::ball(Point3::splat(c), r);
+            assert_eq!(outer(ball).first_touching().is_some(), touches, "{ball:?}");
+        }
         assert!(!surface(0, 0.0, 4.0).apart(&Piece::ball(Point3::splat(4.5), 0.8)));
     }
 

@@ -7,7 +7,7 @@
 
 use rtl_render::Color;
 use rtl_render::camera::CameraSettings;
-use rtl_render::ids::MaterialId;
+use rtl_render::ids::{GroupId, MaterialId};
 use rtl_render::integrator::{MisOptions, Strategy};
 use rtl_render::material::{Albedo, Material};
 use rtl_render::render::{BOOK_MIXTURE_WEIGHT, RenderSettings, render};
@@ -37,7 +37,6 @@ fn glass_and_fog(b: &mut SceneBuilder, albedo: f64) -> (MaterialId, MaterialId) 
 /// ray crosses the ball along at least 0.998 of its diameter and the box along its depth.
 fn ball_and_box(one: bool) -> Scene {
     let mut b = SceneBuilder::new();
-    let w = b.world();
     let (glass, black) = glass_and_fog(&mut b, 0.0);
     let ball = b.group();
     b.sphere(ball, Point3::new(0.0, 0.0, -1.5), 1.0, glass)
@@ -49,16 +48,25 @@ fn ball_and_box(one: bool) -> Scene {
             glass,
         )
         .unwrap();
+    fill(&mut b, [ball, cube], one, 1.0, black);
+    seen_against_white(b, Point3::new(0.0, 0.0, -10.0), Point3::ZERO, 1.0)
+}
+
+/// Fog of `density` and phase function `fog` in the world of `b`, inside the two `pieces`: one
+/// medium whose boundary holds both (`one`), or a medium each.
+fn fill(b: &mut SceneBuilder, pieces: [GroupId; 2], one: bool, density: f64, fog: MaterialId) {
+    let w = b.world();
     if one {
         let both = b.group();
-        b.add_to(both, Object::Group(ball));
-        b.add_to(both, Object::Group(cube));
-        b.medium(w, both, 1.0, black).unwrap();
+        for piece in pieces {
+            b.add_to(both, Object::Group(piece));
+        }
+        b.medium(w, both, density, fog).unwrap();
     } else {
-        b.medium(w, ball, 1.0, black).unwrap();
-        b.medium(w, cube, 1.0, black).unwrap();
+        for piece in pieces {
+            b.medium(w, piece, density, fog).unwrap();
+        }
     }
-    seen_against_white(b, Point3::new(0.0, 0.0, -10.0), Point3::ZERO, 1.0)
 }
 
 /// The scene of `b`, seen from `lookfrom` towards `lookat` through a square view `vfov` degrees
@@ -234,7 +242,6 @@ fn a_medium_in_an_l_fills_both_arms() {
 /// deviations apart by `cosine`.)
 fn crossing_paths(one: bool) -> Scene {
     let mut b = SceneBuilder::new();
-    let w = b.world();
     let (glass, black) = glass_and_fog(&mut b, 0.0);
     let (away, rising) = (b.group(), b.group());
     let p = |x: f64, y: f64| Point3::new(x, y, 0.0);
@@ -242,15 +249,7 @@ fn crossing_paths(one: bool) -> Scene {
         .unwrap();
     b.moving_sphere(rising, p(0.0, -1.0), p(0.0, 0.0), 0.3, glass)
         .unwrap();
-    if one {
-        let both = b.group();
-        b.add_to(both, Object::Group(away));
-        b.add_to(both, Object::Group(rising));
-        b.medium(w, both, 2.0, black).unwrap();
-    } else {
-        b.medium(w, away, 2.0, black).unwrap();
-        b.medium(w, rising, 2.0, black).unwrap();
-    }
+    fill(&mut b, [away, rising], one, 2.0, black);
     // along +x from 10 before the origin, 0.7 wide there
     seen_against_white(b, p(-10.0, 0.0), Point3::ZERO, 4.0)
 }
