@@ -12,6 +12,7 @@ use book_cpp::{BookProgram, BookSettings, patch_main, samples_taken};
 use clap::{Args, Subcommand, ValueEnum};
 use noise::{DisplayImage, noise_constant, parse_image, parse_pfm, parse_ppm, seconds_to};
 use rtl_render::integrator::Strategy;
+use rtl_render::vec::Num;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -322,11 +323,11 @@ fn validate(a: &CompareArgs) -> Result<()> {
     if let Some(t) = a.target_rmse
         && !(t > 0.0 && t.is_finite())
     {
-        bail!("--target-rmse must be positive, got {t}");
+        bail!("--target-rmse must be positive, got {}", Num(t));
     }
     if let Some(t) = a.book_noise {
         if !(t > 0.0 && t.is_finite()) {
-            bail!("--book-noise must be positive, got {t}");
+            bail!("--book-noise must be positive, got {}", Num(t));
         }
         if a.book.is_none() {
             bail!(

@@ -19,6 +19,7 @@ use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
 use rtl_render::tier_race::TierRace;
 use rtl_render::traversal::{HitTier, HitTierError};
+use rtl_render::vec::Num;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -548,10 +549,11 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
         (None, _) => BOOK_MIXTURE_WEIGHT,
         (Some(w), Strategy::Mixture) => match check_mixture_weight(w) {
             Ok(w) => w,
-            Err(e) => bail!("--mixture-weight {w}: {e}"),
+            Err(e) => bail!("--mixture-weight {}: {e}", Num(w)),
         },
         (Some(w), s) => bail!(
-            "--mixture-weight {w}: only the 'mixture' strategy has a mixture weight, not '{}'",
+            "--mixture-weight {}: only the 'mixture' strategy has a mixture weight, not '{}'",
+            Num(w),
             s.name()
         ),
     };

@@ -416,6 +416,12 @@ fn a_mixture_weight_outside_0_to_1_or_without_the_mixture_is_refused() {
         &render(&["--mixture-weight", "0.3"]),
         &["--mixture-weight 0.3", "only the 'mixture' strategy"],
     );
+    // a tiny number is shown short, not in three hundred digits
+    refused(
+        &d,
+        &render(&["--strategy", "mixture", "--mixture-weight=-1e-300"]),
+        &["--mixture-weight -1e-300: the mixture weight is -1e-300, not strictly"],
+    );
     assert!(files(&d).is_empty(), "{:?}", files(&d));
     let _ = std::fs::remove_dir_all(&d);
 }

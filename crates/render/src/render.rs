@@ -39,8 +39,9 @@ fn is_book_mixture_weight(w: &f64) -> bool {
 /// Why a mixture weight was refused.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "the mixture weight is {0}, not strictly between 0 and 1 (0 would be the 'cosine' strategy, 1 \
-     the biased 'light' one)"
+    "the mixture weight is {}, not strictly between 0 and 1 (0 would be the 'cosine' strategy, 1 \
+     the biased 'light' one)",
+    crate::vec::Num(*.0)
 )]
 pub struct MixtureWeightError(pub f64);
 
