@@ -9,7 +9,7 @@
 //! pairs would put the medium where the balls do not overlap and miss it where they do; through
 //! two boxes face to face the shared face is crossed twice at one place. So a boundary whose
 //! pieces come within a rounding error of each other is refused when the scene is read
-//! ([`first_touching`]); each piece can be a medium of its own instead (where media overlap,
+//! ([`Pieces::first_touching`]); each piece can be a medium of its own instead (where media overlap,
 //! their densities add).
 //!
 //! Pieces are compared exactly ([`crate::separation`]): two balls by their centres' distance
@@ -131,15 +131,15 @@ impl Piece {
         }
     }
 
-    /// The piece's box (a box as it is, anything else by its bounding box).
-    fn solid(&self) -> Solid {
-        match self.kind {
-            PieceKind::Box { center, axes, half } => Solid::Box { center, axes, half },
-            _ => Solid::Box {
+    /// Its bounding box as a piece: what a surface of quads is compared as without its quads.
+    fn bounding_box(&self) -> Piece {
+        Piece {
+            kind: PieceKind::Box {
                 center: (self.bounds.min + self.bounds.max) * 0.5,
                 axes: DMat3::IDENTITY,
                 half: (self.bounds.max - self.bounds.min) * 0.5,
             },
+            bounds: self.bounds,
         }
     }
 
@@ -175,7 +175,7 @@ impl Piece {
                         None => *budget = 0, // (spent: by bounding boxes from here on)
                     }
                 }
-                solids_apart(&self.solid(), &other.solid(), tol)
+                self.bounding_box().apart_in(other, quads, budget)
             }
             (_, PieceKind::Quads { .. }) => other.apart_in(self, quads, budget),
             (
@@ -211,30 +211,37 @@ impl Piece {
                     radius: rb,
                 },
             ) => segment_distance(Point3::ZERO, fa - fb, ta - tb) > ra + rb + tol,
-            (PieceKind::Ball { center, radius }, PieceKind::Box { .. }) => {
-                box_distance(center, other) > radius + tol
+            (PieceKind::Ball { center: p, radius }, PieceKind::Box { center, axes, half })
+            | (PieceKind::Box { center, axes, half }, PieceKind::Ball { center: p, radius }) => {
+                distance_to_box(p, center, axes, half) > radius + tol
             }
-            (PieceKind::Box { .. }, PieceKind::Ball { center, radius }) => {
-                box_distance(center, self) > radius + tol
-            }
-            (PieceKind::MovingSphere { from, to, radius }, PieceKind::Box { .. }) => {
-                least_along(from, to, |p| box_distance(p, other)) > radius + tol
-            }
-            (PieceKind::Box { .. }, PieceKind::MovingSphere { from, to, radius }) => {
-                least_along(from, to, |p| box_distance(p, self)) > radius + tol
-            }
-            (PieceKind::Box { .. }, PieceKind::Box { .. }) => {
-                solids_apart(&self.solid(), &other.solid(), tol)
+            (
+                PieceKind::MovingSphere { from, to, radius },
+                PieceKind::Box { center, axes, half },
+            )
+            | (
+                PieceKind::Box { center, axes, half },
+                PieceKind::MovingSphere { from, to, radius },
+            ) => least_along(from, to, |p| distance_to_box(p, center, axes, half)) > radius + tol,
+            (
+                PieceKind::Box { center, axes, half },
+                PieceKind::Box {
+                    center: c,
+                    axes: r,
+                    half: h,
+                },
+            ) => {
+                let (a, b) = (
+                    Solid::Box { center, axes, half },
+                    Solid::Box {
+                        center: c,
+                        axes: r,
+                        half: h,
+                    },
+                );
+                solids_apart(&a, &b, tol)
             }
         }
-    }
-}
-
-/// The distance from `p` to the box of `piece`.
-fn box_distance(p: Point3, piece: &Piece) -> f64 {
-    match piece.solid() {
-        Solid::Box { center, axes, half } => distance_to_box(p, center, axes, half),
-        Solid::Flat { .. } => unreachable!("a piece's solid is a box"),
     }
 }
 
@@ -275,7 +282,9 @@ fn surface_apart(
             PieceKind::MovingSphere { from, to, radius } => {
                 least_along(from, to, |p| parallelogram_distance(p, q, u, v)) <= radius + tol
             }
-            PieceKind::Box { .. } => !solids_apart(&flat, &other.solid(), tol),
+            PieceKind::Box { center, axes, half } => {
+                !solids_apart(&flat, &Solid::Box { center, axes, half }, tol)
+            }
             PieceKind::Quads { .. } => {
                 let mut touches = false;
                 for other_quad @ &(q2, u2, v2) in others {
@@ -303,25 +312,18 @@ fn surface_apart(
             return Some(false);
         }
     }
-    // No quad comes near: `other` lies wholly inside the surface, wholly outside, or around it.
+    // No quad comes near: `other` lies wholly inside the surface, wholly outside, or (a surface
+    // itself) around it. (A solid around it would hold its quads, which the tests above meet.)
     *budget = budget.checked_sub(a.len() + others.len())?;
     let point = match other.kind {
-        PieceKind::Ball { center, .. } => center,
+        PieceKind::Ball { center, .. } | PieceKind::Box { center, .. } => center,
         PieceKind::MovingSphere { from, .. } => from,
-        PieceKind::Box { center, .. } => center,
         PieceKind::Quads { .. } => others.first()?.0,
     };
     let margin = tol.max(f64::MIN_POSITIVE);
-    let within = |p: Point3| inside(p, a, margin).unwrap_or(true);
-    let corner = a.first()?.0;
-    let around = match other.kind {
-        PieceKind::Ball { center, radius } => (corner - center).length() < radius,
-        // (at time 0: had the sphere reached it at another time, it would have met a quad)
-        PieceKind::MovingSphere { from, radius, .. } => (corner - from).length() < radius,
-        PieceKind::Box { .. } => box_distance(corner, other) == 0.0,
-        PieceKind::Quads { .. } => inside(corner, others, margin).unwrap_or(true),
-    };
-    Some(!within(point) && !around)
+    let within = inside(point, a, margin).unwrap_or(true);
+    let around = !others.is_empty() && inside(a.first()?.0, others, margin).unwrap_or(true);
+    Some(!within && !around)
 }
 
 impl Pieces {
@@ -355,15 +357,6 @@ impl Pieces {
         }
         None
     }
-}
-
-/// [`Pieces::first_touching`] of pieces without surfaces of quads.
-pub fn first_touching(pieces: &[Piece]) -> Option<(usize, usize)> {
-    let all = Pieces {
-        pieces: pieces.to_vec(),
-        quads: Vec::new(),
-    };
-    all.first_touching().map(|(i, j, _)| (i, j))
 }
 
 #[cfg(test)]
@@ -675,6 +668,17 @@ mod tests {
             quads: quads.clone(),
         };
         assert_eq!(nested.first_touching(), Some((0, 1, true)));
+        // either way round: the inner surface's quads against the outer, and the other way
+        let (outer_surface, inner_surface) = (surface(0, 0.0, 4.0), surface(6, 1.0, 1.0));
+        for (a, b) in [
+            (outer_surface, inner_surface),
+            (inner_surface, outer_surface),
+        ] {
+            assert!(
+                !a.apart_in(&b, &quads, &mut MAX_QUAD_TESTS.clone()),
+                "{a:?} {b:?}"
+            );
+        }
         let outer = |piece: Piece| Pieces {
             pieces: vec![surface(0, 0.0, 4.0), piece],
             quads: quads[..6].to_vec(),
@@ -689,7 +693,12 @@ mod tests {
             let ball = Piece::ball(Point3::splat(c), r);
             assert_eq!(outer(ball).first_touching().is_some(), touches, "{ball:?}");
         }
-        assert!(!surface(0, 0.0, 4.0).apart(&Piece::ball(Point3::splat(4.5), 0.8)));
+        // without its quads a surface is its bounding box: a ball by its distance to that box
+        // (0.5 sqrt 3 = 0.866 from the corner here)
+        for (r, apart) in [(0.85, true), (0.9, false)] {
+            let ball = Piece::ball(Point3::splat(4.5), r);
+            assert_eq!(surface(0, 0.0, 4.0).apart(&ball), apart, "radius {r}");
+        }
     }
 
     #[test]
@@ -698,14 +707,21 @@ mod tests {
         let mut pieces: Vec<Piece> = (0..1000)
             .map(|i| Piece::ball(Point3::new(2.5 * i as f64, 0.0, 0.0), 1.0))
             .collect();
-        assert_eq!(first_touching(&pieces), None);
+        let first = |pieces: &[Piece]| {
+            let all = Pieces {
+                pieces: pieces.to_vec(),
+                quads: Vec::new(),
+            };
+            all.first_touching().map(|(i, j, _)| (i, j))
+        };
+        assert_eq!(first(&pieces), None);
         pieces[700] = Piece::ball(Point3::new(2.5 * 700.0 - 0.6, 0.0, 0.0), 1.0);
-        assert_eq!(first_touching(&pieces), Some((699, 700)));
+        assert_eq!(first(&pieces), Some((699, 700)));
         // a checker that compared nothing would say apart: one far ball inside a large one
         let pieces = [
             Piece::ball(Point3::ZERO, 100.0),
             Piece::ball(Point3::new(50.0, 0.0, 0.0), 1.0),
         ];
-        assert_eq!(first_touching(&pieces), Some((0, 1)));
+        assert_eq!(first(&pieces), Some((0, 1)));
     }
 }

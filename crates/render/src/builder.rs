@@ -269,8 +269,8 @@ impl SceneBuilder {
             *budget -= 1;
             let (inner, placed) = match o {
                 Object::Sphere(s) if s.is_moving() => {
-                    let (from, to_) = (to.point(s.center_at(0.0)), to.point(s.center_at(1.0)));
-                    out.push(Piece::moving_ball(from, to_, s.radius));
+                    let (c0, c1) = (to.point(s.center_at(0.0)), to.point(s.center_at(1.0)));
+                    out.push(Piece::moving_ball(c0, c1, s.radius));
                     continue;
                 }
                 Object::Sphere(s) => {
@@ -286,13 +286,14 @@ impl SceneBuilder {
                 Object::Instance { transform, group } => (*group, transform.then(to)),
             };
             if self.boxes.contains(&inner.0) {
-                // the box in its own coordinates (its quads' corners), then placed
-                let mut own = Aabb::EMPTY;
-                for (k, o) in self.objects(inner).iter().enumerate() {
-                    if let Object::Quad(q) = o {
-                        own = own.union(&LooseQuad::new(q, Transform::IDENTITY, inner, k).bounds());
-                    }
-                }
+                // the box in its own coordinates (its axis-aligned faces' opposite corners), placed
+                let own = (self.objects(inner).iter())
+                    .filter_map(|o| match o {
+                        Object::Quad(q) => Some([q.q, q.q + q.u + q.v]),
+                        _ => None,
+                    })
+                    .flatten()
+                    .fold(Aabb::EMPTY, |b, c| b.include(c));
                 out.push(Piece::placed_box(
                     own.min,
                     own.max,

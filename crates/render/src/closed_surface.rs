@@ -175,13 +175,10 @@ pub(crate) fn closed_components(quads: &[LooseQuad]) -> Option<Vec<usize>> {
     let mut first_at: HashMap<(usize, usize), usize> = HashMap::new();
     for q in 0..quads.len() {
         for (k, (a, b)) in EDGES.into_iter().enumerate() {
-            let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
-            let whole = [a, b];
+            let whole = [vertex[4 * q + a], vertex[4 * q + b]];
             let path = split.get(&(q, k)).map_or(&whole[..], |p| &p[..]);
             for w in path.windows(2) {
-                let other = *first_at
-                    .entry((w[0].min(w[1]), w[0].max(w[1])))
-                    .or_insert(q);
+                let other = *first_at.entry(pair(w[0], w[1])).or_insert(q);
                 let (r, s) = (root(&mut parent, q), root(&mut parent, other));
                 parent[r] = s;
             }
@@ -201,6 +198,16 @@ pub(crate) fn closed_components(quads: &[LooseQuad]) -> Option<Vec<usize>> {
 
 /// The corners at the same edge of a quad, by their index among its four.
 const EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
+
+/// The key of the edge between vertices `a` and `b`, either way round.
+fn pair(a: usize, b: usize) -> (usize, usize) {
+    (a.min(b), a.max(b))
+}
+
+/// The key of quad `q`'s edge between its corners `(a, b)` (by their index among its four).
+fn edge_of(vertex: &[usize], q: usize, (a, b): (usize, usize)) -> (usize, usize) {
+    pair(vertex[4 * q + a], vertex[4 * q + b])
+}
 
 /// The edges split at T-junctions: `(quad, edge)` to the vertices along it, its ends included.
 type Splits = HashMap<(usize, usize), Vec<usize>>;
@@ -306,18 +313,13 @@ fn surface(
             }
         }
     }
-    let edge = |q: usize, (a, b): (usize, usize)| {
-        let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
-        (a.min(b), a.max(b))
-    };
     let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
     let mut places: HashMap<[usize; 4], usize> = HashMap::new();
     for q in 0..quads.len() {
         for e in EDGES {
-            *edges.entry(edge(q, e)).or_default() += 1;
+            *edges.entry(edge_of(&vertex, q, e)).or_default() += 1;
         }
     }
-    let key = |a: usize, b: usize| (a.min(b), a.max(b));
     let budget = max_lookups.saturating_sub(looked);
     let split = match split_at_junctions(quads, &vertex, &mut edges, budget) {
         Ok(split) => split,
@@ -339,7 +341,7 @@ fn surface(
                 i => corner(path[i]),
             };
             for (i, w) in path.windows(2).enumerate() {
-                let others = edges[&key(w[0], w[1])] - 1;
+                let others = edges[&pair(w[0], w[1])] - 1;
                 if others != 1 {
                     let (from, to) = (end(i), end(i + 1));
                     let problem = match (others, along(quads, q, from, to)) {
@@ -377,14 +379,9 @@ fn split_at_junctions(
     budget: usize,
 ) -> Result<Splits, (usize, OpenSurface)> {
     let corner = |i: usize| quads[i / 4].corners[i % 4];
-    let edge = |q: usize, (a, b): (usize, usize)| {
-        let (a, b) = (vertex[4 * q + a], vertex[4 * q + b]);
-        (a.min(b), a.max(b))
-    };
-    let key = |a: usize, b: usize| (a.min(b), a.max(b));
     let lone: Vec<(usize, usize)> = (0..quads.len())
         .flat_map(|q| (0..4).map(move |k| (q, k)))
-        .filter(|&(q, k)| edges[&edge(q, EDGES[k])] == 1)
+        .filter(|&(q, k)| edges[&edge_of(vertex, q, EDGES[k])] == 1)
         .collect();
     let mut ends: Vec<usize> = lone
         .iter()
@@ -436,9 +433,9 @@ fn split_at_junctions(
             .chain(on.iter().map(|&(_, v)| v))
             .chain(std::iter::once(vb))
             .collect();
-        *edges.entry(key(va, vb)).or_default() -= 1;
+        *edges.entry(pair(va, vb)).or_default() -= 1;
         for w in path.windows(2) {
-            *edges.entry(key(w[0], w[1])).or_default() += 1;
+            *edges.entry(pair(w[0], w[1])).or_default() += 1;
         }
         split.insert((q, k), path);
     }

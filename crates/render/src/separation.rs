@@ -184,7 +184,7 @@ pub fn inside(p: Point3, quads: &[(Point3, Vec3, Vec3)], margin: f64) -> Option<
                 margin / u.length().max(1e-300),
                 margin / v.length().max(1e-300),
             );
-            let near = |x: f64, e: f64| (x - 0.0).abs() <= e || (x - 1.0).abs() <= e;
+            let near = |x: f64, e: f64| x.abs() <= e || (x - 1.0).abs() <= e;
             let within = |x: f64, e: f64| x > -e && x < 1.0 + e;
             if within(alpha, ea) && within(beta, eb) {
                 if near(alpha, ea) || near(beta, eb) {

@@ -593,4 +593,4 @@ fn touching_pieces(a: &Piece, b: &Piece, exact: bool) -> String {
 /// What a medium's boundary may be.
 const ENCLOSE: &str = "a medium's boundary must enclose a volume (a sphere, a moving sphere, a box, a \
      group or instance of them, or quads that close a surface: each edge of each quad an edge of \
-     exactly one other)";
+     exactly one other, or shared stretch by stretch where other quads' corners lie along it)";
