@@ -4,8 +4,9 @@
 //! --ignored --nocapture` (env `B2F_WIDTH`, `B2F_SPP`, `B2F_SPH_RECT`).
 
 use rtl_render::integrator::{MisOptions, Strategy};
+use rtl_render::media_crossed::MediumMode;
 use rtl_render::render::{RenderSettings, Renderer};
-use rtl_render::sampler::{Ctx, MediumMode};
+use rtl_render::sampler::Ctx;
 use rtl_render::scenes;
 use rtl_render::{Color, Point3};
 

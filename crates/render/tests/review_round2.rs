@@ -401,7 +401,7 @@ fn mis_agrees_with_cosine_through_many_media_an_open_dielectric_and_a_box_of_smo
         let scene = layered_media(layers);
         // A ray from the camera towards the glow crosses `layers` stretches (the overflow path for 10).
         let mut ctx = Ctx::new();
-        ctx.media = rtl_render::sampler::MediumMode::Record;
+        ctx.media = rtl_render::media_crossed::MediumMode::Record;
         ctx.crossed.clear();
         let from = Point3::new(0.0, 1.5, 5.0);
         scene.hit(
