@@ -67,10 +67,10 @@ pub struct SphereTarget {
 /// The narrowest cone a [`SphereTarget`] is sampled in: `sin^2 theta_max = 2^-64`, an angular
 /// radius of `2^-32` (2.3e-10 rad). Unit vectors in `f64` lie about 1e-16 apart, so a direction
 /// drawn in a cone of angular radius `theta` rounds to one outside it, where `pdf` is 0, about
-/// `3.5e-17 / theta` of the time: 1.5e-7 at this floor, and always below 1e-16 rad. A sphere
-/// narrower than this counts as too small to see, as one whose density overflows: no sample and
-/// density 0. Its share of the light arriving at a point is at most `pi 2^-64` sr (1.7e-19) times
-/// its radiance.
+/// `3.5e-17 / theta` of the time: 1.5e-7 at this floor, 0.29 at 1e-16 rad, and always below about
+/// 4e-17 rad. A sphere narrower than this counts as too small to see, as one whose density
+/// overflows: no sample and density 0. Its share of the light arriving at a point is at most
+/// `pi 2^-64` sr (1.7e-19) times its radiance.
 pub const MIN_CONE_SIN2: f64 = 1.0 / (1u128 << 64) as f64;
 
 /// What a sphere looks like from a point: a cone (axis, `1 - cos theta_max`), or all around.

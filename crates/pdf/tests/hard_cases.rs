@@ -299,7 +299,7 @@ fn sphere_light_too_small_to_weigh_has_pdf_zero_where_it_gives_no_sample() {
 /// The floor of the cones sampled, `MIN_CONE_SIN2` (`sin theta_max = 2^-32`): a sphere just wider
 /// is sampled, and its samples lie in their cone (rounded directions fall outside about
 /// `3.5e-17 / theta` of the time, 1.5e-7 here); one just narrower gives no sample and density 0
-/// (it gave samples its own density called misses: every one of them below about 1e-17 rad). At
+/// (it gave samples its own density called misses: every one of them below about 4e-17 rad). At
 /// every scale of the scene, as the floor is a ratio.
 #[test]
 fn sphere_light_at_the_resolution_of_directions() {
