@@ -7,8 +7,9 @@
 //! summarised over the rounds by its median and range ([`Spread`]): on a shared machine a ratio
 //! from one round is what stays put, an absolute time is not.
 
+use super::machine::{cpu_model, num_cores};
 use super::noise::seconds_to;
-use super::{CompareArgs, Comparison, Measured, Spread, cpu_model, measure, num_cores, validate};
+use super::{CompareArgs, Comparison, Measured, Spread, measure, validate};
 use anyhow::{Context, Result};
 use clap::{Args, Parser, ValueEnum};
 use rtl_render::traversal::HitTier;
