@@ -19,6 +19,11 @@ use crate::vec::{Point3, Vec3};
 /// magnitude above that and still invisible (a micrometre in a scene a kilometre wide).
 pub const REL_ERROR: f64 = 1.0 / 68_719_476_736.0;
 
+/// How many error bounds (`err`, per axis) a ray leaving a surface starts off it: the surface's
+/// rays start `SPAWN_ERRORS * REL_ERROR` times the magnitude of its coordinates away, so light
+/// nearer to it than that is not seen from it (what a scene file's sizes are checked against).
+pub const SPAWN_ERRORS: f64 = 4.0;
+
 /// Where on a surface the texture coordinates come from, kept lazily: most materials never ask.
 #[derive(Clone, Copy, Debug)]
 pub enum UvSource {
@@ -72,10 +77,11 @@ impl Hit {
     }
 
     /// The origin for a ray leaving this hit in `direction`: the hit point pushed off the surface along
-    /// the normal, to the side `direction` points to, by 4 times the error bound per axis.
+    /// the normal, to the side `direction` points to, by [`SPAWN_ERRORS`] times the error bound per
+    /// axis.
     #[inline]
     pub fn spawn_origin(&self, direction: Vec3) -> Point3 {
-        let d = 4.0 * self.err;
+        let d = SPAWN_ERRORS * self.err;
         let offset = self.normal * d;
         if direction.dot(self.normal) >= 0.0 {
             self.p + offset

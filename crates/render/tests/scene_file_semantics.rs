@@ -383,8 +383,9 @@ fn a_value_that_is_not_a_table_is_named_with_its_article() {
 
 /// A quad's edges are placed only as finely as doubles are spaced at its largest coordinate: a floor
 /// with its corner q at [-1e20, 0, 1e20] and an edge through the origin, seen from 5 away, had that
-/// edge 16,000 off (at 1e16, 2), the image silently another. Refused, naming the object; a large
-/// quad whose edges are all far from the camera is not, nor one at 1e12 (edges 1e-4 off).
+/// edge 16,000 off (at 1e16, 2), the image silently another. Refused, naming the object. So is a
+/// floor so large that the rays leaving it start too far off it (4 error bounds of 2^-36 of its
+/// size: 1e12 across, 175 above it), even with its edges far away; a floor 1e6 across is not.
 #[test]
 fn a_quad_whose_edges_cannot_be_placed_for_the_camera_is_refused() {
     let floor = |q: &str, u: &str, v: &str| {
@@ -419,6 +420,20 @@ fn a_quad_whose_edges_cannot_be_placed_for_the_camera_is_refused() {
     for (q, u, v) in [
         ("[-1e12, 0, 1e12]", "[1e12, 0, 0]", "[0, 0, -1e12]"),
         ("[-1e29, 0, -1e29]", "[2e29, 0, 0]", "[0, 0, 2e29]"),
+        ("[-1e8, 0, -1e8]", "[2e8, 0, 0]", "[0, 0, 2e8]"),
+    ] {
+        refused(
+            &floor(q, u, v),
+            &[
+                "some/dir/s.toml:6:1",
+                "field `objects[0]`",
+                "a quad (or box face) reaching",
+                "is too large for this camera: rays leave its surface from",
+            ],
+        );
+    }
+    for (q, u, v) in [
+        ("[-1e6, 0, -1e6]", "[2e6, 0, 0]", "[0, 0, 2e6]"),
         ("[-1, 0, 1]", "[1, 0, 0]", "[0, 0, -1]"),
     ] {
         load(&floor(q, u, v)).unwrap_or_else(|e| panic!("{q} {u} {v}: {e}"));
@@ -445,9 +460,13 @@ fn a_box_whose_face_edges_cannot_be_placed_is_refused() {
             "cannot have its edges placed",
         ],
     );
+    refused(
+        &boxed("[-1e12, -1, -1e12]", "[0, 0, 1e12]"),
+        &["box face", "is too large for this camera"],
+    );
     for (a, b) in [
         ("[-10, -1, -10]", "[0, 0, 10]"),
-        ("[-1e12, -1, -1e12]", "[0, 0, 1e12]"),
+        ("[-1e6, -1, -1e6]", "[0, 0, 1e6]"),
         ("[1e29, 1e29, 1e29]", "[2e29, 2e29, 2e29]"),
     ] {
         load(&boxed(a, b)).unwrap_or_else(|e| panic!("{a} {b}: {e}"));
@@ -455,8 +474,9 @@ fn a_box_whose_face_edges_cannot_be_placed_is_refused() {
 }
 
 /// An instance places its group's quads again, and they are held to the same rule where it puts them:
-/// a floor reaching 1e20, accepted in a group placed 1e8 below the camera, is refused where an
-/// instance puts it at the camera's feet; an instance that leaves it far away loads.
+/// a floor reaching 1e20, accepted in a group placed 1e14 below the camera (its rays leave it
+/// 2.3e10 off it, below 1e14 / 1024), is refused where an instance puts it at the camera's feet; an
+/// instance that leaves it far away loads.
 #[test]
 fn an_instance_whose_quads_cannot_be_placed_is_refused() {
     let scene = |up: &str| {
@@ -464,14 +484,14 @@ fn an_instance_whose_quads_cannot_be_placed_is_refused() {
             "[camera]\nlookfrom = [2, 1, 0]\nlookat = [0, 0, 0]\n[materials]\n\
              w = {{ type = \"lambertian\", albedo = 0.5 }}\n\
              [[objects]]\ntype = \"group\"\nname = \"g\"\n\
-             transform = [{{ translate = [0, -1e8, 0] }}]\n\
+             transform = [{{ translate = [0, -1e14, 0] }}]\n\
              [[objects.objects]]\ntype = \"quad\"\nq = [-1e20, 0, -1e20]\nu = [1e20, 0, 0]\n\
              v = [0, 0, 2e20]\nmaterial = \"w\"\n\
              [[objects]]\ntype = \"instance\"\nof = \"g\"\n\
              transform = [{{ translate = [0, {up}, 0] }}]\n"
         )
     };
-    load(&scene("-2e8")).unwrap_or_else(|e| panic!("{e}"));
+    load(&scene("-2e14")).unwrap_or_else(|e| panic!("{e}"));
     refused(
         &scene("0"),
         &[

@@ -683,10 +683,22 @@ fn a_sphere_too_large_to_place_for_the_camera_is_an_error() {
         "objects[1].radius",
         "cannot be placed finely enough",
     );
-    // The book's floor (radius 1000) and one of 1e12 are fine; so is a sphere of radius 1e20 seen
-    // from its own scale.
+    // A floor of radius 1e11 there: doubles 1.5e-5 apart, but the rays leaving it start 4 error
+    // bounds (2^-36 of its size each) off it, 12 above it, over any lamp near it; it rendered
+    // black in every strategy. Refused too, at the radius, saying how far off; 1e8 (0.012 off, more
+    // than 5/1024) as well.
+    for r in ["1e11", "1e8"] {
+        error_at(
+            &floor(r),
+            line,
+            "objects[1].radius",
+            "is too large for this camera: rays leave its surface from",
+        );
+    }
+    // The book's floor (radius 1000) and one of 1e7 (0.0012 off) are fine; so is a sphere of
+    // radius 1e20 seen from its own scale.
     load(&floor("1000")).unwrap();
-    load(&floor("1e12")).unwrap();
+    load(&floor("1e7")).unwrap();
     let far = BASE
         .replace("lookfrom = [0, 0, 5]", "lookfrom = [0, 0, 5e20]")
         .replace("radius = 1\n", "radius = 1e20\n");
@@ -699,6 +711,36 @@ fn a_sphere_too_large_to_place_for_the_camera_is_an_error() {
         .replace("lookfrom = [0, 0, 5]", "lookfrom = [0, 1e16, 5]")
         .replace("lookat = [0, 0, 0]", "lookat = [1, 1e16, 5]");
     load(&high).unwrap();
+}
+
+/// The largest sphere floor accepted under a lamp (radius 1e7, its rays leaving it 0.0012 off it,
+/// the camera 5 from what it looks at) is lit as the book's floor of radius 1000 is: the same
+/// numbers make the same paths, so the lower half of the image (the floor) comes out within 1% of
+/// it, where a floor whose rays left it from above the lamp (radius 1e11, now refused) came out
+/// black.
+#[test]
+fn the_largest_floor_accepted_is_lit_like_a_small_one() {
+    let scene = |r: &str| {
+        format!(
+            "[camera]\nlookfrom = [0, 1, -5]\nlookat = [0, 1, 0]\n[materials]\n\
+             white = {{ type = \"lambertian\", albedo = 0.7 }}\n\
+             lamp = {{ type = \"light\", emit = 10 }}\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [0, -{r}, 0]\nradius = {r}\n\
+             material = \"white\"\n\
+             [[objects]]\ntype = \"quad\"\nq = [-1, 2.5, -1]\nu = [2, 0, 0]\nv = [0, 0, 2]\n\
+             material = \"lamp\"\n"
+        )
+    };
+    let floor = |r: &str| {
+        let file = load(&scene(r)).unwrap_or_else(|e| panic!("{e}"));
+        let (acc, _) = render(&file.built.scene, settings(32, 5, 8), 16);
+        let image = acc.image();
+        let lower = &image[image.len() / 2..];
+        lower.iter().map(|c| c.element_sum()).sum::<f64>() / lower.len() as f64
+    };
+    let (small, large) = (floor("1000"), floor("1e7"));
+    assert!(small > 0.05, "{small}");
+    assert!((large / small - 1.0).abs() < 0.01, "{large} vs {small}");
 }
 
 #[test]

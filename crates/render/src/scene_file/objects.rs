@@ -10,9 +10,10 @@ use super::span::{Fail, Span, Val, fail};
 use super::values::{Num, Real, Step};
 use crate::boundary_pieces::{Piece, PieceKind};
 use crate::closed_surface::{OpenQuad, OpenSurface};
+use crate::hit::{REL_ERROR, SPAWN_ERRORS};
 use crate::material::Material;
 use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
-use crate::separation::segment_distance;
+use crate::separation::{parallelogram_distance, segment_distance};
 use crate::shapes::{Quad, Sphere};
 use crate::vec::{Point3, Vec3};
 use toml::Spanned;
@@ -66,7 +67,8 @@ impl Loader<'_> {
     /// radius `r`) more than 1/1024 of the scale the camera sees it at, the larger of its distance to
     /// `lookat` and its distance to the sphere's surface. Its hits would be off by about that much (a
     /// floor of radius 1e17 seen from 10 away rendered black); seen from far enough, the same sphere
-    /// renders.
+    /// renders. Likewise where the rays leaving it start farther off it than that
+    /// ([`Self::leaves_close_enough`]).
     fn placeable(&self, centers: &[Point3], r: f64, radius: &Spanned<Real>) -> Result<(), Fail> {
         let c = &self.b.camera;
         let view = (c.lookfrom - c.lookat).length();
@@ -90,6 +92,36 @@ impl Loader<'_> {
                      distance it is seen at ({scale:.3e}, the larger of the camera's to lookat and \
                      to the sphere's surface), so its hits would be that far off; a floor this \
                      large is better a quad"
+                ),
+            );
+        }
+        Self::leaves_close_enough(far, scale, "sphere", radius.span())
+    }
+
+    /// Refuses a surface (`what`, at `span`) whose rays would leave it too far off it for the scale
+    /// `scale` it is seen at: they start [`SPAWN_ERRORS`] error bounds off the surface, and the bound
+    /// is [`REL_ERROR`] times the magnitude of its coordinates (`size`; for a quad the sum of its
+    /// corner's and its edges' largest coordinates, as [`Quad::new`] takes it). Refused when that is
+    /// more than 1/1024 of `scale`, as for the spacing of doubles: a sphere floor of radius 1e11 under
+    /// a camera 5 from what it looks at started its rays 6 above it, over a lamp at 2.5, and rendered
+    /// black, every strategy alike.
+    fn leaves_close_enough(size: f64, scale: f64, what: &str, span: Span) -> Result<(), Fail> {
+        let offset = SPAWN_ERRORS * REL_ERROR * size;
+        // (computed numbers to three digits)
+        let short = |x: f64| Num(format!("{x:.2e}").parse().unwrap_or(x));
+        if offset > scale / 1024.0 {
+            return fail(
+                span,
+                format!(
+                    "a {what} reaching {} from the origin is too large for this camera: rays \
+                     leave its surface from {} off it ({SPAWN_ERRORS} times its error bound, \
+                     2^-36 of its size), more than 1/1024 of the distance it is seen at ({}, \
+                     the larger of the camera's to lookat and to the {what}), so light nearer \
+                     to it than that would not reach it; make it smaller, or keep it nearer \
+                     the origin",
+                    short(size),
+                    short(offset),
+                    short(scale)
                 ),
             );
         }
@@ -144,7 +176,18 @@ impl Loader<'_> {
                 ),
             );
         }
-        Ok(())
+        let size = |q: Point3, u: Vec3, v: Vec3| {
+            q.abs().max_element() + u.abs().max_element() + v.abs().max_element()
+        };
+        let seen_at = (c.lookfrom - c.lookat)
+            .length()
+            .max(parallelogram_distance(c.lookfrom, wq, wu, wv));
+        Self::leaves_close_enough(
+            size(q, u, v).max(size(wq, wu, wv)),
+            seen_at,
+            "quad (or box face)",
+            span.clone(),
+        )
     }
 
     /// `moving_sphere`: `center0` at time 0, `center1` at time 1, `radius`.
