@@ -14,19 +14,37 @@ use rtl_render::render::{Accumulator, Renderer};
 use rtl_render::sampler::Stats;
 use rtl_render::tier_race::TierRace;
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// Set by the first Ctrl-C (or SIGTERM/SIGHUP): stop at the end of the current row band.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
-/// Catch Ctrl-C: the first asks the render to stop with what it has; the second exits at once.
+/// When the first interrupt came.
+static FIRST_INTERRUPT: OnceLock<Instant> = OnceLock::new();
+
+/// A second interrupt this soon after the first is the same one delivered twice, not a second
+/// Ctrl-C: `timeout -s INT` signals the program and then its whole process group, and a terminal's
+/// Ctrl-C reaches every process of the foreground group (`rtl render ... | tee`), so a render was
+/// sometimes told twice within microseconds and quit without its image. A person pressing Ctrl-C
+/// again to quit takes longer than this.
+pub const REPEAT_WINDOW: Duration = Duration::from_millis(500);
+
+/// Catch Ctrl-C: the first asks the render to stop with what it has; a second, at least
+/// [`REPEAT_WINDOW`] later, exits at once.
 pub fn catch_interrupts() -> Result<()> {
     ctrlc::set_handler(|| {
+        let now = Instant::now();
         if INTERRUPTED.swap(true, Ordering::SeqCst) {
+            let first = *FIRST_INTERRUPT.get_or_init(|| now);
+            if now.duration_since(first) < REPEAT_WINDOW {
+                return; // the same interrupt, delivered twice
+            }
             eprintln!("\ninterrupted again: exiting without saving");
             std::process::exit(130);
         }
+        FIRST_INTERRUPT.get_or_init(|| now);
         eprintln!("\ninterrupted: finishing with the passes done (Ctrl-C again to quit at once)");
     })
     .context("cannot install the Ctrl-C handler")
