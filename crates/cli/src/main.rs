@@ -43,6 +43,7 @@ enum Command {
 }
 
 fn main() {
+    stop_quietly_when_stdout_is_gone();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(args),
@@ -56,6 +57,35 @@ fn main() {
         eprintln!("error: {}", message(&err));
         std::process::exit(1);
     }
+}
+
+/// The exit code of a program whose standard output was closed under it (`rtl render --explain
+/// cornell | head -1`): what a shell reports for one killed by SIGPIPE, 128 + 13.
+const EXIT_BROKEN_PIPE: i32 = 141;
+
+/// `println!` panics when standard output cannot be written (a pipe whose reader has gone, a full
+/// disk, `> /dev/full`), with a backtrace: Rust ignores SIGPIPE. This hook turns that one panic into
+/// what a command-line tool does instead: a closed pipe ends the program quietly (exit 141, as
+/// SIGPIPE would), any other failure is an error naming standard output (exit 1). Every other
+/// panic goes to the default hook.
+fn stop_quietly_when_stdout_is_gone() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let text = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if let Some(why) = text.strip_prefix("failed printing to stdout: ") {
+            if why.starts_with("Broken pipe") {
+                std::process::exit(EXIT_BROKEN_PIPE);
+            }
+            eprintln!("error: cannot write to standard output: {why}");
+            std::process::exit(1);
+        }
+        default(info)
+    }));
 }
 
 /// The error and its causes joined by `": "`, as anyhow's `{:#}` joins them, but without a cause
