@@ -17,6 +17,7 @@ use rtl_render::render::{
     Accumulator, BOOK_MIXTURE_WEIGHT, RenderSettings, Renderer, check_mixture_weight,
 };
 use rtl_render::sampler::Stats;
+use rtl_render::scene::Scene;
 use rtl_render::scenes::{BUILT_INS, Built, BuiltIn, SceneOptions, find};
 use rtl_render::tier_race::TierRace;
 use rtl_render::traversal::{HitTier, HitTierError};
@@ -308,6 +309,12 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
     };
     let mixture_weight = match (args.mixture_weight, args.strategy) {
         (None, _) => BOOK_MIXTURE_WEIGHT,
+        (Some(w), Strategy::Mixture) if loaded.built.scene.features.targets == 0 => bail!(
+            "--mixture-weight {}: {} lists no importance targets (`lights`), so 'mixture' has \
+             nothing to mix the material's density with and the weight would be ignored",
+            Num(w),
+            loaded.name
+        ),
         (Some(w), Strategy::Mixture) => match check_mixture_weight(w) {
             Ok(w) => w,
             Err(e) => bail!("--mixture-weight {}: {e}", Num(w)),
@@ -604,6 +611,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
     for n in &job.loaded.built.notices {
         eprintln!("note: {n}");
     }
+    if let Some(n) = without_targets(job.settings.strategy, scene) {
+        eprintln!("note: {n}");
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(job.threads)
         .build()
@@ -645,6 +655,20 @@ pub fn run(args: RenderArgs) -> Result<()> {
 
 /// What `--hit-tier auto` does on a processor that does not run both AVX2 and AVX-512: it runs
 /// `tier`, the best this processor runs, with no race.
+/// What to tell a user who asked for a strategy that aims at the importance targets, of a scene that
+/// lists none: it samples the material's density alone, so the image is `cosine`'s.
+fn without_targets(strategy: Strategy, scene: &Scene) -> Option<String> {
+    (matches!(strategy, Strategy::Mixture | Strategy::Light) && scene.features.targets == 0).then(
+        || {
+            format!(
+                "this scene lists no importance targets (`lights`), so '{}' samples the \
+                 material's density alone: the image is the 'cosine' strategy's",
+                strategy.name()
+            )
+        },
+    )
+}
+
 fn nothing_to_race(tier: HitTier) -> String {
     format!(
         "--hit-tier auto: this processor does not run both avx2 and avx512, so there is no race \

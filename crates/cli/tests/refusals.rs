@@ -422,7 +422,57 @@ fn a_mixture_weight_outside_0_to_1_or_without_the_mixture_is_refused() {
         &render(&["--strategy", "mixture", "--mixture-weight=-1e-300"]),
         &["--mixture-weight -1e-300: the mixture weight is -1e-300, not strictly"],
     );
+    // a scene without importance targets has nothing to mix: the weight would be ignored
+    refused(
+        &d,
+        &[
+            "render",
+            "quads",
+            "--width",
+            "16",
+            "--spp",
+            "1",
+            "--strategy",
+            "mixture",
+            "--mixture-weight",
+            "0.3",
+        ],
+        &["--mixture-weight 0.3: quads lists no importance targets"],
+    );
     assert!(files(&d).is_empty(), "{:?}", files(&d));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `mixture` and `light` aim at the importance targets; on a scene that lists none they sample the
+/// material alone, the image `cosine`'s bit for bit, which was rendered without a word. Now a note
+/// says so; a scene with targets gets no such note.
+#[test]
+fn a_strategy_of_targets_on_a_scene_without_them_says_it_is_cosine() {
+    let d = dir("no-targets");
+    for s in ["mixture", "light"] {
+        let err = ok(
+            &d,
+            &[
+                "render",
+                "quads",
+                "--width",
+                "16",
+                "--spp",
+                "1",
+                "--strategy",
+                s,
+            ],
+        );
+        assert!(
+            err.contains(&format!(
+                "note: this scene lists no importance targets (`lights`), so '{s}' samples the \
+                 material's density alone: the image is the 'cosine' strategy's"
+            )),
+            "{err}"
+        );
+    }
+    let err = ok(&d, &render(&["--strategy", "mixture"]));
+    assert!(!err.contains("no importance targets"), "{err}");
     let _ = std::fs::remove_dir_all(&d);
 }
 
