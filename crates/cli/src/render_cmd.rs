@@ -655,6 +655,18 @@ pub fn run(args: RenderArgs) -> Result<()> {
 
 /// What `--hit-tier auto` does on a processor that does not run both AVX2 and AVX-512: it runs
 /// `tier`, the best this processor runs, with no race.
+/// What to tell a user whose image came out black in every pixel though the scene has `emitters`
+/// (with none the scene file's loader has said so already): a one-sided quad light facing away from
+/// everything the camera sees renders so, with exit code 0 and nothing else to tell it from a
+/// render of the dark.
+fn all_black(image: &[rtl_render::vec::Color], emitters: usize) -> Option<String> {
+    (emitters > 0 && image.iter().all(|c| *c == rtl_render::vec::Color::ZERO)).then(|| {
+        "every pixel is black: no light reached the camera. A quad light shines only to the side \
+         its normal u x v points to: is it facing away from what it should light?"
+            .to_string()
+    })
+}
+
 /// What to tell a user who asked for a strategy that aims at the importance targets, of a scene that
 /// lists none: it samples the material's density alone, so the image is `cosine`'s.
 fn without_targets(strategy: Strategy, scene: &Scene) -> Option<String> {
@@ -780,6 +792,9 @@ fn report(
             .map(|p| format!(", {}", p.display()))
             .unwrap_or_default()
     );
+    if let Some(n) = all_black(&image, job.loaded.built.scene.features.emitters) {
+        eprintln!("note: {n}");
+    }
     if args.stats {
         // (a resume of a finished render renders no sample: 0 per sample, not NaN)
         println!("samples              {}", stats.samples);

@@ -476,6 +476,33 @@ fn a_strategy_of_targets_on_a_scene_without_them_says_it_is_cosine() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// A one-sided quad light turned away from everything (u and v swapped: it shines up, at nothing)
+/// rendered a black image with exit code 0 and no word. Now a note says every pixel is black and
+/// why that may be; the same light turned down gets no note.
+#[test]
+fn an_image_black_in_every_pixel_of_a_lit_scene_says_so() {
+    let d = dir("all-black");
+    let lamp = |u: &str, v: &str| {
+        format!(
+            "[camera]\nlookfrom = [0, 1, -5]\nlookat = [0, 1, 0]\n[materials]\n\
+             white = {{ type = \"lambertian\", albedo = 0.7 }}\n\
+             lamp = {{ type = \"light\", emit = 10 }}\n\
+             [[objects]]\ntype = \"quad\"\nq = [-3, 0, -3]\nu = [6, 0, 0]\nv = [0, 0, 6]\n\
+             material = \"white\"\n\
+             [[objects]]\ntype = \"quad\"\nq = [-1, 2.5, -1]\nu = {u}\nv = {v}\n\
+             material = \"lamp\"\n"
+        )
+    };
+    let note = "note: every pixel is black: no light reached the camera";
+    std::fs::write(d.join("up.toml"), lamp("[0, 0, 2]", "[2, 0, 0]")).unwrap();
+    let err = ok(&d, &["render", "up.toml", "--width", "16", "--spp", "2"]);
+    assert!(err.contains(note), "{err}");
+    std::fs::write(d.join("down.toml"), lamp("[2, 0, 0]", "[0, 0, 2]")).unwrap();
+    let err = ok(&d, &["render", "down.toml", "--width", "16", "--spp", "2"]);
+    assert!(!err.contains(note), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 #[test]
 fn a_resume_with_another_mixture_weight_is_refused() {
     let d = dir("identity-weight");
