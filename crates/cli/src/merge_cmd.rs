@@ -148,7 +148,7 @@ pub fn run(args: MergeArgs) -> Result<()> {
     eprintln!(
         "merged {} part(s) of {} ({w}x{h}): samples {}..{}, {spp} spp, {} non-finite samples dropped -> {}{}{}",
         parts.len(),
-        ck.identity.scene,
+        rtl_render::text::shown(&ck.identity.scene),
         ck.start,
         ck.acc.samples,
         ck.acc.total_dropped(),

@@ -532,7 +532,7 @@ fn open_or_resume(
         eprintln!(
             "note: {} was written by rtl {}, this is {}",
             path.display(),
-            ck.rtl_version,
+            rtl_render::text::shown(&ck.rtl_version),
             env!("CARGO_PKG_VERSION")
         );
     }

@@ -329,6 +329,53 @@ fn lying_copy(ck: &Checkpoint, sum: Color, path: &Path) {
     c.write(path).unwrap();
 }
 
+/// A checkpoint's strings (its scene's name, the version of rtl that wrote it, its settings) are
+/// printed in notes and refusals: a forged one (valid checksum) with an escape sequence in them had
+/// it act on the terminal (`merged 1 part(s) of cornell ESC[2J ESC[31mPWNED`), and a settings
+/// string of 200 KB was echoed whole. Now each is written out (`\u{001B}`) and cut short.
+#[test]
+fn a_checkpoints_strings_are_shown_not_sent_to_the_terminal() {
+    let d = dir("ck-strings");
+    ok(&d, &render(&["--part", "good"]));
+    let good = Checkpoint::read(&d.join("good")).unwrap();
+    let mut forged = good.clone();
+    forged.identity.scene = "cornell\u{1b}[2J\u{1b}[31mPWNED".into();
+    forged.rtl_version = "9.9.9\u{1b}[31m".into();
+    forged.write(&d.join("forged")).unwrap();
+    let out = rtl(&d, &["merge", "forged", "-o", "m.png"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains('\u{1b}'), "{err:?}");
+    assert!(
+        err.contains("of cornell\\u{001B}[2J\\u{001B}[31mPWNED"),
+        "{err}"
+    );
+    // resumed: the version's note
+    let mut resumable = good.clone();
+    resumable.rtl_version = "9.9.9\u{1b}[31m".into();
+    resumable.write(&d.join("old")).unwrap();
+    let out = rtl(
+        &d,
+        &[
+            "render", "cornell", "--width", "16", "--spp", "4", "--resume", "old",
+        ],
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains('\u{1b}'), "{err:?}");
+    assert!(err.contains("written by rtl 9.9.9\\u{001B}[31m"), "{err}");
+    // a settings string of 200 KB, refused as another render, is shown cut short
+    let mut long = good.clone();
+    long.identity.settings = "x".repeat(200_000);
+    long.write(&d.join("long")).unwrap();
+    let out = rtl(&d, &["merge", "good", "long", "-o", "m.png"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.len() < 5_000, "{} bytes: {}", err.len(), &err[..300]);
+    assert!(err.contains("more characters)"), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 #[test]
 fn checkpoints_with_a_valid_checksum_but_lying_sums_are_refused_by_merge_and_resume() {
     let d = dir("lying");

@@ -20,6 +20,7 @@
 use crate::limits::MAX_SIDE;
 use crate::render::{Accumulator, RenderSettings};
 use crate::scene::Scene;
+use crate::text::shown;
 use crate::vec::Color;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -131,13 +132,14 @@ impl Identity {
         if self.scene != other.scene {
             out.push(format!(
                 "scene: '{}' in {na}, '{}' in {nb}",
-                self.scene, other.scene
+                shown(&self.scene),
+                shown(&other.scene)
             ));
         } else if self.scene_hash != other.scene_hash {
             out.push(format!(
                 "scene: '{}' differs between {na} and {nb} (the scene file was edited, or another \
                  texture or another rtl build)",
-                self.scene
+                shown(&self.scene)
             ));
         }
         if self.settings != other.settings {
@@ -146,7 +148,8 @@ impl Identity {
                 (Some(a), Some(b)) => value_differences("", &a, &b, na, nb, &mut out),
                 _ => out.push(format!(
                     "settings: {} in {na}, {} in {nb}",
-                    self.settings, other.settings
+                    shown(&self.settings),
+                    shown(&other.settings)
                 )),
             }
         }
@@ -186,16 +189,29 @@ fn value_differences(
             for (k, va) in ma {
                 match mb.get(k) {
                     Some(vb) => value_differences(&join(k), va, vb, na, nb, out),
-                    None => out.push(format!("{}: {va} in {na}, absent in {nb}", join(k))),
+                    None => out.push(format!(
+                        "{}: {} in {na}, absent in {nb}",
+                        shown(&join(k)),
+                        shown(&va.to_string())
+                    )),
                 }
             }
             for (k, vb) in mb {
                 if !ma.contains_key(k) {
-                    out.push(format!("{}: absent in {na}, {vb} in {nb}", join(k)));
+                    out.push(format!(
+                        "{}: absent in {na}, {} in {nb}",
+                        shown(&join(k)),
+                        shown(&vb.to_string())
+                    ));
                 }
             }
         }
-        _ if a != b => out.push(format!("{path}: {a} in {na}, {b} in {nb}")),
+        _ if a != b => out.push(format!(
+            "{}: {} in {na}, {} in {nb}",
+            shown(path),
+            shown(&a.to_string()),
+            shown(&b.to_string())
+        )),
         _ => {}
     }
 }

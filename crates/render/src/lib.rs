@@ -68,6 +68,7 @@ pub mod scenes;
 pub mod separation;
 pub mod shapes;
 pub mod target_index;
+pub mod text;
 pub mod texture;
 pub mod tier_race;
 pub mod transform;

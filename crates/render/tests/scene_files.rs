@@ -660,6 +660,25 @@ fn a_control_character_in_a_name_or_description_is_an_error() {
         "",
         "control character (U+009B) in a key",
     );
+    // The refusal names the key's field without sending what it refuses to the terminal: an
+    // escape sequence in a key of an object was printed raw in `field `objects[1].ESC[2J``.
+    let keyed = format!(
+        "{BASE}\n[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n\
+         material = \"white\"\n\"\\u001b[2J\" = 1\n"
+    );
+    let Err(e) = load(&keyed) else {
+        panic!("a key with an escape sequence loaded")
+    };
+    assert!(!e.chars().any(|c| c == '\u{1b}'), "{e:?}");
+    assert!(e.contains("field `objects[1].\\u{001B}[2J`"), "{e}");
+    // A right-to-left override reorders how the rest of a line reads ("Trojan Source"): refused
+    // like a control character.
+    error_at(
+        &format!("description = \"abc \\u202E fed\"\n{BASE}"),
+        1,
+        "description",
+        "a bidirectional control (U+202E) in a string",
+    );
     // Tabs and line ends are text.
     load(&format!(
         "description = \"\"\"two\tlines\r\nof it\"\"\"\n{BASE}"

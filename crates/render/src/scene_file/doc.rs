@@ -259,19 +259,24 @@ pub(super) struct TargetQuadDoc {
     pub(super) v: Spanned<V3>,
 }
 
-/// Refuses a control character (other than tab, line feed and carriage return) in any key or string
-/// of the document: names and descriptions are printed to a terminal (`--explain`, errors), where an
-/// escape sequence would act rather than show.
+/// Refuses a control character (other than tab, line feed and carriage return) or a bidirectional
+/// control ([`crate::text::acts`]) in any key or string of the document: names and descriptions are
+/// printed to a terminal (`--explain`, errors), where an escape sequence would act rather than
+/// show, and a right-to-left override would make the line read otherwise than it is.
 pub(super) fn plain_text(t: &DeTable<'_>) -> Result<(), Fail> {
     fn control(s: &str) -> Option<char> {
-        s.chars()
-            .find(|&c| c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
+        s.chars().find(|&c| crate::text::acts(c))
     }
     fn refuse(span: Span, what: &str, c: char) -> Result<(), Fail> {
+        let kind = if c.is_control() {
+            "a control character"
+        } else {
+            "a bidirectional control"
+        };
         fail(
             span,
             format!(
-                "a control character (U+{:04X}) in {what}: a scene file's text must print as it reads",
+                "{kind} (U+{:04X}) in {what}: a scene file's text must print as it reads",
                 c as u32
             ),
         )

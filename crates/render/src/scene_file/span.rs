@@ -36,7 +36,8 @@ impl fmt::Display for Field {
         if self.0.is_empty() {
             Ok(())
         } else {
-            write!(f, "field `{}`: ", self.0)
+            // (a key may hold what a terminal would act on: written out, not sent)
+            write!(f, "field `{}`: ", crate::text::shown(&self.0))
         }
     }
 }
