@@ -524,12 +524,11 @@ impl Loader<'_> {
     }
 
     /// An importance target: the name of a sphere or quad, or an inline `{ type = "sphere" | "quad" }`.
-    pub(super) fn light(&mut self, v: Val<'_>) -> Result<(), Fail> {
+    /// The importance target an item of `lights` stands for: a name, or a sphere or quad written out.
+    pub(super) fn light(&mut self, v: Val<'_>) -> Result<ImportanceTarget, Fail> {
         let span = v.span();
         if let Some(name) = v.get_ref().as_str() {
-            let target = self.named_target(name, span)?;
-            self.b.targets.push(target);
-            return Ok(());
+            return self.named_target(name, span);
         }
         let Typed { kind, table, span } = typed(v, "importance target", &["sphere", "quad"])?;
         let target = if kind == "sphere" {
@@ -545,8 +544,7 @@ impl Loader<'_> {
                 None => return fail(span, "degenerate quad"),
             }
         };
-        self.b.targets.push(target);
-        Ok(())
+        Ok(target)
     }
 
     /// The importance target a name in `lights` stands for.
