@@ -273,7 +273,11 @@ fn every_bad_parameter_is_refused_with_a_message() {
         ),
         ("GET", "/api/mc/run?integral=%zz", "escape"),
         ("GET", &long, "at most"),
-        ("GET", "/api/mc/list?x=1", "unknown parameter"),
+        (
+            "GET",
+            "/api/mc/list?x=1",
+            "unknown parameter `x`; this request takes none",
+        ),
         ("GET", "/api/heat?x=1", "unknown parameter"),
         ("GET", "/api/sampling/line?samples=999999999", "samples"),
         ("GET", "/api/sampling/line?samples=-5", "samples"),

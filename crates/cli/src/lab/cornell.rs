@@ -260,17 +260,24 @@ fn reference_variance(mse: f64, k: u64, spp: u64) -> f64 {
     mse * k as f64 / (spp + k) as f64
 }
 
-/// The spp of the best reference cached in `dir` at `width` (`rtl study render`'s file names).
+/// The spp of the best reference cached in `dir` at `width` (`rtl study render`'s file names): of
+/// the regular files (or links to one) so named, with a number of samples `--reference-spp` would
+/// take (1 to [`super::MAX_REFERENCE_SPP`]). A name is no promise: a dangling link named for 2^64 - 1
+/// spp had the lab render a reference that never ends.
 fn cached_reference_spp(dir: &Path, width: usize) -> Option<u64> {
     let prefix = format!("render-reference-{}-{width}-", glue::SCENE);
     std::fs::read_dir(dir)
         .ok()?
         .filter_map(|e| {
-            let name = e.ok()?.file_name().into_string().ok()?;
-            name.strip_prefix(&prefix)?
+            let e = e.ok()?;
+            let name = e.file_name().into_string().ok()?;
+            let spp = name
+                .strip_prefix(&prefix)?
                 .strip_suffix(".pfm")?
                 .parse::<u64>()
-                .ok()
+                .ok()?;
+            let file = std::fs::metadata(e.path()).ok()?.is_file();
+            (file && (1..=super::MAX_REFERENCE_SPP).contains(&spp)).then_some(spp)
         })
         .max()
 }
@@ -1037,6 +1044,29 @@ mod tests {
         let bench = Arc::new(Bench::new(s, dir.to_path_buf(), 1));
         bench.touch();
         bench
+    }
+
+    /// A cached reference counts by its name only if it is a file and its spp one `--reference-spp`
+    /// takes: a dangling link named for 2^64 - 1 spp, a directory, and a file named for two million
+    /// are passed over for the file of 64 beside them (the dangling link had the lab render a
+    /// reference that never ends).
+    #[test]
+    fn cached_references_are_files_of_a_number_of_samples_the_flag_takes() {
+        let dir = std::env::temp_dir().join(format!("rtl-lab-names-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let name = |spp: &str| dir.join(format!("render-reference-cornell-16-{spp}.pfm"));
+        assert_eq!(cached_reference_spp(&dir, 16), None);
+        std::os::unix::fs::symlink(dir.join("gone"), name("18446744073709551615")).unwrap();
+        std::fs::create_dir(name("5000")).unwrap();
+        std::fs::write(name("2000000"), b"PF\n").unwrap();
+        assert_eq!(cached_reference_spp(&dir, 16), None);
+        std::fs::write(name("64"), b"PF\n").unwrap();
+        assert_eq!(cached_reference_spp(&dir, 16), Some(64));
+        std::fs::write(name("1000000"), b"PF\n").unwrap();
+        assert_eq!(cached_reference_spp(&dir, 16), Some(1_000_000));
+        assert_eq!(cached_reference_spp(&dir, 32), None);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// A damaged cached reference fails, and is tried again once removed, without restarting the

@@ -52,12 +52,16 @@ pub struct LabArgs {
     #[arg(long, default_value = "book/src/figures")]
     pub reference_dir: PathBuf,
     /// Samples per pixel of a reference the lab renders itself (none cached at that width).
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(1..=MAX_REFERENCE_SPP))]
     pub reference_spp: u64,
     /// The built book (`mdbook build book`), which the benches link to under /book/.
     #[arg(long, default_value = "book/book")]
     pub book_dir: PathBuf,
 }
+
+/// The most samples per pixel of a reference: what `--reference-spp` takes, and what a cached
+/// reference's file name may say.
+pub const MAX_REFERENCE_SPP: u64 = 1_000_000;
 
 /// The Cornell bench's settings when the page opens: `mis` with its default extras.
 fn initial_settings(width: usize) -> glue::Settings {

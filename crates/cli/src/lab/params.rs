@@ -78,12 +78,14 @@ impl Query {
             let (name, value) = part.split_once('=').unwrap_or((part, ""));
             let (name, value) = (decode(name)?, decode(value)?);
             if !known.contains(&name.as_str()) {
+                let takes = if known.is_empty() {
+                    "this request takes none".to_string()
+                } else {
+                    format!("this request takes: {}", known.join(", "))
+                };
                 return Err(bad_param(
                     &name,
-                    format!(
-                        "unknown parameter `{name}`; this request takes: {}",
-                        known.join(", ")
-                    ),
+                    format!("unknown parameter `{name}`; {takes}"),
                 ));
             }
             if pairs.iter().any(|(n, _)| *n == name) {
