@@ -115,8 +115,8 @@ pub struct CompareArgs {
     /// stays the same at the larger size: pixels are smaller, not different.
     #[arg(long)]
     project_width: Option<usize>,
-    /// The two seeds of each renderer's pair of renders.
-    #[arg(long, value_delimiter = ',', default_values_t = [1u32, 2])]
+    /// The two seeds of each renderer's pair of renders, separated by a comma (`--seeds 3,4`).
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
     seeds: Vec<u32>,
     /// Measure everything this many times in turn (book, Mitsuba, rtl, then again in the reverse
     /// order, and so on alternately) and summarise

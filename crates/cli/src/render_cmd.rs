@@ -25,6 +25,9 @@ use rtl_render::vec::Num;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+/// How often a checkpoint is saved unless `--checkpoint-every` says otherwise.
+const CHECKPOINT_EVERY: Duration = Duration::from_secs(5);
+
 #[derive(Args)]
 pub struct RenderArgs {
     /// A built-in scene name (see `--list`) or a path to a scene file (`.toml`).
@@ -95,9 +98,10 @@ pub struct RenderArgs {
     /// Ctrl-C and at the end.
     #[arg(long, visible_alias = "part", value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
-    /// How often to save the checkpoint (`5s`, `1m`, ...).
-    #[arg(long, default_value = "5s", value_parser = progressive::parse_duration)]
-    pub checkpoint_every: Duration,
+    /// How often to save the checkpoint (`5s`, `1m`, ...; default 5s), with `--checkpoint` or
+    /// `--resume`.
+    #[arg(long, value_parser = progressive::parse_duration)]
+    pub checkpoint_every: Option<Duration>,
     /// Continue the render saved in FILE (same scene and settings; `--spp` is the total wanted). FILE is
     /// kept up to date unless `--checkpoint` names another.
     #[arg(long, value_name = "FILE")]
@@ -154,6 +158,8 @@ struct Loaded {
     description: String,
     built: Built,
     width: usize,
+    /// Where a scene file gives the width (`FILE:LINE:COL: field `render.width``), for messages.
+    width_at: Option<String>,
     spp: u64,
     /// The image files a scene file's textures were read from (inputs no output may overwrite).
     texture_files: Vec<PathBuf>,
@@ -184,6 +190,7 @@ fn load(arg: &str, opts: &SceneOptions) -> Result<Loaded> {
         description: b.description.into(),
         built,
         width: b.width,
+        width_at: None,
         spp: b.spp,
         texture_files: Vec::new(),
     })
@@ -204,6 +211,9 @@ fn load_file(path: &Path) -> Result<Loaded> {
         description,
         built: file.built,
         width: file.width.unwrap_or(400),
+        width_at: file
+            .width_at
+            .map(|(line, col)| format!("{}:{line}:{col}: field `render.width`", path.display())),
         spp: file.spp.unwrap_or(100),
         texture_files: file.texture_files,
     })
@@ -266,13 +276,7 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
     };
     let file = Path::new(scene_arg);
     // (the checkpoint this render writes or resumes, however its path is written: `./cornell`)
-    let same = |p: &Option<PathBuf>| {
-        p.as_ref()
-            .is_some_and(|p| match (p.canonicalize(), file.canonicalize()) {
-                (Ok(a), Ok(b)) => a == b,
-                _ => p == file,
-            })
-    };
+    let same = |p: &Option<PathBuf>| p.as_deref().is_some_and(|p| same_file(p, file));
     let ours = same(&args.resume) || same(&args.checkpoint);
     if !names_a_file(scene_arg) && file.is_file() && !ours {
         eprintln!(
@@ -292,8 +296,16 @@ fn settings(args: &RenderArgs, scene_arg: &str) -> Result<Job> {
     if args.time.is_some_and(|t| t.is_zero()) {
         bail!("--time 0: the time budget must be positive");
     }
-    if args.checkpoint_every.is_zero() {
-        bail!("--checkpoint-every 0: the interval must be positive");
+    if let Some(every) = args.checkpoint_every {
+        if every.is_zero() {
+            bail!("--checkpoint-every 0: the interval must be positive");
+        }
+        if args.checkpoint.is_none() && args.resume.is_none() {
+            bail!(
+                "--checkpoint-every: there is no checkpoint to save (give --checkpoint FILE or \
+                 --resume FILE); without one it would be ignored"
+            );
+        }
     }
     let max_depth = args.max_depth.unwrap_or(scene.max_depth);
     if let Some(problem) = limits::max_depth_problem(max_depth) {
@@ -420,15 +432,17 @@ fn check_job_outputs(args: &RenderArgs, job: &Job, scene_arg: &str) -> Result<()
     if let Some(t) = &args.texture {
         inputs.push(("--texture".to_string(), t.clone()));
     }
+    // `--resume r.ck --checkpoint ./r.ck` goes on saving where it reads, as `--checkpoint r.ck` does
+    let resumed_in_place = |c: &Path| args.resume.as_deref().is_some_and(|r| same_file(c, r));
     if let (Some(c), Some(r)) = (&args.checkpoint, &args.resume)
-        && c != r
+        && !resumed_in_place(c)
     {
         inputs.push(("--resume".to_string(), r.clone()));
     }
     check_output_files(&outputs, &inputs)?;
     if let Some(c) = &args.checkpoint
         && c.exists()
-        && args.resume.as_ref() != Some(c)
+        && !resumed_in_place(c)
     {
         bail!(
             "{} exists: continue it with --resume {0}, or remove it to start afresh",
@@ -436,6 +450,15 @@ fn check_job_outputs(args: &RenderArgs, job: &Job, scene_arg: &str) -> Result<()
         );
     }
     Ok(())
+}
+
+/// Whether `a` and `b` name the same file (`r.ck` and `./r.ck`): by their canonical paths where both
+/// exist, else as written.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
+    }
 }
 
 /// [`check_outputs`], and first that no output's name ends in a `/`: `-o out.png/` passed its checks
@@ -476,11 +499,12 @@ pub(crate) fn check_output_files(
 
 /// The image's buffers, sized before they are allocated: refused if a side is too long or they do not
 /// fit in the machine's available memory.
-fn check_size(args: &RenderArgs, w: usize, h: usize) -> Result<()> {
+fn check_size(args: &RenderArgs, loaded: &Loaded, w: usize, h: usize) -> Result<()> {
     limits::check_image(w, h, limits::available_memory()).map_err(|e| {
-        let from = match args.width {
-            Some(width) => format!("--width {width}"),
-            None => "the scene's width".to_string(),
+        let from = match (args.width, &loaded.width_at) {
+            (Some(width), _) => format!("--width {width}"),
+            (None, Some(at)) => format!("{at}: the width {}", loaded.width),
+            (None, None) => "the scene's width".to_string(),
         };
         anyhow::anyhow!("{from} and the scene's aspect ratio: {e}")
     })?;
@@ -605,7 +629,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         renderer
     };
     let (w, h) = (renderer.camera.width, renderer.camera.height);
-    check_size(&args, w, h)?;
+    check_size(&args, &job.loaded, w, h)?;
     let identity = Identity::new(&job.loaded.name, scene, &job.settings, w, h);
     let mut acc = open_or_resume(&args, &job, &renderer, &identity)?;
     for n in &job.loaded.built.notices {
@@ -618,16 +642,15 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .num_threads(job.threads)
         .build()
         .context("cannot start the thread pool")?;
+    let checkpoint_every = args.checkpoint_every.unwrap_or(CHECKPOINT_EVERY);
     let plan = Plan {
         start: job.start,
         end: job.end,
         budget: args.time,
-        pass_time: args
-            .checkpoint_every
-            .clamp(Duration::from_millis(20), Duration::from_secs(1)),
+        pass_time: checkpoint_every.clamp(Duration::from_millis(20), Duration::from_secs(1)),
         saving: job.saving.clone().map(|path| Saving {
             path,
-            every: args.checkpoint_every,
+            every: checkpoint_every,
             identity: identity.clone(),
         }),
         progress_by_time: args.time.is_some() && args.spp.is_none(),
@@ -951,7 +974,7 @@ mod tests {
                     prop_assert!(job.threads <= MAX_THREADS);
                     let r = Renderer::new(&job.loaded.built.scene, job.settings);
                     // A refusal names --width (the only flag that sizes the image).
-                    if let Err(e) = check_size(&cli.args, r.camera.width, r.camera.height) {
+                    if let Err(e) = check_size(&cli.args, &job.loaded, r.camera.width, r.camera.height) {
                         prop_assert!(format!("{e:#}").contains("--width"), "{e:#}");
                     }
                 }

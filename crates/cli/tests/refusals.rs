@@ -251,6 +251,17 @@ fn outputs_are_checked_before_any_rendering() {
         &["--linear x.tiff", ".pfm or .exr"],
     );
     refused(&d, &slow(&["-o", "x.jpg"]), &["-o x.jpg", ".png"]);
+    // a name that is all extension is a hidden file's, with none (it was told to end in .png)
+    refused(
+        &d,
+        &slow(&["-o", ".png"]),
+        &["-o .png: the file name needs a name before its extension"],
+    );
+    refused(
+        &d,
+        &slow(&["--linear", ".pfm"]),
+        &["--linear .pfm: the file name needs a name"],
+    );
     refused(
         &d,
         &slow(&["--linear", "missing/x.pfm"]),
@@ -272,6 +283,43 @@ fn outputs_are_checked_before_any_rendering() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// A checkpoint given where the scene goes was refused as "not UTF-8 text ... save it as UTF-8";
+/// it is named for what it is, with the two commands that take it.
+#[test]
+fn a_checkpoint_given_as_the_scene_says_how_to_use_it() {
+    let d = dir("ck-as-scene");
+    ok(&d, &render(&["--part", "p.ck"]));
+    refused(
+        &d,
+        &["render", "p.ck", "--width", "16", "--spp", "1"],
+        &[
+            "p.ck is a checkpoint of rtl (a part), not a scene file",
+            "--resume p.ck",
+            "rtl merge p.ck",
+        ],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A scene file's width too large for the memory is refused at its place in the file, as every
+/// other value of a scene file is (it was "the scene's width and the scene's aspect ratio: ..."
+/// with no file, line or column); `--width` overrides it.
+#[test]
+fn a_scene_files_width_past_the_memory_is_refused_at_its_place() {
+    let d = dir("file-width");
+    std::fs::write(d.join("wide.toml"), scene("width = 60000")).unwrap();
+    refused(
+        &d,
+        &["render", "wide.toml", "--spp", "1"],
+        &[
+            "wide.toml:2:9: field `render.width`: the width 60000",
+            "60000x60000",
+        ],
+    );
+    ok(&d, &["render", "wide.toml", "--spp", "1", "--width", "8"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 #[test]
 fn durations_of_zero_are_refused_and_a_budget_past_the_end_of_time_is_no_deadline() {
     let d = dir("time");
@@ -281,7 +329,32 @@ fn durations_of_zero_are_refused_and_a_budget_past_the_end_of_time_is_no_deadlin
         &render(&["--checkpoint-every", "0s", "--part", "p"]),
         &["--checkpoint-every 0"],
     );
+    // an interval of saving with nothing to save was ignored without a word
+    refused(
+        &d,
+        &render(&["--checkpoint-every", "1s"]),
+        &["--checkpoint-every: there is no checkpoint to save"],
+    );
+    ok(&d, &render(&["--checkpoint-every", "1s", "--part", "p"]));
     ok(&d, &render(&["--time", "100000000000000d"]));
+    // Resumed and saved where it is read, however the two are written (`p` and `./p`): it was
+    // refused as writing an input, while `--resume p --checkpoint p` went through.
+    ok(
+        &d,
+        &[
+            "render",
+            "cornell",
+            "--width",
+            "16",
+            "--spp",
+            "4",
+            "--resume",
+            "p",
+            "--checkpoint",
+            "./p",
+        ],
+    );
+    assert_eq!(Checkpoint::read(&d.join("p")).unwrap().spp(), 4);
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -1007,6 +1080,19 @@ fn study_render_refuses_zero_repeats_and_a_file_as_its_directory_leaving_nothing
         &d,
         &["study", "samples", "--out", "afile"],
         &["--out afile", "a file, not a directory"],
+    );
+    // (2^64 - 1 samples a histogram ran for ever)
+    refused(
+        &d,
+        &[
+            "study",
+            "samples",
+            "--samples",
+            "18446744073709551615",
+            "--out",
+            "s",
+        ],
+        &["--samples 18446744073709551615: must be 1,000 to 100,000,000"],
     );
     let _ = std::fs::remove_dir_all(&d);
 }

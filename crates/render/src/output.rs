@@ -194,6 +194,15 @@ pub struct OutputFile {
 pub enum OutputError {
     #[error("{flag} {}: a PNG file name must end in .png", path.display())]
     NotPng { flag: &'static str, path: PathBuf },
+    /// `-o .png`, `--linear dir/.pfm`: a name that is all extension is a hidden file's name with
+    /// no extension at all.
+    #[error(
+        "{flag} {}: the file name needs a name before its extension (`{}` alone is a hidden \
+         file's name)",
+        path.display(),
+        path.file_name().unwrap_or_default().to_string_lossy()
+    )]
+    NoName { flag: &'static str, path: PathBuf },
     #[error("{flag} {}: linear output must end in .pfm or .exr", path.display())]
     UnknownLinear { flag: &'static str, path: PathBuf },
     #[error("{flag} {}: the directory {} does not exist", path.display(), dir.display())]
@@ -249,7 +258,14 @@ pub fn check_outputs(
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_ascii_lowercase());
+        let all_extension = matches!(name.as_deref(), Some(".png" | ".pfm" | ".exr"));
         match o.kind {
+            OutputKind::Png | OutputKind::Linear if all_extension => {
+                return Err(OutputError::NoName { flag, path });
+            }
             OutputKind::Png if ext != "png" => return Err(OutputError::NotPng { flag, path }),
             OutputKind::Linear if ext != "pfm" && ext != "exr" => {
                 return Err(OutputError::UnknownLinear { flag, path });

@@ -95,6 +95,8 @@ pub struct SceneFile {
     pub built: Built,
     /// `[render] width`, if given.
     pub width: Option<usize>,
+    /// Where `width` is written (line, column), for a message about the image it makes.
+    pub width_at: Option<(usize, usize)>,
     /// `[render] spp`, if given.
     pub spp: Option<u64>,
     /// The top-level `description`, if given.
@@ -114,9 +116,25 @@ pub fn load_file(path: &Path) -> Result<SceneFile, SceneFileError> {
         path: path.to_path_buf(),
         message,
     };
+    let checkpoint = || {
+        read_error(format!(
+            "{} is a checkpoint of rtl (a part), not a scene file: continue it with `rtl render \
+             SCENE --resume {0}`, or make its image with `rtl merge {0}`",
+            path.display()
+        ))
+    };
     let bytes =
         crate::limits::read_regular_file(path, "scene file", crate::limits::MAX_SCENE_FILE_BYTES)
-            .map_err(read_error)?;
+            .map_err(|m| {
+            if is_checkpoint(path) {
+                checkpoint()
+            } else {
+                read_error(m)
+            }
+        })?;
+    if bytes.starts_with(crate::checkpoint::MAGIC) {
+        return Err(checkpoint());
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         // The place of the first byte that is not UTF-8, as a syntax error's (the text before it is)
         let at = e.utf8_error().valid_up_to();
@@ -140,6 +158,16 @@ pub fn load_file(path: &Path) -> Result<SceneFile, SceneFileError> {
     let name = path.display().to_string();
     reading_fits(&text, &name, crate::limits::available_memory())?;
     load_str(&text, &name, dir)
+}
+
+/// Whether the regular file at `path` begins as a checkpoint does ([`crate::checkpoint::MAGIC`]),
+/// read no further than that (a checkpoint may be larger than a scene file may be).
+fn is_checkpoint(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 8];
+    std::fs::metadata(path).is_ok_and(|m| m.is_file())
+        && std::fs::File::open(path).is_ok_and(|mut f| f.read_exact(&mut head).is_ok())
+        && &head == crate::checkpoint::MAGIC
 }
 
 /// Refuse `text` (the file `name`) if the TOML reader would take more memory to hold it than

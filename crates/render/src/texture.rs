@@ -113,7 +113,11 @@ impl ImageData {
             reader.set_format(format);
         }
         // The format the content shows, if any (else the extension's), then the header alone.
-        let reader = reader.with_guessed_format().map_err(|e| cannot(&e))?;
+        let mut reader = reader.with_guessed_format().map_err(|e| cannot(&e))?;
+        // The header is read without the decoder's own limits, which refuse a huge image (a PNG of
+        // 2^31 - 1 x 1) as "Memory limit exceeded" before its size can be told; the size and the
+        // memory are checked below, before anything is decoded.
+        reader.no_limits();
         let decoder = reader.into_decoder().map_err(|e| cannot(&e))?;
         let (w, h) = decoder.dimensions();
         if w == 0 || h == 0 {
@@ -142,6 +146,11 @@ impl ImageData {
                 Bytes(needed)
             ));
         }
+        // (and the decoder's limits again for the decoding itself)
+        let mut decoder = decoder;
+        decoder
+            .set_limits(image::Limits::default())
+            .map_err(|e| cannot(&e))?;
         let rgb = DynamicImage::from_decoder(decoder)
             .map_err(|e| cannot(&e))?
             .into_rgb8();

@@ -429,6 +429,20 @@ fn a_texture_too_large_is_refused_from_its_header_before_decoding() {
         err.contains("12000 x 12000 = 144000000 pixels, more than the 33554432 (8192 x 4096)"),
         "{err}"
     );
+    // A row of 2^31 - 1 pixels: the image crate's own limits refused its header as "Memory limit
+    // exceeded", which named no size; the same message as above names it.
+    let dir = temp_dir("row");
+    std::fs::write(dir.join("row.png"), png_header(2_147_483_647, 1)).unwrap();
+    std::fs::write(dir.join("row.toml"), textured("row.png")).unwrap();
+    let err = scene_file::load_file(&dir.join("row.toml"))
+        .err()
+        .unwrap()
+        .to_string();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(
+        err.contains("2147483647 x 1 = 2147483647 pixels, more than the 33554432"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -31,15 +31,18 @@ pub struct SamplesArgs {
     /// book/src/figures).
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Samples per histogram.
+    /// Samples per histogram (1,000 to 100,000,000).
     #[arg(long, default_value_t = 200_000)]
     pub samples: usize,
 }
 
+/// The most samples a histogram takes: about a minute for the page of them on one core.
+const MAX_SAMPLES: usize = 100_000_000;
+
 pub fn run(args: SamplesArgs) -> anyhow::Result<()> {
     anyhow::ensure!(
-        args.samples >= 1000,
-        "--samples must be at least 1000, got {}",
+        (1000..=MAX_SAMPLES).contains(&args.samples),
+        "--samples {}: must be 1,000 to 100,000,000 (2^64 - 1 ran for ever)",
         args.samples
     );
     let out = super::out_dir(args.out, "samples")?;

@@ -207,6 +207,10 @@ impl<'t> Loader<'t> {
             .transpose()?
             .unwrap_or_default();
         let (width, spp) = self.render(&render)?;
+        let width_at = render
+            .width
+            .as_ref()
+            .map(|w| line_col(self.text, w.span().start));
         let Some(camera) = take(&mut t, "camera") else {
             return fail(
                 0..0,
@@ -306,6 +310,7 @@ impl<'t> Loader<'t> {
         Ok(SceneFile {
             built: Built { scene, notices },
             width,
+            width_at,
             spp,
             description,
             texture_files: self.texture_files,

@@ -293,7 +293,13 @@ impl Loader<'_> {
         for _ in 0..6 {
             self.count(g, None, &span, "this box")?;
         }
-        self.add_placed(into, g, &d.transform, &span, &format!("this {label}"))?;
+        // ("this group `g`", or "the group at line 20:1", not "this the group at ...")
+        let what = if d.name.is_some() {
+            format!("this {label}")
+        } else {
+            label
+        };
+        self.add_placed(into, g, &d.transform, &span, &what)?;
         self.name(d.name, Named::Group(g))
     }
 
@@ -327,7 +333,13 @@ impl Loader<'_> {
         for c in children {
             self.object(g, c, inner_to_world)?;
         }
-        self.add_placed(into, g, &d.transform, &span, &format!("this {label}"))?;
+        // ("this group `g`", or "the group at line 20:1", not "this the group at ...")
+        let what = if d.name.is_some() {
+            format!("this {label}")
+        } else {
+            label
+        };
+        self.add_placed(into, g, &d.transform, &span, &what)?;
         self.name(d.name, Named::Group(g))
     }
 
