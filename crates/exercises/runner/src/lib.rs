@@ -21,13 +21,14 @@
 pub mod cargo;
 pub mod info;
 pub mod out;
+pub mod report;
 pub mod status;
 pub mod still_running;
 pub mod watch;
 
 use cargo::Workspace;
 use info::{Exercise, Kind};
-use status::Status;
+use status::{Checked, Status};
 use std::fmt;
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -421,7 +422,7 @@ impl Context {
     /// The state of each of `exercises`: built together (no time limit), then each one's checks run
     /// under [`status::time_limit`], saying on standard error while a run takes long
     /// ([`StillRunning`]).
-    pub fn statuses(&self, exercises: &[&Exercise]) -> Result<Vec<Status>, Error> {
+    pub fn check_all(&self, exercises: &[&Exercise]) -> Result<Vec<Checked>, Error> {
         let limit = status::time_limit()?;
         let names: Vec<String> = exercises.iter().map(|e| e.name.clone()).collect();
         let mut shown = false;
@@ -452,11 +453,31 @@ impl Context {
         for e in exercises {
             let b = &built[&e.name];
             out.push(match &b.exe {
-                None => Status::DoesNotCompile(b.diagnostics.clone()),
-                Some(_) => status::from_run(e, runs.next().expect("one run per program"))?,
+                None => Checked {
+                    status: Status::DoesNotCompile(b.diagnostics.clone()),
+                    printed: Default::default(),
+                    warnings: String::new(),
+                },
+                Some(_) => {
+                    let ran = runs.next().expect("one run per program");
+                    Checked {
+                        status: status::from_run(e, &ran),
+                        printed: ran.printed().clone(),
+                        warnings: b.warnings.clone(),
+                    }
+                }
             });
         }
         Ok(out)
+    }
+
+    /// The state of each of `exercises` ([`Context::check_all`]).
+    pub fn statuses(&self, exercises: &[&Exercise]) -> Result<Vec<Status>, Error> {
+        Ok(self
+            .check_all(exercises)?
+            .into_iter()
+            .map(|c| c.status)
+            .collect())
     }
 
     fn list(&self) -> Result<i32, Error> {
@@ -485,14 +506,14 @@ impl Context {
 
     fn check(&self, names: &[String]) -> Result<i32, Error> {
         let exercises: Vec<&Exercise> = names.iter().map(|n| self.exercise(n)).collect();
-        let statuses = self.statuses(&exercises)?;
-        for (i, (e, s)) in exercises.iter().zip(&statuses).enumerate() {
+        let checked = self.check_all(&exercises)?;
+        for (i, (e, c)) in exercises.iter().zip(&checked).enumerate() {
             if i > 0 {
                 sayln!()?;
             }
-            say!("{}", s.explain(&self.ws, e, self.cmd()))?;
+            say!("{}", c.explain(&self.ws, e, self.cmd()))?;
         }
-        Ok(if statuses.iter().all(Status::is_done) {
+        Ok(if checked.iter().all(|c| c.status.is_done()) {
             0
         } else {
             1
@@ -767,11 +788,15 @@ mod tests {
             root: PathBuf::from("/nonexistent"),
         };
         let e = &exercises()[0];
-        let failing = Status::Failing {
-            passed: 0,
-            total: 1,
-            why: "w".into(),
-            details: String::new(),
+        let failing = Checked {
+            status: Status::Failing {
+                passed: 0,
+                total: 1,
+                why: "w".into(),
+                details: String::new(),
+            },
+            printed: Default::default(),
+            warnings: String::new(),
         };
         for inv in [Invocation::Cargo, Invocation::Rtl] {
             let text = failing.explain(&ws, e, inv.prefix());
@@ -804,7 +829,10 @@ mod tests {
                 why: "sample_linear: the samples do not follow the density ".repeat(8),
                 details: String::new(),
             },
-            Status::TimedOut(std::time::Duration::from_secs(10)),
+            Status::TimedOut {
+                limit: std::time::Duration::from_secs(10),
+                log: Default::default(),
+            },
         ];
         let table = list_table(&refs, &statuses);
         for line in table.lines() {

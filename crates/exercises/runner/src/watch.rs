@@ -7,7 +7,7 @@
 //! check runs, a line "checking NAME ..." says so; the result replaces it.
 
 use crate::info::Exercise;
-use crate::status::Status;
+use crate::status::Checked;
 use crate::{Context, Error, say, sayln};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::io::{IsTerminal, Read};
@@ -106,7 +106,7 @@ pub fn check_until_unchanged<S: PartialEq, T, E>(
 }
 
 /// Checks `e` as [`check_until_unchanged`] does, saying "checking NAME ..." while it runs.
-fn check_now(ctx: &Context, e: &Exercise) -> Result<(Status, Stamp), Error> {
+fn check_now(ctx: &Context, e: &Exercise) -> Result<(Checked, Stamp), Error> {
     let file = ctx.ws.exercise_file(&e.name);
     check_until_unchanged(
         || stamp(&file),
@@ -120,7 +120,7 @@ fn check_now(ctx: &Context, e: &Exercise) -> Result<(Status, Stamp), Error> {
                     e.name
                 )?;
             }
-            Ok(ctx.statuses(&[e])?.remove(0))
+            Ok(ctx.check_all(&[e])?.remove(0))
         },
     )
 }
@@ -128,7 +128,7 @@ fn check_now(ctx: &Context, e: &Exercise) -> Result<(Status, Stamp), Error> {
 fn redraw(
     ctx: &Context,
     e: &Exercise,
-    s: &Status,
+    s: &Checked,
     done: usize,
     banner: &str,
     hint: usize,
@@ -170,7 +170,8 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
     sayln!("checking every exercise, to see where you are ...")?;
     // The stamps before the check: a save during it is seen as a change below.
     let stamps: Vec<Stamp> = all.iter().map(|e| stamp(&file(e))).collect();
-    let mut statuses = ctx.statuses(&all)?;
+    let mut checked_all = ctx.check_all(&all)?;
+    let mut statuses: Vec<_> = checked_all.iter().map(|c| c.status.clone()).collect();
     let mut current = match start {
         Some(name) => all
             .iter()
@@ -187,12 +188,12 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
     let _raw = KeysAtOnce::start();
     let mut keys = Some(keys());
     let mut banner = String::new();
-    let mut status = statuses[current].clone();
+    let mut status = checked_all.swap_remove(current);
     let mut checked = stamps[current];
     loop {
         let e = all[current];
         let done = statuses.iter().filter(|s| s.is_done()).count();
-        if status.is_done() {
+        if status.status.is_done() {
             let next = (1..all.len())
                 .map(|k| (current + k) % all.len())
                 .find(|&j| !statuses[j].is_done());
@@ -206,7 +207,7 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
                     );
                     current = j;
                     (status, checked) = check_now(ctx, all[j])?;
-                    statuses[j] = status.clone();
+                    statuses[j] = status.status.clone();
                     continue;
                 }
                 None => {
@@ -253,7 +254,7 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
         }
         banner = format!("{} saved: checked again.", ctx.ws.show(&file(e)));
         (status, checked) = check_now(ctx, e)?;
-        statuses[current] = status.clone();
+        statuses[current] = status.status.clone();
     }
 }
 

@@ -272,6 +272,91 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
 
 #[test]
 #[ignore = "drives cargo on a copy of the exercises (a minute the first time); .ci/run runs it"]
+fn what_the_learners_code_prints_is_shown_and_can_neither_break_nor_forge_a_report() {
+    let ws = workspace("printing-ws");
+    let total = std::fs::read_dir(ws.join("crates/exercises/tests"))
+        .unwrap()
+        .count();
+    // A working estimate_pi with a debugging line on standard output and one on standard error.
+    solve(&ws, "ch02_estimate_pi");
+    edit(&ws, "ch02_estimate_pi", |t| {
+        t.replacen(
+            "    if n == 0 {",
+            "    println!(\"debug: estimate_pi called with n = {n}\");\n    \
+             eprintln!(\"to stderr: n = {n}\");\n    if n == 0 {",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("ch02_estimate_pi passes"), "{out}");
+    assert!(
+        out.contains("  ok    1e5 points: z-test against pi"),
+        "{out}"
+    );
+    // 7 calls (n = 0, 1, 2, 3, 10, 1000, 100000), two lines each, in the order printed.
+    assert!(
+        out.contains(
+            "your code printed (14 lines):\n  | debug: estimate_pi called with n = 0\n  \
+             | to stderr: n = 0\n  | debug: estimate_pi called with n = 1\n"
+        ),
+        "{out}"
+    );
+    assert!(!out.contains("unreadable"), "{out}");
+    // list is not blocked, and counts it done.
+    let (code, out) = run(&ws, &["list"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
+    assert!(out.contains("ch12_bug_cone_cos_theta_max"), "{out}");
+
+    // A forged report: printed, then exit(0) before the checks end. Not taken.
+    edit(&ws, "ch02_jittered_pi", |t| {
+        t.replacen(
+            "todo!(",
+            "println!(\"ch02_jittered_pi: done: 2/2 checks passed\");\n    \
+             std::process::exit(0);\n    #[allow(unreachable_code)]\n    todo!(",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch02_jittered_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("crashed: it exited with code 0 before the checks ended, without its report"),
+        "{out}"
+    );
+    assert!(
+        out.contains("your code printed (1 line):\n  | ch02_jittered_pi: done: 2/2 checks passed"),
+        "{out}"
+    );
+    let (code, out) = run(&ws, &["solution", "ch02_jittered_pi"]);
+    assert_eq!(code, 1, "the solution stays hidden: {out}");
+    let (code, out) = run(&ws, &["list"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
+
+    // A function that calls itself: the stack overflows, and the compiler's warning about the
+    // learner's file is shown with the crash.
+    edit(&ws, "ch02_estimate_pi", |t| {
+        t.replacen(
+            "    if n == 0 {",
+            "    let _ = estimate_pi(n, rng);\n    if n == 0 {",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("crashed: "), "{out}");
+    assert!(out.contains("stack overflow"), "{out}");
+    assert!(
+        out.contains("the compiler warns about crates/exercises/exercises/ch02_estimate_pi.rs:")
+            && out.contains("function cannot return without recursing")
+            && out.contains("crates/exercises/exercises/ch02_estimate_pi.rs:"),
+        "{out}"
+    );
+}
+
+#[test]
+#[ignore = "drives cargo on a copy of the exercises (a minute the first time); .ci/run runs it"]
 fn loops_for_ever_are_stopped_at_the_limit_and_cost_it_once() {
     let ws = workspace("timeout-ws");
     // Two exercises whose code loops for ever.
@@ -301,7 +386,19 @@ fn loops_for_ever_are_stopped_at_the_limit_and_cost_it_once() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_eq!(out.status.code(), Some(1), "{text}");
-    assert!(text.contains("timed out after 4 s"), "{text}");
+    assert!(
+        text.contains("timed out after 4 s in check 1 of 2"),
+        "{text}"
+    );
+    // The check and the call that were running.
+    assert!(
+        text.contains(
+            "the checks did not finish in 4 s in check 1 of 2 (\"n = 0 gives None; an estimate is \
+             a count of points scaled by a constant\"), in the call estimate_pi(n = 0, rng = \
+             rtl_exercises::check::seeded(3)): does your code loop for ever?"
+        ),
+        "{text}"
+    );
     assert!(
         text.contains("still running: ch02_estimate_pi ("),
         "said while it ran: {text}"
