@@ -409,6 +409,20 @@ pub fn run_all(
     limit: Duration,
     still_running: &mut dyn FnMut(&[&str], Duration),
 ) -> Result<Vec<Ran>, Error> {
+    let runs = run_all_until(ws, programs, limit, still_running, &mut || false)?;
+    Ok(runs.expect("never stopped"))
+}
+
+/// [`run_all`], asking `stop` at every look at the programs (every 10 ms) whether to give up:
+/// then every program still running is stopped and the result is `None` (`watch` gives up a check
+/// when its file is saved again).
+pub fn run_all_until(
+    ws: &Workspace,
+    programs: &[(String, PathBuf)],
+    limit: Duration,
+    still_running: &mut dyn FnMut(&[&str], Duration),
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Option<Vec<Ran>>, Error> {
     let mut results: Vec<Option<Ran>> = vec![None; programs.len()];
     let dir = ReportDir::new()?;
     let mut running: Vec<Running> = Vec::new();
@@ -452,10 +466,16 @@ pub fn run_all(
             .max()
             .unwrap_or_default();
         still_running(&names, oldest);
+        if stop() {
+            // Dropping them stops them.
+            return Ok(None);
+        }
         std::thread::sleep(Duration::from_millis(10));
     }
-    Ok(results
-        .into_iter()
-        .map(|r| r.expect("every program ran"))
-        .collect())
+    Ok(Some(
+        results
+            .into_iter()
+            .map(|r| r.expect("every program ran"))
+            .collect(),
+    ))
 }

@@ -8,8 +8,9 @@
 //! - `check NAME...`: checks one exercise or several; exit 0 when they pass. A failure shows your
 //!   function and what each check saw;
 //! - `hint NAME [--level K]`: the exercise's hints, one level at a time;
-//! - `watch [NAME]`: checks the current exercise (or NAME) whenever its file is saved and moves on
-//!   when it passes (`h` a hint, `q` quits);
+//! - `watch [NAME]`: checks the current exercise (or NAME) whenever its file is saved, giving up a
+//!   check still running when the file is saved again, and moves on when a save makes it pass (`h`
+//!   a hint, `q` quits);
 //! - `reset NAME`: restores the stub, keeping your version as a backup file;
 //! - `solution NAME [--force]`: the reference solution, once your code passes.
 //!
@@ -423,6 +424,17 @@ impl Context {
     /// under [`status::time_limit`], saying on standard error while a run takes long
     /// ([`StillRunning`]).
     pub fn check_all(&self, exercises: &[&Exercise]) -> Result<Vec<Checked>, Error> {
+        let checked = self.check_all_until(exercises, &mut || false)?;
+        Ok(checked.expect("never stopped"))
+    }
+
+    /// [`Context::check_all`], giving up (`None`) as soon as `stop` says so while the checks run
+    /// (it is asked every 10 ms).
+    pub fn check_all_until(
+        &self,
+        exercises: &[&Exercise],
+        stop: &mut dyn FnMut() -> bool,
+    ) -> Result<Option<Vec<Checked>>, Error> {
         let limit = status::time_limit()?;
         let names: Vec<String> = exercises.iter().map(|e| e.name.clone()).collect();
         let mut shown = false;
@@ -444,11 +456,18 @@ impl Context {
         let stderr = std::io::stderr();
         let terminal = stderr.is_terminal();
         let mut notices = StillRunning::new(stderr, terminal, limit);
-        let mut runs = cargo::run_all(&self.ws, &programs, limit, &mut |names, oldest| {
-            notices.update(names, oldest, Instant::now());
-        })?
-        .into_iter();
+        let runs = cargo::run_all_until(
+            &self.ws,
+            &programs,
+            limit,
+            &mut |names, oldest| notices.update(names, oldest, Instant::now()),
+            stop,
+        )?;
         notices.finish();
+        let Some(runs) = runs else {
+            return Ok(None);
+        };
+        let mut runs = runs.into_iter();
         let mut out = Vec::new();
         for e in exercises {
             let b = &built[&e.name];
@@ -468,7 +487,7 @@ impl Context {
                 }
             });
         }
-        Ok(out)
+        Ok(Some(out))
     }
 
     /// The state of each of `exercises` ([`Context::check_all`]).

@@ -552,6 +552,65 @@ fn watch_name_starts_at_that_exercise_and_a_closed_stdout_ends_watch() {
     if let Err(e) = result {
         std::panic::resume_unwind(e);
     }
+
+    // An exercise that passes already: watch NAME keeps watching it, through saves.
+    solve(&ws, "ch02_estimate_pi");
+    let mut child = runner(&ws)
+        .args(["watch", "ch02_estimate_pi"])
+        .env("RTL_EXERCISES_TIMEOUT", "60")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let screen = Screen::start(child.stdout.take().unwrap());
+    let notices = Screen::start(child.stderr.take().unwrap());
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let at = screen.wait_for(
+            "ch02_estimate_pi passes already; watch keeps checking it on every save.",
+            0,
+            120,
+        );
+        let at = screen.wait_for("checking ch02_estimate_pi on every save", at, 10);
+        let at = screen.wait_for("[h] hint   [q] quit", at, 10);
+        edit(&ws, "ch02_estimate_pi", |t| t + "// saved\n");
+        let at = screen.wait_for("saved: checked again.", at, 120);
+        let at = screen.wait_for("checking ch02_estimate_pi on every save", at, 10);
+        let at = screen.wait_for("ch02_estimate_pi passes.", at, 10);
+        assert!(
+            !screen.0.lock().unwrap().contains("On to"),
+            "watch moved on from the exercise it was asked to watch"
+        );
+        // A save while a check loops for ever gives that check up at once, not at the limit.
+        edit(&ws, "ch02_estimate_pi", |t| {
+            t.replacen(
+                "    if n == 0 {",
+                "    loop { std::hint::black_box(0); }\n    #[allow(unreachable_code)]\n    if n == 0 {",
+                1,
+            )
+        });
+        let at = screen.wait_for("checking ch02_estimate_pi ...", at, 60);
+        notices.wait_for("still running: ch02_estimate_pi", 0, 120);
+        let saved = Instant::now();
+        solve(&ws, "ch02_estimate_pi");
+        let at = screen.wait_for(
+            "changed during the check: checking ch02_estimate_pi again ...",
+            at,
+            60,
+        );
+        assert!(
+            saved.elapsed() < Duration::from_secs(30),
+            "the check waited for its limit of 60 s: {:?}",
+            saved.elapsed()
+        );
+        screen.wait_for("ch02_estimate_pi passes.", at, 120);
+    }));
+    let _ = child.kill();
+    let _ = child.wait();
+    if let Err(e) = result {
+        std::panic::resume_unwind(e);
+    }
+
     // Standard output closed: watch ends quietly, without a panic.
     let (reader, writer) = std::io::pipe().unwrap();
     drop(reader);
