@@ -14,7 +14,15 @@ pub struct MixturePdf<A, B> {
 
 impl<A: Pdf, B: Pdf> Pdf for MixturePdf<A, B> {
     fn value(&self, direction: DVec3) -> f64 {
-        self.weight_a * self.a.value(direction) + (1.0 - self.weight_a) * self.b.value(direction)
+        // A part of weight 0 is not evaluated: its value may be NaN, and 0 * NaN is NaN.
+        let mut value = 0.0;
+        if self.weight_a > 0.0 {
+            value += self.weight_a * self.a.value(direction);
+        }
+        if self.weight_a < 1.0 {
+            value += (1.0 - self.weight_a) * self.b.value(direction);
+        }
+        value
     }
 
     fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
