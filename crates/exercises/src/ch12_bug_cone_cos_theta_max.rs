@@ -176,12 +176,12 @@ mod tests {
         // angle, 42.7 % of it missing.
         let err = check_solid_angle(no_sqrt).unwrap_err();
         assert!(
-            err.contains("your cone's solid angle is 1.74")
+            err.contains("your cone's solid angle is 1.7")
                 && err.contains("It is wider than the sphere: 43 %"),
             "{err}"
         );
         assert!(
-            err.contains("covers 0.22222 of the sphere of directions, but a fraction 0.127"),
+            err.contains("covers 0.22222 of the sphere of directions, but a fraction 0.12"),
             "the hit fraction is the measurement, your cone the claim: {err}"
         );
         // Wrong: cos of r/d read as the angle (too narrow: every sample hits, the weight is wrong).
