@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch10_mixture_pdf.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch10_mixture_pdf` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch10_mixture_pdf` shows it once your code passes).
 
 use glam::DVec3;
 use rand::{Rng, RngCore};

@@ -5,8 +5,8 @@
 //!
 //! - `list`: every exercise with its state and the section of the book that explains it, `k/N done`,
 //!   and the next one to do;
-//! - `check NAME...`: checks one exercise or several; exit 0 when they pass. A failure shows your
-//!   function and what each check saw;
+//! - `check [NAME...]`: checks one exercise or several (none: the first not done); exit 0 when
+//!   they pass. A failure shows your function and what each check saw;
 //! - `hint NAME [--level K]`: the exercise's hints, one level at a time;
 //! - `watch [NAME]`: checks the current exercise (or NAME) whenever its file is saved, giving up a
 //!   check still running when the file is saved again, and moves on when a save makes it pass (`h`
@@ -120,7 +120,7 @@ pub fn usage(inv: Invocation) -> String {
         "usage: {p} <command>     (or: {o} <command>, the same)
 
   list                     every exercise: state, book section, k/N done, and the next to do
-  check NAME [NAME...]     check exercises (exit 0 when they all pass)
+  check [NAME...]          check exercises (none: the current one); exit 0 when they all pass
   hint NAME [--level K]    hint K (default 1) of the exercise
   watch [NAME]             re-check the current exercise (or NAME) on every save; h: hint, q: quit
   reset NAME               restore the stub; your version is kept as NAME.rs.bak
@@ -201,9 +201,6 @@ pub fn parse_command(
             Ok(Command::List)
         }
         "check" => {
-            if rest.is_empty() {
-                name(rest)?;
-            }
             let mut names: Vec<String> = Vec::new();
             for arg in rest {
                 if arg.starts_with('-') {
@@ -265,12 +262,26 @@ pub fn parse_command(
             no_more(rest, if force { 2 } else { 1 }, inv)?;
             Ok(Command::Solution { name: n, force })
         }
-        other => Err(Error::Usage(format!(
-            "unknown command `{other}`\n{}",
-            usage(inv)
-        ))),
+        other => {
+            let meant = COMMANDS
+                .iter()
+                .filter(|c| edit_distance(&other.to_ascii_lowercase(), c) <= 2)
+                .min_by_key(|c| edit_distance(&other.to_ascii_lowercase(), c));
+            Err(Error::Usage(match meant {
+                Some(c) => format!(
+                    "unknown command `{other}`: did you mean `{} {c}`?",
+                    inv.prefix()
+                ),
+                None => format!("unknown command `{other}`\n{}", usage(inv)),
+            }))
+        }
     }
 }
+
+/// The commands, for a mistyped one's suggestion.
+const COMMANDS: [&str; 7] = [
+    "list", "check", "hint", "watch", "reset", "solution", "help",
+];
 
 fn no_more(rest: &[String], n: usize, inv: Invocation) -> Result<(), Error> {
     match rest.get(n) {
@@ -524,6 +535,9 @@ impl Context {
     }
 
     fn check(&self, names: &[String]) -> Result<i32, Error> {
+        if names.is_empty() {
+            return self.check_current();
+        }
         let exercises: Vec<&Exercise> = names.iter().map(|n| self.exercise(n)).collect();
         let checked = self.check_all(&exercises)?;
         for (i, (e, c)) in exercises.iter().zip(&checked).enumerate() {
@@ -537,6 +551,25 @@ impl Context {
         } else {
             1
         })
+    }
+
+    /// `check` without a name: the current exercise, the first not done (all are checked to find
+    /// it, as `list` does).
+    fn check_current(&self) -> Result<i32, Error> {
+        let all: Vec<&Exercise> = self.exercises.iter().collect();
+        let checked = self.check_all(&all)?;
+        let Some((e, c)) = all.iter().zip(&checked).find(|(_, c)| !c.status.is_done()) else {
+            sayln!("every exercise is done: well done!")?;
+            return Ok(0);
+        };
+        sayln!(
+            "the current exercise, the first not done ({}/{} done; `{} check NAME` checks another):\n",
+            checked.iter().filter(|c| c.status.is_done()).count(),
+            all.len(),
+            self.cmd()
+        )?;
+        say!("{}", c.explain(&self.ws, e, self.cmd()))?;
+        Ok(1)
     }
 
     fn hint(&self, e: &Exercise, level: usize) -> Result<i32, Error> {
@@ -613,9 +646,22 @@ impl Context {
         let path = self.ws.solution_file(&e.name);
         let text = std::fs::read_to_string(&path)
             .map_err(|err| Error::Failed(format!("{}: {err}", path.display())))?;
-        sayln!("{}:\n\n{text}", self.ws.show(&path))?;
+        sayln!(
+            "{}:\n\n{}",
+            self.ws.show(&path),
+            as_invoked(&text, self.inv)
+        )?;
         Ok(0)
     }
+}
+
+/// `text` (a file of the exercises, whose comments write commands as `` `cargo exercises ...` ``)
+/// with its commands written the way the learner started the runner.
+pub fn as_invoked(text: &str, inv: Invocation) -> String {
+    text.replace(
+        &format!("`{} ", Invocation::Cargo.prefix()),
+        &format!("`{} ", inv.prefix()),
+    )
 }
 
 /// `list`'s table: one row per exercise (number, name, state, the section of the book that explains
@@ -748,7 +794,7 @@ mod tests {
             err.to_string(),
             "`reset` takes one exercise at a time (got `ch02_estimate_pi` and `ch02_jittered_pi`)"
         );
-        assert!(matches!(parse("check"), Err(Error::Usage(_))));
+        assert_eq!(parse("check").unwrap(), Command::Check(Vec::new()));
         assert_eq!(
             parse("hint ch02_j --level 2").unwrap(),
             Command::Hint {
@@ -784,6 +830,24 @@ mod tests {
                 .ends_with("did you mean ch12_bug_nan_average?"),
             "{err}"
         );
+        for (typed, meant) in [
+            ("chek", "check"),
+            ("lsit", "list"),
+            ("Watch", "watch"),
+            ("hnit", "hint"),
+        ] {
+            let err = parse(&format!("{typed} ch02_estimate_pi")).unwrap_err();
+            assert_eq!(
+                err.to_string(),
+                format!("unknown command `{typed}`: did you mean `cargo exercises {meant}`?")
+            );
+        }
+        assert!(
+            parse("frobnicate")
+                .unwrap_err()
+                .to_string()
+                .starts_with("unknown command `frobnicate`\nusage: ")
+        );
         let err = parse("check frobnicate").unwrap_err();
         assert_eq!(
             err.to_string(),
@@ -817,6 +881,13 @@ mod tests {
             printed: Default::default(),
             warnings: String::new(),
         };
+        // A solution's header, as `solution` prints it.
+        let header = "//! exercise first (`cargo exercises solution ch02_x` shows it once ...).";
+        assert_eq!(as_invoked(header, Invocation::Cargo), header);
+        assert_eq!(
+            as_invoked(header, Invocation::Rtl),
+            "//! exercise first (`rtl exercises solution ch02_x` shows it once ...)."
+        );
         for inv in [Invocation::Cargo, Invocation::Rtl] {
             let text = failing.explain(&ws, e, inv.prefix());
             assert!(

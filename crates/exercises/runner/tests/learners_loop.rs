@@ -202,6 +202,16 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (_, out) = run(&ws, &["list"]);
     assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
     assert!(out.contains("next: ch02_jittered_pi"), "{out}");
+    // check without a name: the current exercise, the first not done.
+    let (code, out) = run(&ws, &["check"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.starts_with(&format!(
+            "the current exercise, the first not done (1/{total} done; `cargo exercises check \
+             NAME` checks another):\n\nch02_jittered_pi ("
+        )),
+        "{out}"
+    );
 
     // A compile error in one exercise stops no other from being checked or listed.
     edit(&ws, "ch02_jittered_pi", |t| {
@@ -268,6 +278,11 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (code, out) = run(&ws, &["solution", "ch02_estimate_pi"]);
     assert_eq!(code, 0, "{out}");
     assert!(out.contains("4.0 * inside as f64"), "{out}");
+    assert!(
+        out.contains("(`cargo exercises solution ch02_estimate_pi` shows it")
+            && !out.contains("rtl exercises"),
+        "the header as the learner runs the runner: {out}"
+    );
 }
 
 #[test]
