@@ -9,8 +9,7 @@
 //! - [`uniform_sphere`]: a direction uniform on the unit sphere (density 1/(4 pi) w.r.t. solid
 //!   angle) from two uniforms `u1`, `u2` in [0, 1), without rejection: a map from the unit square to
 //!   the sphere. It must be of unit length (to 1e-12) for every input, u = 0 and u = 1 - 2^-53
-//!   included, where rounding can make a square root's argument a tiny negative number (and the
-//!   result NaN) unless you guard it.
+//!   included, where the direction is at a pole, or within rounding of it.
 //! - [`estimate_cos_sq`]: the Monte Carlo estimate of the integral of cos^2 theta = z^2 over the
 //!   sphere (exactly 4 pi / 3) from `n` directions of [`uniform_sphere`], each divided by its density.
 //!   `None` for `n = 0`.

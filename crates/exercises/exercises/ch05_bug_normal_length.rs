@@ -8,8 +8,13 @@
 //!
 //! **Task.** [`outward_normal`] feeds the Lambertian density, which takes n . d as the cosine of
 //! the angle between the normal n and a direction d. Find why the light grows with the radius and
-//! fix it. Keep the book's convention for the hollow glass sphere, which has a *negative* radius
-//! so that its normal points inwards.
+//! fix it.
+//!
+//! The radius may be negative. Earlier editions of the first book of the series, *Ray Tracing in
+//! One Weekend* ("Modeling a Hollow Glass Sphere"), make a glass bubble of a sphere of negative
+//! radius: the same surface, with its normal pointing inwards, towards the centre, so that the
+//! bubble's outside is the glass around it. The function keeps that: its normal points outwards for
+//! a positive radius, inwards for a negative one.
 //!
 //! Check your code with `cargo exercises check ch05_bug_normal_length` (or
 //! `rtl exercises check ch05_bug_normal_length`, the same);

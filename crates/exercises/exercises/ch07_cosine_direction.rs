@@ -1,8 +1,8 @@
 //! # Chapter 7, Generating Random Directions, "Cosine-weighted": a cosine-weighted direction and its pdf
 //!
 //! **Read first:** the section "Cosine-weighted" of chapter 7
-//! (`book/src/ch07-generating-random-directions.md`), which derives a sampler of this density in
-//! two ways (the book's inversion of the CDF of theta, and Malley's method); either will do.
+//! (`book/src/ch07-generating-random-directions.md`), which samples this density by Malley's method
+//! and mentions in passing the original book's way, inverting the CDF of theta; either will do.
 //!
 //! **Task.** Two functions, in the frame where the surface normal is +z:
 //!

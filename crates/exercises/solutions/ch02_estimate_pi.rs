@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch02_estimate_pi.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch02_estimate_pi` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch02_estimate_pi` shows it once your code passes).
 
 use rand::Rng;
 

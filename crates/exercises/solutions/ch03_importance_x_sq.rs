@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch03_importance_x_sq.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch03_importance_x_sq` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch03_importance_x_sq` shows it once your code passes).
 
 use rand::Rng;
 

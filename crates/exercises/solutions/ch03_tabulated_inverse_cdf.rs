@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch03_tabulated_inverse_cdf.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch03_tabulated_inverse_cdf` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch03_tabulated_inverse_cdf` shows it once your code passes).
 
 use rtl_exercises::ch03_tabulated_inverse_cdf::{CdfError, CdfTable};
 

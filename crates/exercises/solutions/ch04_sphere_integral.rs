@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch04_sphere_integral.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch04_sphere_integral` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch04_sphere_integral` shows it once your code passes).
 
 use glam::DVec3;
 use rand::Rng;
@@ -7,7 +7,8 @@ use std::f64::consts::PI;
 
 pub fn uniform_sphere(u1: f64, u2: f64) -> DVec3 {
     let z = 1.0 - 2.0 * u1;
-    let r = (1.0 - z * z).max(0.0).sqrt();
+    // z lies in (-1, 1], so z * z rounds to at most 1 and 1 - z * z is never negative.
+    let r = (1.0 - z * z).sqrt();
     let phi = 2.0 * PI * u2;
     DVec3::new(r * phi.cos(), r * phi.sin(), z)
 }

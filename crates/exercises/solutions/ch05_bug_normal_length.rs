@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch05_bug_normal_length.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch05_bug_normal_length` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch05_bug_normal_length` shows it once your code passes).
 
 use glam::DVec3;
 

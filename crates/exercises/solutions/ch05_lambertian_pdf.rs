@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch05_lambertian_pdf.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch05_lambertian_pdf` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch05_lambertian_pdf` shows it once your code passes).
 
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;

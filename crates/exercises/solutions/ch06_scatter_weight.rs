@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch06_scatter_weight.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch06_scatter_weight` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch06_scatter_weight` shows it once your code passes).
 
 use glam::DVec3;
 

@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch07_bug_cosine_factor_two.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch07_bug_cosine_factor_two` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch07_bug_cosine_factor_two` shows it once your code passes).
 
 use glam::DVec3;
 use std::f64::consts::PI;

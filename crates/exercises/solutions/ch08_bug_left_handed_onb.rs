@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch08_bug_left_handed_onb.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch08_bug_left_handed_onb` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch08_bug_left_handed_onb` shows it once your code passes).
 
 use glam::DVec3;
 

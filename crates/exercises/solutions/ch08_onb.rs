@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch08_onb.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch08_onb` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch08_onb` shows it once your code passes).
 
 use glam::DVec3;
 

@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch09_quad_pdf_value.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch09_quad_pdf_value` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch09_quad_pdf_value` shows it once your code passes).
 
 use glam::DVec3;
 use rtl_exercises::ch09_quad_pdf_value::Quad;

@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch10_bug_uniform_samples_cosine.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch10_bug_uniform_samples_cosine` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch10_bug_uniform_samples_cosine` shows it once your code passes).
 
 use glam::DVec3;
 use rand::{Rng, RngCore};

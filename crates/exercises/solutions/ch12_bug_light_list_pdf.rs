@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch12_bug_light_list_pdf.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch12_bug_light_list_pdf` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch12_bug_light_list_pdf` shows it once your code passes).
 
 use glam::DVec3;
 use rand::{Rng, RngCore};

@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch12_bug_nan_average.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch12_bug_nan_average` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch12_bug_nan_average` shows it once your code passes).
 
 /// The bug: the guard came after the sum, which one NaN had already made NaN. Drop each bad sample
 /// as it comes, and divide by the number of samples kept.

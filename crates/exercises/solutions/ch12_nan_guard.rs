@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch12_nan_guard.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch12_nan_guard` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch12_nan_guard` shows it once your code passes).
 
 use glam::DVec3;
 

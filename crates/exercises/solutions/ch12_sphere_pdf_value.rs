@@ -1,5 +1,5 @@
 //! Reference solution of `exercises/ch12_sphere_pdf_value.rs`, compiled only with `--features solutions`: try the
-//! exercise first (`rtl exercises solution ch12_sphere_pdf_value` shows it once your code passes).
+//! exercise first (`cargo exercises solution ch12_sphere_pdf_value` shows it once your code passes).
 
 use glam::DVec3;
 use std::f64::consts::PI;

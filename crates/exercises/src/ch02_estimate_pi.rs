@@ -45,7 +45,8 @@ pub fn check_lattice(estimate: impl PiEstimator) -> CheckResult {
         let k = got * n as f64 / 4.0;
         if !(0.0..=n as f64).contains(&k) || (k - k.round()).abs() > 1e-9 {
             return Err(format!(
-                "estimate_pi({n}) = {} is not 4 k / {n} for a count k in 0..={n}",
+                "estimate_pi({n}) = {}: that is no count of points inside the circle (0 to {n}) \
+                 times the one constant that makes the estimate's mean pi, divided by {n}",
                 check::num(got)
             ));
         }
@@ -79,6 +80,23 @@ mod tests {
     fn checks_reject_a_wrong_estimator() {
         assert!(check_value(without_factor_4).is_err());
         assert!(check_lattice(without_factor_4).is_err());
+        // The fraction inside, with n = 0 handled: the message names the symptom, not the formula.
+        let fraction = |n: usize, rng: &mut dyn RngCore| {
+            if n == 0 {
+                None
+            } else {
+                without_factor_4(n, rng)
+            }
+        };
+        let err = check_lattice(fraction).unwrap_err();
+        assert!(
+            err.starts_with("estimate_pi(") && err.contains("that is no count of points"),
+            "{err}"
+        );
+        assert!(
+            !err.contains("4 k") && !err.contains("4k"),
+            "no formula: {err}"
+        );
         // Wrong: the circle of radius 1/2 (x^2 + y^2 < 0.5^2 read as < 0.5).
         let half = |n: usize, rng: &mut dyn RngCore| {
             let inside = (0..n)

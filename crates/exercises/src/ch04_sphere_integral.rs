@@ -73,9 +73,12 @@ mod tests {
             )
         };
         let err = check_uniform_sphere(theta_uniform).unwrap_err();
-        // theta uniform puts too many directions near the poles, too few at the equator.
+        // theta uniform puts too many directions near the poles, too few at the equator (the
+        // three rings there fall short alike: which one is named depends on the seed).
         assert!(
-            err.contains("\ntoo few at cos theta in [-0.111, 0.111]: ")
+            ["[-0.333, -0.111]", "[-0.111, 0.111]", "[0.111, 0.333]"]
+                .iter()
+                .any(|ring| err.contains(&format!("\ntoo few at cos theta in {ring}: ")))
                 && (err.contains("\ntoo many opposite +z: cos theta in [-1, -0.778]: ")
                     || err.contains("\ntoo many near +z: cos theta in [0.778, 1]: ")),
             "{err}"

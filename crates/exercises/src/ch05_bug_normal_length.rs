@@ -3,8 +3,9 @@
 //! The checks of the exercise `crates/exercises/exercises/ch05_bug_normal_length.rs`, which holds the
 //! bug to find.
 //!
-//! The check: the normal at points of spheres of radius 0.5, 1, 2 and 100 has unit length, and on a
-//! sphere of negative radius (the book's hollow glass bubble) points inwards, (p - c) / r; and the
+//! The check: the normal at points of spheres of radius 0.5, 1, 2 and 100 has unit length and points
+//! outwards, and on a sphere of negative radius (the glass bubble of earlier editions of *Ray
+//! Tracing in One Weekend*) points inwards; and the
 //! Lambertian density built on it integrates to 1 over the sphere of directions (z-test of 1e5
 //! uniform directions, false failure 1e-6), which a normal of length r would make r.
 
@@ -45,14 +46,22 @@ pub fn check_unit(normal: impl Normal) -> CheckResult {
             }
             let want = d * radius.signum();
             if (n - want).length() > 1e-9 {
+                let (should, wrong) = if radius < 0.0 {
+                    (
+                        "inwards, towards the centre: the sphere is a bubble",
+                        "outwards",
+                    )
+                } else {
+                    ("outwards, away from the centre", "inwards")
+                };
+                let how = if n.dot(want) < 0.0 {
+                    format!("it points {wrong}")
+                } else {
+                    format!("it is not along the line from the centre, {want}")
+                };
                 return Err(format!(
-                    "the normal at {p} of the sphere of radius {radius} is {n}, expected {want} \
-                     ((p - center) / radius{})",
-                    if radius < 0.0 {
-                        ": the book's hollow sphere has a negative radius so that it points inwards"
-                    } else {
-                        ""
-                    }
+                    "the normal at {p} of the sphere of radius {radius} is {n}: {how}. With a \
+                     radius of {radius} it must point {should}"
                 ));
             }
         }
@@ -107,9 +116,21 @@ mod tests {
         assert!(check_unit(unscaled).is_err());
         let err = check_normalised(unscaled).unwrap_err();
         assert!(err.contains("standard errors"), "{err}");
-        // Wrong: normalize() loses the book's inward normal of a negative radius.
+        // Wrong: normalize() loses the inward normal of a negative radius.
         let normalised = |c: DVec3, _r: f64, p: DVec3| (p - c).normalize();
-        assert!(check_unit(normalised).is_err());
+        let err = check_unit(normalised).unwrap_err();
+        assert!(
+            err.contains("of the sphere of radius -0.4 is [")
+                && err.contains(
+                    "]: it points outwards. With a radius of -0.4 it must point \
+                                 inwards, towards the centre"
+                ),
+            "{err}"
+        );
+        assert!(
+            !err.contains("(p - c") && !err.contains("/ radius"),
+            "no formula: {err}"
+        );
         assert!(check_normalised(normalised).is_ok());
     }
 

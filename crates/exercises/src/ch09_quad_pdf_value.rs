@@ -150,8 +150,13 @@ pub fn check_normalised(pdf: impl QuadPdf) -> CheckResult {
             let d = check::uniform_direction(&mut rng);
             let p = pdf(&quad, origin, d);
             if !(p >= 0.0 && p.is_finite()) {
+                let why = if p < 0.0 {
+                    "a density is never negative"
+                } else {
+                    "a density is a finite number >= 0"
+                };
                 return Err(format!(
-                    "quad_pdf_value({quad:?}, {origin}, {d}) = {}",
+                    "quad_pdf_value({quad:?}, {origin}, {d}) = {}: {why}",
                     check::num(p)
                 ));
             }
@@ -212,6 +217,15 @@ mod tests {
             })
         };
         assert!(check_values(t_zero).is_err());
+        // Wrong: the signed cosine, negative where the light faces away from the origin.
+        let signed = |q: &Quad, o: DVec3, d: DVec3| {
+            hit(q, o, d).map_or(0.0, |(t, _, a)| {
+                let n = q.u.cross(q.v);
+                t * t * n.length() / (n.dot(d) * a)
+            })
+        };
+        let err = check_normalised(signed).unwrap_err();
+        assert!(err.ends_with(": a density is never negative"), "{err}");
     }
 
     #[test]

@@ -4,10 +4,11 @@
 //! task, and what that exercise is given ([`Pdf`], [`CosinePdf`], [`ConePdf`]).
 //!
 //! The check: `value` equals w a + (1 - w) b at 1000 random directions (to rounding), for weights 0,
-//! 0.3, 1; and, for the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
-//! cosine-plus-light mixture), a chi-square test of 1e5 generated directions in 16 x 25 (phi, z) cells
-//! against `n` times the integral of the mixture's own `value` over each cell: whatever `generate`
-//! samples, `value` must be its density.
+//! 0.3, 1; a part of weight 0 that is [`Undefined`] (its value NaN, its samples NaN) is neither
+//! evaluated nor sampled, as the book's `MixturePdf` does; and, for the mixture of a cosine lobe
+//! around +z and a narrow cone towards +z (like the book's cosine-plus-light mixture), a chi-square
+//! test of 1e5 generated directions in 16 x 25 (phi, z) cells against `n` times the integral of the
+//! mixture's own `value` over each cell: whatever `generate` samples, `value` must be its density.
 
 use crate::check::{self, Arg, CheckResult, Generator, SphereBins};
 use glam::DVec3;
@@ -65,6 +66,21 @@ impl Pdf for ConePdf {
     }
 }
 
+/// A part that is no density at all: its value is NaN everywhere and its samples are NaN. A part of
+/// weight 0 may be anything (a list of lights with no light in it, say): the mixture must neither
+/// evaluate nor sample it.
+#[derive(Clone, Copy, Debug)]
+pub struct Undefined;
+
+impl Pdf for Undefined {
+    fn value(&self, _: DVec3) -> f64 {
+        f64::NAN
+    }
+    fn generate(&self, _: &mut dyn RngCore) -> DVec3 {
+        DVec3::NAN
+    }
+}
+
 /// The cone of the checks: z >= 0.84, a cell edge of the chi-square binning.
 const CONE: ConePdf = ConePdf { cos_max: 0.84 };
 
@@ -103,6 +119,63 @@ pub fn check_value<P: Pdf>(mix: impl Fn(CosinePdf, ConePdf, f64) -> P) -> CheckR
                     "MixturePdf(weight {w}).value({d}) = {}, expected {}",
                     check::num(got),
                     check::num(want)
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A part of weight 0 that is [`Undefined`] is neither evaluated nor sampled: `weight_0_a` builds
+/// the mixture of weight `w` = 0 of `Undefined` and a cone, `weight_1_b` the one of weight 1 of a
+/// cosine lobe and `Undefined`. Their `value` must be the other part's, exactly, at 100 directions,
+/// and `generate` must never return `Undefined`'s NaN in 1000 draws, the first of them with
+/// u = 0 (weight 0) and u = 1 - 2^-53 (weight 1).
+pub fn check_weight_zero<P: Pdf, Q: Pdf>(
+    weight_0_a: impl Fn(Undefined, ConePdf, f64) -> P,
+    weight_1_b: impl Fn(CosinePdf, Undefined, f64) -> Q,
+) -> CheckResult {
+    let zero_a = weight_0_a(Undefined, CONE, 0.0);
+    let zero_b = weight_1_b(CosinePdf, Undefined, 1.0);
+    let unused = |w: f64| if w == 0.0 { "a" } else { "b" };
+    let mut rng = check::seeded(102);
+    for k in 0..100 {
+        let d = if k % 2 == 0 {
+            check::uniform_direction(&mut rng)
+        } else {
+            CONE.generate(&mut rng)
+        };
+        for (w, got, want) in [
+            (0.0, value(&zero_a, 0.0, d), CONE.value(d)),
+            (1.0, value(&zero_b, 1.0, d), CosinePdf.value(d)),
+        ] {
+            if got != want {
+                return Err(format!(
+                    "MixturePdf(weight_a {w}).value({d}) = {}, expected {}: part {}, of weight 0, \
+                     has no number for a value there (NaN), and a part of weight 0 may be \
+                     anything; it must not change the mixture's value",
+                    check::num(got),
+                    check::num(want),
+                    unused(w)
+                ));
+            }
+        }
+    }
+    for (w, u) in [(0.0, 0.0), (1.0, check::U_MAX)] {
+        let mut rng = Generator::scripted(&[u], 103);
+        for k in 0..1000 {
+            let d = if w == 0.0 {
+                generate(&zero_a, w, &mut rng)
+            } else {
+                generate(&zero_b, w, &mut rng)
+            };
+            if d.is_nan() {
+                return Err(format!(
+                    "MixturePdf(weight_a {w}).generate() returned {d} (call {} of 1000, the first \
+                     with u = {}): it sampled part {}, whose weight is 0",
+                    k + 1,
+                    check::num(u),
+                    unused(w)
                 ));
             }
         }
@@ -178,6 +251,87 @@ mod tests {
             value_weight: w,
         };
         check_mixture(consistent).unwrap();
+    }
+
+    /// The mixture of the given parts `a`, `b`: the weighted sum of both values whatever the
+    /// weights (`sum`), or leaving out a part of weight 0; sampling `a` when u < w, or when u <= w
+    /// (`or_equal`).
+    struct Mix<A, B> {
+        a: A,
+        b: B,
+        w: f64,
+        sum: bool,
+        or_equal: bool,
+    }
+
+    impl<A: Pdf, B: Pdf> Pdf for Mix<A, B> {
+        fn value(&self, d: DVec3) -> f64 {
+            if self.sum || (self.w > 0.0 && self.w < 1.0) {
+                self.w * self.a.value(d) + (1.0 - self.w) * self.b.value(d)
+            } else if self.w == 0.0 {
+                self.b.value(d)
+            } else {
+                self.a.value(d)
+            }
+        }
+        fn generate(&self, rng: &mut dyn RngCore) -> DVec3 {
+            let u = rng.random::<f64>();
+            if u < self.w || (self.or_equal && u == self.w) {
+                self.a.generate(rng)
+            } else {
+                self.b.generate(rng)
+            }
+        }
+    }
+
+    fn check_mix(sum: bool, or_equal: bool) -> CheckResult {
+        check_weight_zero(
+            |a, b, w| Mix {
+                a,
+                b,
+                w,
+                sum,
+                or_equal,
+            },
+            |a, b, w| Mix {
+                a,
+                b,
+                w,
+                sum,
+                or_equal,
+            },
+        )
+    }
+
+    #[test]
+    fn a_part_of_weight_0_must_be_neither_evaluated_nor_sampled() {
+        check_mix(false, false).unwrap();
+        // Wrong: w a(d) + (1 - w) b(d) for every weight: 0 times NaN is NaN.
+        let err = check_mix(true, false).unwrap_err();
+        assert!(
+            err.starts_with("MixturePdf(weight_a 0).value(") && err.contains(") = NaN, expected "),
+            "{err}"
+        );
+        assert!(err.contains("part a, of weight 0"), "{err}");
+        // Wrong: u <= w samples part a at u = 0 with weight 0.
+        let err = check_mix(false, true).unwrap_err();
+        assert!(
+            err.starts_with(
+                "MixturePdf(weight_a 0).generate() returned [NaN, NaN, NaN] (call 1 of 1000, the \
+                 first with u = 0): it sampled part a, whose weight is 0"
+            ),
+            "{err}"
+        );
+        // Only this check sees them: with parts that are numbers, the sum is right.
+        let wrong = |a: CosinePdf, b: ConePdf, w| Mix {
+            a,
+            b,
+            w,
+            sum: true,
+            or_equal: true,
+        };
+        // (generate differs only where u equals the weight, 2^-53 of the draws.)
+        assert!(check_value(wrong).is_ok());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The program each exercise's test target runs (`harness = false`): it runs the exercise's checks
-//! one by one, catches a `todo!()` or any other panic of the learner's code, and prints one report.
+//! one by one, catches a `todo!()` or any other panic of the learner's code, and makes one report.
 //!
-//! The report's first line is what the runner (`cargo exercises`, `rtl exercises`) reads:
+//! The report's first line is the summary:
 //!
 //! ```text
 //! ch02_estimate_pi: failing: 1/2 checks passed: estimate_pi with 1e5 points: estimate 0.785 is ...
@@ -10,14 +10,46 @@
 //! (the state is `done`, `failing` or `not started`), followed by one line per check (`ok`, `FAIL`
 //! with what the statistics saw, or `todo`). The program exits 0 exactly when every check passes.
 //!
+//! Run by hand (`cargo test -p rtl-exercises`) it prints the report. The runner (`cargo exercises`,
+//! `rtl exercises`) instead names a file in [`REPORT_ENV`], and the report goes there, where
+//! nothing the learner's code prints can end up or pass for it; what the learner's code prints
+//! stays on standard output and error, which the runner shows as such. The file is a log of lines
+//! written as the checks run, so that a run stopped at the time limit still tells which check and
+//! which call of the learner's code were running ([`REPORT_FORMAT`]).
+//!
 //! With `--features solutions` it checks the reference solution instead of the learner's file, and the
 //! shipped stub too, which the checks must reject (a stub's `todo!()`, or a bug-museum exercise's bug):
 //! it exits 0 when the solution passes and the stub does not.
 
 use crate::check::CheckResult;
 use std::cell::{Cell, RefCell};
+use std::fs::File;
+use std::io::Write;
 use std::panic::{self, AssertUnwindSafe};
-use std::sync::Once;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, Once};
+use std::time::Duration;
+
+/// The environment variable in which the runner names the file the report goes to.
+pub const REPORT_ENV: &str = "RTL_EXERCISES_REPORT";
+
+/// The lines of the report file, in the order they are written (the runner's `report` module reads
+/// them): a line of text of the report itself is written as `| TEXT`.
+///
+/// ```text
+/// rtl-exercises report 1
+/// checks N          the number of checks
+/// start K LABEL     check K (1 to N) starts
+/// call TEXT         the call of the learner's code in progress in check K, as a panic report names
+///                   it; `call` alone: none (written when it changes, looked at every 100 ms)
+/// result K          check K ended; its lines of the report follow
+/// report            every check ended; the whole report follows, then `end`
+/// end
+/// ```
+pub const REPORT_FORMAT: &str = "rtl-exercises report 1";
+
+/// How often the call in progress is written to the report file.
+const CALL_EVERY: Duration = Duration::from_millis(100);
 
 /// One named check of an exercise.
 pub struct Check {
@@ -205,23 +237,107 @@ impl Report {
         }
         out.push('\n');
         for (label, o) in &self.outcomes {
-            let (tag, text) = match o {
-                Outcome::Pass => ("ok  ", String::new()),
-                Outcome::Fail(why) | Outcome::Panic(why) => ("FAIL", why.clone()),
-                Outcome::Todo(what) => ("todo", format!("todo!(\"{what}\") reached")),
-            };
-            out += &format!("  {tag}  {label}");
-            let mut lines = text.lines();
-            if let Some(l) = lines.next() {
-                out += &format!("\n          {l}");
-            }
-            for l in lines {
-                out += &format!("\n          {l}");
-            }
-            out.push('\n');
+            out += &render_outcome(label, o);
         }
         out
     }
+}
+
+/// One check's lines of the report: `  ok    LABEL`, or `  FAIL  LABEL` and what it saw, indented.
+pub fn render_outcome(label: &str, outcome: &Outcome) -> String {
+    let (tag, text) = match outcome {
+        Outcome::Pass => ("ok  ", String::new()),
+        Outcome::Fail(why) | Outcome::Panic(why) => ("FAIL", why.clone()),
+        Outcome::Todo(what) => ("todo", format!("todo!(\"{what}\") reached")),
+    };
+    let mut out = format!("  {tag}  {label}\n");
+    for l in text.lines() {
+        out += &format!("          {l}\n");
+    }
+    out
+}
+
+/// The report file the runner named ([`REPORT_ENV`]), written line by line as the checks run
+/// ([`REPORT_FORMAT`]).
+struct ReportFile {
+    file: Mutex<File>,
+}
+
+impl ReportFile {
+    /// The file named by [`REPORT_ENV`], if it is set.
+    fn from_env() -> Option<Self> {
+        let path = std::env::var_os(REPORT_ENV)?;
+        let file = File::create(&path).unwrap_or_else(|e| {
+            eprintln!("{REPORT_ENV}={}: {e}", path.to_string_lossy());
+            std::process::exit(2)
+        });
+        let r = Self {
+            file: Mutex::new(file),
+        };
+        r.write(&format!("{REPORT_FORMAT}\n"));
+        Some(r)
+    }
+
+    /// Writes `text` whole, in one write.
+    fn write(&self, text: &str) {
+        let mut file = self.file.lock().unwrap_or_else(|e| e.into_inner());
+        // Nowhere to say that the file cannot be written: the runner then finds no report.
+        let _ = file.write_all(text.as_bytes());
+    }
+
+    /// A line of the protocol, then `body`'s lines as `| TEXT`.
+    fn record(&self, line: &str, body: &str) -> String {
+        let mut text = format!("{}\n", line.replace('\n', " "));
+        for l in body.lines() {
+            text += &format!("| {l}\n");
+        }
+        text
+    }
+
+    /// Writes, every [`CALL_EVERY`] until `stop`, the call in progress when it changed.
+    fn watch_calls(self: &Arc<Self>, stop: &Arc<AtomicBool>) {
+        let (me, stop) = (Arc::clone(self), Arc::clone(stop));
+        std::thread::spawn(move || {
+            let mut last: Option<String> = None;
+            while !stop.load(Ordering::Relaxed) {
+                std::thread::sleep(CALL_EVERY);
+                // The file is locked while the call is read: a call line then always follows the
+                // `start` line of its own check (a check's end forgets its call before writing).
+                let mut file = me.file.lock().unwrap_or_else(|e| e.into_inner());
+                let now = crate::check::published_call();
+                if now != last {
+                    let line = match &now {
+                        Some(call) => format!("call {}\n", call.replace('\n', " ")),
+                        None => "call\n".to_string(),
+                    };
+                    let _ = file.write_all(line.as_bytes());
+                    last = now;
+                }
+            }
+        });
+    }
+}
+
+/// Runs `checks` as [`Report::run`] does, recording each check's start and result in `file`.
+fn run_into(file: &Arc<ReportFile>, checks: &[Check]) -> Report {
+    file.write(&format!("checks {}\n", checks.len()));
+    let stop = Arc::new(AtomicBool::new(false));
+    crate::check::publish_calls(true);
+    file.watch_calls(&stop);
+    let mut outcomes = Vec::new();
+    for (k, c) in checks.iter().enumerate() {
+        file.write(&format!("start {} {}\n", k + 1, c.label.replace('\n', " ")));
+        let outcome = run_check(c);
+        crate::check::forget_call();
+        file.write(&file.record(
+            &format!("result {}", k + 1),
+            &render_outcome(c.label, &outcome),
+        ));
+        outcomes.push((c.label, outcome));
+    }
+    stop.store(true, Ordering::Relaxed);
+    crate::check::publish_calls(false);
+    Report { outcomes }
 }
 
 /// What the test target was asked to do by `cargo test ... -- ARGS`.
@@ -281,13 +397,24 @@ pub fn main(name: &str, learner: Vec<Check>, stub: Option<Vec<Check>>) -> ! {
         }
         Mode::Run => {}
     }
-    let report = Report::run(&learner);
     let code = match stub {
-        None => {
-            print!("{}", report.render(name));
-            i32::from(report.state() != State::Done)
-        }
+        None => match ReportFile::from_env() {
+            Some(file) => {
+                let file = Arc::new(file);
+                let report = run_into(&file, &learner);
+                // What the learner's code printed without a newline is not lost at the exit.
+                let _ = std::io::stdout().flush();
+                file.write(&(file.record("report", &report.render(name)) + "end\n"));
+                i32::from(report.state() != State::Done)
+            }
+            None => {
+                let report = Report::run(&learner);
+                print!("{}", report.render(name));
+                i32::from(report.state() != State::Done)
+            }
+        },
         Some(stub) => {
+            let report = Report::run(&learner);
             let solution_ok = report.state() == State::Done;
             print!("{}", report.render(&format!("{name} (reference solution)")));
             let stubbed = Report::run(&stub);
@@ -343,6 +470,44 @@ macro_rules! exercise_main {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_report_file_logs_each_check_and_the_call_in_progress() {
+        let _one_at_a_time = crate::check::PUBLISHING_TEST
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        let path = std::env::temp_dir().join(format!("rtl-harness-log-{}", std::process::id()));
+        let file = Arc::new(ReportFile {
+            file: Mutex::new(File::create(&path).unwrap()),
+        });
+        let checks = vec![
+            Check::new("quick", || Ok(())),
+            Check::new("slow", || {
+                crate::check::calling("f", &[("u", 0.5.into())], || {
+                    std::thread::sleep(4 * CALL_EVERY);
+                    Ok(())
+                })
+            }),
+            Check::new("fails", || Err("saw 3\nexpected 4".into())),
+        ];
+        let report = run_into(&file, &checks);
+        assert_eq!(report.passed(), 2);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let _ = std::fs::remove_file(&path);
+        let at = |line: &str| {
+            text.find(line)
+                .unwrap_or_else(|| panic!("no `{line}` in:\n{text}"))
+        };
+        assert!(text.starts_with("checks 3\nstart 1 quick\nresult 1\n|   ok    quick\n"));
+        assert!(at("start 2 slow\n") < at("call f(u = 0.5)\n"), "{text}");
+        assert!(at("call f(u = 0.5)\n") < at("result 2\n"), "{text}");
+        assert!(
+            text.ends_with(
+                "result 3\n|   FAIL  fails\n|           saw 3\n|           expected 4\n"
+            ),
+            "{text}"
+        );
+    }
 
     #[test]
     fn states_and_the_summary_line() {

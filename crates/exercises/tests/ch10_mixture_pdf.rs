@@ -18,5 +18,6 @@ use rtl_exercises::ch10_mixture_pdf::*;
 
 rtl_exercises::exercise_main!("ch10_mixture_pdf", e => {
     "value at 1000 directions, for weights 0, 0.3 and 1" => check_value(|a, b, weight_a| e::MixturePdf { a, b, weight_a }),
+    "a part of weight 0 is neither evaluated nor sampled" => check_weight_zero(|a, b, weight_a| e::MixturePdf { a, b, weight_a }, |a, b, weight_a| e::MixturePdf { a, b, weight_a }),
     "generate samples what value says (chi-square)" => check_generate(|a, b, weight_a| e::MixturePdf { a, b, weight_a }),
 });

@@ -10,8 +10,9 @@
 //! for ever cost one time limit together, not one each.
 
 use crate::Error;
+use crate::report::{self, Log, Printed};
 use std::collections::BTreeMap;
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::thread::JoinHandle;
@@ -96,6 +97,21 @@ pub struct Built {
     /// The compiler's errors and warnings for this target, as rendered for a terminal, with the
     /// learner's file named by its own path (see [`plain_paths`]).
     pub diagnostics: String,
+    /// Of those, the warnings that point into the learner's file (`exercises/NAME.rs`).
+    pub warnings: String,
+}
+
+/// Whether a compiler message's main place is in the learner's file of exercise `name`.
+fn in_learners_file(msg: &serde_json::Value, name: &str) -> bool {
+    let file = format!("exercises/{name}.rs");
+    msg["message"]["spans"].as_array().is_some_and(|spans| {
+        spans.iter().any(|s| {
+            s["is_primary"] == true
+                && s["file_name"]
+                    .as_str()
+                    .is_some_and(|f| plain_paths(f).ends_with(&file))
+        })
+    })
 }
 
 /// The compiler names the learner's file as the test target includes it,
@@ -149,6 +165,7 @@ pub fn build(
         });
         let mut exes: BTreeMap<String, PathBuf> = BTreeMap::new();
         let mut diags: BTreeMap<String, String> = BTreeMap::new();
+        let mut warnings: BTreeMap<String, String> = BTreeMap::new();
         let mut failed: Vec<String> = Vec::new();
         let mut lib_errors = String::new();
         let stdout = child.stdout.take().expect("piped");
@@ -173,6 +190,12 @@ pub fn build(
                     if is_test {
                         if level == "error" && !failed.contains(&target) {
                             failed.push(target.clone());
+                        }
+                        if level == "warning" && in_learners_file(&msg, &target) {
+                            warnings
+                                .entry(target.clone())
+                                .or_default()
+                                .push_str(&rendered);
                         }
                         diags.entry(target).or_default().push_str(&rendered);
                     } else if level == "error" {
@@ -199,6 +222,7 @@ pub fn build(
                     Built {
                         exe: Some(exe.clone()),
                         diagnostics: diags.get(n).cloned().unwrap_or_default(),
+                        warnings: warnings.get(n).cloned().unwrap_or_default(),
                     },
                 );
             } else if failed.contains(n) {
@@ -207,6 +231,7 @@ pub fn build(
                     Built {
                         exe: None,
                         diagnostics: diags.get(n).cloned().unwrap_or_default(),
+                        warnings: warnings.get(n).cloned().unwrap_or_default(),
                     },
                 );
             }
@@ -230,15 +255,32 @@ pub fn build(
     Ok(done)
 }
 
-/// What a test program printed, or why it gave nothing.
+/// What a test program gave: its report file as far as it got ([`Log`]) and what the learner's
+/// code printed ([`Printed`]), once it exited or was stopped.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Ran {
-    /// Its standard output and whether it exited 0.
-    Output { stdout: String, passed: bool },
+    /// It exited: with `code`, or killed by a signal (`code` is `None`; `how` says which).
+    Exited {
+        code: Option<i32>,
+        how: String,
+        log: Log,
+        printed: Printed,
+    },
     /// Still running at the time limit, and stopped.
-    TimedOut(Duration),
-    /// It died without a report (a stack overflow, an abort): its standard error.
-    Crashed(String),
+    TimedOut {
+        limit: Duration,
+        log: Log,
+        printed: Printed,
+    },
+}
+
+impl Ran {
+    /// What the learner's code printed.
+    pub fn printed(&self) -> &Printed {
+        match self {
+            Ran::Exited { printed, .. } | Ran::TimedOut { printed, .. } => printed,
+        }
+    }
 }
 
 /// How long a test program runs alone before the next one starts beside it. Every honest check
@@ -249,77 +291,75 @@ pub const PATIENCE: Duration = Duration::from_secs(1);
 /// How long a program runs before it is reported as still running ([`crate::still_running`]).
 pub const NOTICE_AFTER: Duration = Duration::from_secs(2);
 
-/// A test program running, with the threads that read its output.
+/// A test program running, with the thread that reads its output and the file of its report.
 struct Running {
     index: usize,
     child: Child,
     started: Instant,
-    stdout: Option<JoinHandle<String>>,
-    stderr: Option<JoinHandle<String>>,
+    printed: Option<JoinHandle<Printed>>,
+    report: PathBuf,
 }
 
 impl Running {
-    fn start(ws: &Workspace, index: usize, exe: &Path) -> Result<Self, Error> {
-        let mut child = Command::new(exe)
-            .current_dir(&ws.root)
+    /// Starts `exe`, its report going to `report` ([`report::REPORT_ENV`]), its standard output and
+    /// error into one pipe, so that what the learner's code prints is read in the order written.
+    fn start(ws: &Workspace, index: usize, exe: &Path, report: PathBuf) -> Result<Self, Error> {
+        let failed =
+            |e: std::io::Error| Error::Failed(format!("could not run {}: {e}", exe.display()));
+        let (reader, writer) = std::io::pipe().map_err(failed)?;
+        let mut cmd = Command::new(exe);
+        cmd.current_dir(&ws.root)
+            .env(report::REPORT_ENV, &report)
             .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .map_err(|e| Error::Failed(format!("could not run {}: {e}", exe.display())))?;
-        let read = |mut from: Box<dyn Read + Send>| {
-            std::thread::spawn(move || {
-                let mut s = String::new();
-                let _ = from.read_to_string(&mut s);
-                s
-            })
-        };
-        let stdout = child.stdout.take().map(|o| read(Box::new(o)));
-        let stderr = child.stderr.take().map(|e| read(Box::new(e)));
+            .stdout(writer.try_clone().map_err(failed)?)
+            .stderr(writer);
+        let child = cmd.spawn().map_err(failed)?;
+        // The runner's copies of the pipe's writing end go with `cmd`: the reader sees the end of
+        // the output when the program's copies close.
+        drop(cmd);
+        let printed = std::thread::spawn(move || Printed::read(reader));
         Ok(Self {
             index,
             child,
             started: Instant::now(),
-            stdout,
-            stderr,
+            printed: Some(printed),
+            report,
         })
     }
 
-    /// Its report, once it has exited with `status`.
+    /// What it printed, and its report file as far as it got (which is then removed).
+    fn collect(&mut self) -> (Log, Printed) {
+        let printed = self
+            .printed
+            .take()
+            .and_then(|t| t.join().ok())
+            .unwrap_or_default();
+        let log = report::parse(&std::fs::read_to_string(&self.report).unwrap_or_default());
+        let _ = std::fs::remove_file(&self.report);
+        (log, printed)
+    }
+
+    /// What it gave, once it has exited with `status`.
     fn finish(&mut self, status: ExitStatus) -> Ran {
-        let stdout = self
-            .stdout
-            .take()
-            .and_then(|t| t.join().ok())
-            .unwrap_or_default();
-        let stderr = self
-            .stderr
-            .take()
-            .and_then(|t| t.join().ok())
-            .unwrap_or_default();
-        if status.code().is_none() || stdout.trim().is_empty() {
-            return Ran::Crashed(if stderr.trim().is_empty() {
-                format!("exited with {status} and no report")
-            } else {
-                stderr.trim().to_string()
-            });
-        }
-        Ran::Output {
-            stdout,
-            passed: status.success(),
+        let (log, printed) = self.collect();
+        Ran::Exited {
+            code: status.code(),
+            how: status.to_string(),
+            log,
+            printed,
         }
     }
 
-    /// Stops it at the time limit.
-    fn stop(&mut self) {
+    /// Stops it at the time limit `limit`.
+    fn stop(&mut self, limit: Duration) -> Ran {
         let _ = self.child.kill();
         let _ = self.child.wait();
-        // The pipes close with the process: the readers end.
-        for t in [self.stdout.take(), self.stderr.take()]
-            .into_iter()
-            .flatten()
-        {
-            let _ = t.join();
+        // The pipe closes with the process: the reader ends.
+        let (log, printed) = self.collect();
+        Ran::TimedOut {
+            limit,
+            log,
+            printed,
         }
     }
 }
@@ -327,9 +367,31 @@ impl Running {
 impl Drop for Running {
     /// A program left behind (the runner gave up with an error) does not outlive the runner.
     fn drop(&mut self) {
-        if self.stdout.is_some() || self.stderr.is_some() {
-            self.stop();
+        if self.printed.is_some() {
+            self.stop(Duration::ZERO);
         }
+    }
+}
+
+/// A directory of its own for the report files of one [`run_all`], removed with it.
+struct ReportDir(PathBuf);
+
+impl ReportDir {
+    fn new() -> Result<Self, Error> {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.subsec_nanos());
+        let dir =
+            std::env::temp_dir().join(format!("rtl-exercises-{}-{nanos}", std::process::id()));
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| Error::Failed(format!("{}: {e}", dir.display())))?;
+        Ok(Self(dir))
+    }
+}
+
+impl Drop for ReportDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
 
@@ -347,7 +409,22 @@ pub fn run_all(
     limit: Duration,
     still_running: &mut dyn FnMut(&[&str], Duration),
 ) -> Result<Vec<Ran>, Error> {
+    let runs = run_all_until(ws, programs, limit, still_running, &mut || false)?;
+    Ok(runs.expect("never stopped"))
+}
+
+/// [`run_all`], asking `stop` at every look at the programs (every 10 ms) whether to give up:
+/// then every program still running is stopped and the result is `None` (`watch` gives up a check
+/// when its file is saved again).
+pub fn run_all_until(
+    ws: &Workspace,
+    programs: &[(String, PathBuf)],
+    limit: Duration,
+    still_running: &mut dyn FnMut(&[&str], Duration),
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<Option<Vec<Ran>>, Error> {
     let mut results: Vec<Option<Ran>> = vec![None; programs.len()];
+    let dir = ReportDir::new()?;
     let mut running: Vec<Running> = Vec::new();
     let mut next = 0;
     loop {
@@ -362,15 +439,15 @@ pub fn run_all(
                 results[r.index] = Some(r.finish(status));
                 running.swap_remove(i);
             } else if r.started.elapsed() > limit {
-                r.stop();
-                results[r.index] = Some(Ran::TimedOut(limit));
+                results[r.index] = Some(r.stop(limit));
                 running.swap_remove(i);
             } else {
                 i += 1;
             }
         }
         if next < programs.len() && running.iter().all(|r| r.started.elapsed() >= PATIENCE) {
-            running.push(Running::start(ws, next, &programs[next].1)?);
+            let report = dir.0.join(format!("{next}.log"));
+            running.push(Running::start(ws, next, &programs[next].1, report)?);
             next += 1;
             continue;
         }
@@ -389,10 +466,16 @@ pub fn run_all(
             .max()
             .unwrap_or_default();
         still_running(&names, oldest);
+        if stop() {
+            // Dropping them stops them.
+            return Ok(None);
+        }
         std::thread::sleep(Duration::from_millis(10));
     }
-    Ok(results
-        .into_iter()
-        .map(|r| r.expect("every program ran"))
-        .collect())
+    Ok(Some(
+        results
+            .into_iter()
+            .map(|r| r.expect("every program ran"))
+            .collect(),
+    ))
 }

@@ -5,11 +5,12 @@
 //!
 //! - `list`: every exercise with its state and the section of the book that explains it, `k/N done`,
 //!   and the next one to do;
-//! - `check NAME...`: checks one exercise or several; exit 0 when they pass. A failure shows your
-//!   function and what each check saw;
+//! - `check [NAME...]`: checks one exercise or several (none: the first not done); exit 0 when
+//!   they pass. A failure shows your function and what each check saw;
 //! - `hint NAME [--level K]`: the exercise's hints, one level at a time;
-//! - `watch [NAME]`: checks the current exercise (or NAME) whenever its file is saved and moves on
-//!   when it passes (`h` a hint, `q` quits);
+//! - `watch [NAME]`: checks the current exercise (or NAME) whenever its file is saved, giving up a
+//!   check still running when the file is saved again, and moves on when a save makes it pass (`h`
+//!   a hint, `q` quits);
 //! - `reset NAME`: restores the stub, keeping your version as a backup file;
 //! - `solution NAME [--force]`: the reference solution, once your code passes.
 //!
@@ -21,13 +22,14 @@
 pub mod cargo;
 pub mod info;
 pub mod out;
+pub mod report;
 pub mod status;
 pub mod still_running;
 pub mod watch;
 
 use cargo::Workspace;
 use info::{Exercise, Kind};
-use status::Status;
+use status::{Checked, Status};
 use std::fmt;
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -118,7 +120,7 @@ pub fn usage(inv: Invocation) -> String {
         "usage: {p} <command>     (or: {o} <command>, the same)
 
   list                     every exercise: state, book section, k/N done, and the next to do
-  check NAME [NAME...]     check exercises (exit 0 when they all pass)
+  check [NAME...]          check exercises (none: the current one); exit 0 when they all pass
   hint NAME [--level K]    hint K (default 1) of the exercise
   watch [NAME]             re-check the current exercise (or NAME) on every save; h: hint, q: quit
   reset NAME               restore the stub; your version is kept as NAME.rs.bak
@@ -199,9 +201,6 @@ pub fn parse_command(
             Ok(Command::List)
         }
         "check" => {
-            if rest.is_empty() {
-                name(rest)?;
-            }
             let mut names: Vec<String> = Vec::new();
             for arg in rest {
                 if arg.starts_with('-') {
@@ -263,12 +262,26 @@ pub fn parse_command(
             no_more(rest, if force { 2 } else { 1 }, inv)?;
             Ok(Command::Solution { name: n, force })
         }
-        other => Err(Error::Usage(format!(
-            "unknown command `{other}`\n{}",
-            usage(inv)
-        ))),
+        other => {
+            let meant = COMMANDS
+                .iter()
+                .filter(|c| edit_distance(&other.to_ascii_lowercase(), c) <= 2)
+                .min_by_key(|c| edit_distance(&other.to_ascii_lowercase(), c));
+            Err(Error::Usage(match meant {
+                Some(c) => format!(
+                    "unknown command `{other}`: did you mean `{} {c}`?",
+                    inv.prefix()
+                ),
+                None => format!("unknown command `{other}`\n{}", usage(inv)),
+            }))
+        }
     }
 }
+
+/// The commands, for a mistyped one's suggestion.
+const COMMANDS: [&str; 7] = [
+    "list", "check", "hint", "watch", "reset", "solution", "help",
+];
 
 fn no_more(rest: &[String], n: usize, inv: Invocation) -> Result<(), Error> {
     match rest.get(n) {
@@ -421,7 +434,18 @@ impl Context {
     /// The state of each of `exercises`: built together (no time limit), then each one's checks run
     /// under [`status::time_limit`], saying on standard error while a run takes long
     /// ([`StillRunning`]).
-    pub fn statuses(&self, exercises: &[&Exercise]) -> Result<Vec<Status>, Error> {
+    pub fn check_all(&self, exercises: &[&Exercise]) -> Result<Vec<Checked>, Error> {
+        let checked = self.check_all_until(exercises, &mut || false)?;
+        Ok(checked.expect("never stopped"))
+    }
+
+    /// [`Context::check_all`], giving up (`None`) as soon as `stop` says so while the checks run
+    /// (it is asked every 10 ms).
+    pub fn check_all_until(
+        &self,
+        exercises: &[&Exercise],
+        stop: &mut dyn FnMut() -> bool,
+    ) -> Result<Option<Vec<Checked>>, Error> {
         let limit = status::time_limit()?;
         let names: Vec<String> = exercises.iter().map(|e| e.name.clone()).collect();
         let mut shown = false;
@@ -443,20 +467,47 @@ impl Context {
         let stderr = std::io::stderr();
         let terminal = stderr.is_terminal();
         let mut notices = StillRunning::new(stderr, terminal, limit);
-        let mut runs = cargo::run_all(&self.ws, &programs, limit, &mut |names, oldest| {
-            notices.update(names, oldest, Instant::now());
-        })?
-        .into_iter();
+        let runs = cargo::run_all_until(
+            &self.ws,
+            &programs,
+            limit,
+            &mut |names, oldest| notices.update(names, oldest, Instant::now()),
+            stop,
+        )?;
         notices.finish();
+        let Some(runs) = runs else {
+            return Ok(None);
+        };
+        let mut runs = runs.into_iter();
         let mut out = Vec::new();
         for e in exercises {
             let b = &built[&e.name];
             out.push(match &b.exe {
-                None => Status::DoesNotCompile(b.diagnostics.clone()),
-                Some(_) => status::from_run(e, runs.next().expect("one run per program"))?,
+                None => Checked {
+                    status: Status::DoesNotCompile(b.diagnostics.clone()),
+                    printed: Default::default(),
+                    warnings: String::new(),
+                },
+                Some(_) => {
+                    let ran = runs.next().expect("one run per program");
+                    Checked {
+                        status: status::from_run(e, &ran),
+                        printed: ran.printed().clone(),
+                        warnings: b.warnings.clone(),
+                    }
+                }
             });
         }
-        Ok(out)
+        Ok(Some(out))
+    }
+
+    /// The state of each of `exercises` ([`Context::check_all`]).
+    pub fn statuses(&self, exercises: &[&Exercise]) -> Result<Vec<Status>, Error> {
+        Ok(self
+            .check_all(exercises)?
+            .into_iter()
+            .map(|c| c.status)
+            .collect())
     }
 
     fn list(&self) -> Result<i32, Error> {
@@ -484,19 +535,41 @@ impl Context {
     }
 
     fn check(&self, names: &[String]) -> Result<i32, Error> {
+        if names.is_empty() {
+            return self.check_current();
+        }
         let exercises: Vec<&Exercise> = names.iter().map(|n| self.exercise(n)).collect();
-        let statuses = self.statuses(&exercises)?;
-        for (i, (e, s)) in exercises.iter().zip(&statuses).enumerate() {
+        let checked = self.check_all(&exercises)?;
+        for (i, (e, c)) in exercises.iter().zip(&checked).enumerate() {
             if i > 0 {
                 sayln!()?;
             }
-            say!("{}", s.explain(&self.ws, e, self.cmd()))?;
+            say!("{}", c.explain(&self.ws, e, self.cmd()))?;
         }
-        Ok(if statuses.iter().all(Status::is_done) {
+        Ok(if checked.iter().all(|c| c.status.is_done()) {
             0
         } else {
             1
         })
+    }
+
+    /// `check` without a name: the current exercise, the first not done (all are checked to find
+    /// it, as `list` does).
+    fn check_current(&self) -> Result<i32, Error> {
+        let all: Vec<&Exercise> = self.exercises.iter().collect();
+        let checked = self.check_all(&all)?;
+        let Some((e, c)) = all.iter().zip(&checked).find(|(_, c)| !c.status.is_done()) else {
+            sayln!("every exercise is done: well done!")?;
+            return Ok(0);
+        };
+        sayln!(
+            "the current exercise, the first not done ({}/{} done; `{} check NAME` checks another):\n",
+            checked.iter().filter(|c| c.status.is_done()).count(),
+            all.len(),
+            self.cmd()
+        )?;
+        say!("{}", c.explain(&self.ws, e, self.cmd()))?;
+        Ok(1)
     }
 
     fn hint(&self, e: &Exercise, level: usize) -> Result<i32, Error> {
@@ -573,9 +646,22 @@ impl Context {
         let path = self.ws.solution_file(&e.name);
         let text = std::fs::read_to_string(&path)
             .map_err(|err| Error::Failed(format!("{}: {err}", path.display())))?;
-        sayln!("{}:\n\n{text}", self.ws.show(&path))?;
+        sayln!(
+            "{}:\n\n{}",
+            self.ws.show(&path),
+            as_invoked(&text, self.inv)
+        )?;
         Ok(0)
     }
+}
+
+/// `text` (a file of the exercises, whose comments write commands as `` `cargo exercises ...` ``)
+/// with its commands written the way the learner started the runner.
+pub fn as_invoked(text: &str, inv: Invocation) -> String {
+    text.replace(
+        &format!("`{} ", Invocation::Cargo.prefix()),
+        &format!("`{} ", inv.prefix()),
+    )
 }
 
 /// `list`'s table: one row per exercise (number, name, state, the section of the book that explains
@@ -708,7 +794,7 @@ mod tests {
             err.to_string(),
             "`reset` takes one exercise at a time (got `ch02_estimate_pi` and `ch02_jittered_pi`)"
         );
-        assert!(matches!(parse("check"), Err(Error::Usage(_))));
+        assert_eq!(parse("check").unwrap(), Command::Check(Vec::new()));
         assert_eq!(
             parse("hint ch02_j --level 2").unwrap(),
             Command::Hint {
@@ -744,6 +830,24 @@ mod tests {
                 .ends_with("did you mean ch12_bug_nan_average?"),
             "{err}"
         );
+        for (typed, meant) in [
+            ("chek", "check"),
+            ("lsit", "list"),
+            ("Watch", "watch"),
+            ("hnit", "hint"),
+        ] {
+            let err = parse(&format!("{typed} ch02_estimate_pi")).unwrap_err();
+            assert_eq!(
+                err.to_string(),
+                format!("unknown command `{typed}`: did you mean `cargo exercises {meant}`?")
+            );
+        }
+        assert!(
+            parse("frobnicate")
+                .unwrap_err()
+                .to_string()
+                .starts_with("unknown command `frobnicate`\nusage: ")
+        );
         let err = parse("check frobnicate").unwrap_err();
         assert_eq!(
             err.to_string(),
@@ -767,12 +871,23 @@ mod tests {
             root: PathBuf::from("/nonexistent"),
         };
         let e = &exercises()[0];
-        let failing = Status::Failing {
-            passed: 0,
-            total: 1,
-            why: "w".into(),
-            details: String::new(),
+        let failing = Checked {
+            status: Status::Failing {
+                passed: 0,
+                total: 1,
+                why: "w".into(),
+                details: String::new(),
+            },
+            printed: Default::default(),
+            warnings: String::new(),
         };
+        // A solution's header, as `solution` prints it.
+        let header = "//! exercise first (`cargo exercises solution ch02_x` shows it once ...).";
+        assert_eq!(as_invoked(header, Invocation::Cargo), header);
+        assert_eq!(
+            as_invoked(header, Invocation::Rtl),
+            "//! exercise first (`rtl exercises solution ch02_x` shows it once ...)."
+        );
         for inv in [Invocation::Cargo, Invocation::Rtl] {
             let text = failing.explain(&ws, e, inv.prefix());
             assert!(
@@ -804,7 +919,10 @@ mod tests {
                 why: "sample_linear: the samples do not follow the density ".repeat(8),
                 details: String::new(),
             },
-            Status::TimedOut(std::time::Duration::from_secs(10)),
+            Status::TimedOut {
+                limit: std::time::Duration::from_secs(10),
+                log: Default::default(),
+            },
         ];
         let table = list_table(&refs, &statuses);
         for line in table.lines() {

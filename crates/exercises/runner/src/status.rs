@@ -1,8 +1,10 @@
-//! The state of one exercise, from its test program's report (see `rtl_exercises::harness`).
+//! The state of one exercise, from what its test program gave (see `rtl_exercises::harness` and
+//! [`crate::report`]).
 
 use crate::Error;
 use crate::cargo::{Ran, Workspace};
 use crate::info::{Exercise, Kind};
+use crate::report::{Log, Printed};
 use std::time::Duration;
 
 /// Where an exercise stands.
@@ -25,9 +27,26 @@ pub enum Status {
     },
     /// The learner's file does not compile: the compiler's messages.
     DoesNotCompile(String),
-    TimedOut(Duration),
-    /// The test program died without a report.
-    Crashed(String),
+    /// The checks were stopped at the time limit; `log` says how far they got.
+    TimedOut {
+        limit: Duration,
+        log: Log,
+    },
+    /// The test program ended without a report: why, in one line, and how far the checks got.
+    Crashed {
+        why: String,
+        log: Log,
+    },
+}
+
+/// An exercise's state, with what came beside it: what the learner's code printed and the
+/// compiler's warnings about the learner's file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Checked {
+    pub status: Status,
+    pub printed: Printed,
+    /// The compiler's warnings that point into the learner's file, as rendered.
+    pub warnings: String,
 }
 
 /// The default time limit of one exercise's checks: 10 s. Every honest check finishes well under
@@ -60,12 +79,51 @@ pub fn parse_time_limit(value: Option<&str>) -> Result<Duration, Error> {
     }
 }
 
-/// The state of `e` from what its test program gave.
-pub fn from_run(e: &Exercise, ran: Ran) -> Result<Status, Error> {
+/// The state of `e` from what its test program gave. Never an error: a test program that ended
+/// without its report, or with one the runner cannot read, is [`Status::Crashed`], and the other
+/// exercises are checked and listed as usual.
+pub fn from_run(e: &Exercise, ran: &Ran) -> Status {
     match ran {
-        Ran::TimedOut(d) => Ok(Status::TimedOut(d)),
-        Ran::Crashed(why) => Ok(Status::Crashed(why)),
-        Ran::Output { stdout, .. } => parse(&e.name, &stdout),
+        Ran::TimedOut { limit, log, .. } => Status::TimedOut {
+            limit: *limit,
+            log: log.clone(),
+        },
+        Ran::Exited {
+            code,
+            how,
+            log,
+            printed,
+        } => {
+            let crashed = |why: String| Status::Crashed {
+                why,
+                log: log.clone(),
+            };
+            let Some(report) = &log.report else {
+                return crashed(match code {
+                    None => printed
+                        .last()
+                        .map_or_else(|| format!("killed ({how})"), str::to_string),
+                    Some(c) => format!(
+                        "it exited with code {c} before the checks ended, without its report: \
+                         does your code call std::process::exit?"
+                    ),
+                });
+            };
+            let status = match parse(&e.name, report) {
+                Ok(s) => s,
+                Err(err) => return crashed(err.to_string()),
+            };
+            // The program exits 0 exactly when every check passed, after its report.
+            let want = i32::from(!status.is_done());
+            if *code != Some(want) {
+                return crashed(format!(
+                    "the checks' program ended ({how}) after a report that says {}: \
+                     the report is not taken",
+                    status.word()
+                ));
+            }
+            status
+        }
     }
 }
 
@@ -75,7 +133,8 @@ pub fn parse(name: &str, report: &str) -> Result<Status, Error> {
     let details = details.to_string();
     let bad = || {
         Error::Failed(format!(
-            "{name}: unreadable report from its test program: {first}"
+            "{name}: unreadable report from its test program: {}",
+            cut(first, 80)
         ))
     };
     let rest = first
@@ -138,8 +197,8 @@ impl Status {
             Status::NotStarted { .. } => "not started".to_string(),
             Status::Failing { passed, total, .. } => format!("failing {passed}/{total}"),
             Status::DoesNotCompile(_) => "does not compile".to_string(),
-            Status::TimedOut(_) => "timed out".to_string(),
-            Status::Crashed(_) => "crashed".to_string(),
+            Status::TimedOut { .. } => "timed out".to_string(),
+            Status::Crashed { .. } => "crashed".to_string(),
         }
     }
 
@@ -155,11 +214,12 @@ impl Status {
                     .unwrap_or("error")
                     .to_string(),
             ),
-            Status::TimedOut(d) => Some(format!(
-                "the checks did not finish in {}: does the code loop for ever?",
-                seconds(*d)
+            Status::TimedOut { limit, log } => Some(format!(
+                "the checks did not finish in {}{}: does the code loop for ever?",
+                seconds(*limit),
+                running_where(log, false)
             )),
-            Status::Crashed(why) => Some(why.lines().last().unwrap_or("no report").to_string()),
+            Status::Crashed { why, .. } => Some(why.clone()),
         }
     }
 
@@ -172,20 +232,72 @@ impl Status {
             Status::DoesNotCompile(_) => {
                 format!("does not compile: {}", self.why().unwrap_or_default())
             }
-            Status::TimedOut(d) => format!("timed out after {}", seconds(*d)),
-            Status::Crashed(_) => format!("crashed: {}", self.why().unwrap_or_default()),
+            Status::TimedOut { limit, log } => match (&log.running, log.checks) {
+                (Some((k, _)), Some(n)) => {
+                    format!("timed out after {} in check {k} of {n}", seconds(*limit))
+                }
+                _ => format!("timed out after {}", seconds(*limit)),
+            },
+            Status::Crashed { why, .. } => format!("crashed: {}", cut(why, 110)),
             _ => self.word(),
         }
     }
+}
 
-    /// The full account for `check`: the state, the learner's function, what each check saw.
+/// Where the checks were when they stopped: " in check 2 of 3 (\"LABEL\"), in the call
+/// f(u = 0.5)", or "" before the first check; the label only when `label`.
+fn running_where(log: &Log, label: bool) -> String {
+    let Some((k, name)) = &log.running else {
+        return String::new();
+    };
+    let mut out = format!(" in check {k}");
+    if let Some(n) = log.checks {
+        out += &format!(" of {n}");
+    }
+    if label {
+        out += &format!(" (\"{name}\")");
+    }
+    if let Some(call) = &log.call {
+        out += &format!(", in the call {call}");
+    }
+    out
+}
+
+/// How far the checks got before they stopped: the lines of each check that ended, and the one
+/// that was running (`stopped` says how it ended), then those not reached.
+fn checks_so_far(log: &Log, stopped: &str) -> String {
+    let mut out = String::new();
+    for f in &log.finished {
+        out += f;
+    }
+    if let Some((k, label)) = &log.running {
+        out += &format!("  ....  {label}\n          {stopped}\n");
+        if let Some(n) = log.checks.filter(|n| n > k) {
+            out += &format!(
+                "  (and {} check{} not reached)\n",
+                n - k,
+                if n - k == 1 { "" } else { "s" }
+            );
+        }
+    }
+    out
+}
+
+impl Checked {
+    /// The full account for `check`: the state, the learner's function, what each check saw,
+    /// what the learner's code printed and the compiler's warnings about it.
     /// `cmd` is how the learner runs the runner ("cargo exercises" or "rtl exercises").
     pub fn explain(&self, ws: &Workspace, e: &Exercise, cmd: &str) -> String {
         let file = ws.exercise_file(&e.name);
-        let mut out = format!("{} ({}): {}\n", e.name, e.label(), self.one_line());
-        match self {
+        let mut out = format!("{} ({}): {}\n", e.name, e.label(), self.status.one_line());
+        let yours = |out: &mut String| {
+            *out += &format!("\nyour code ({}):\n", ws.show(&file));
+            *out += &learners_function(&file);
+        };
+        match &self.status {
             Status::Done { details, .. } => {
                 out += details;
+                out += &self.printed_text();
                 out += &format!(
                     "\n{} passes. `{cmd} solution {}` shows the reference solution, to compare.\n",
                     e.name, e.name
@@ -196,20 +308,41 @@ impl Status {
                 out += &format!("\n{} does not compile:\n\n{diags}", ws.show(&file));
                 return out;
             }
-            Status::TimedOut(d) => {
+            Status::TimedOut { limit, log } => {
                 out += &format!(
-                    "\nthe checks did not finish in {}: does your code loop for ever? \
+                    "\nthe checks did not finish in {}{}: does your code loop for ever? \
                      (RTL_EXERCISES_TIMEOUT=SECONDS sets the limit)\n",
-                    seconds(*d)
+                    seconds(*limit),
+                    running_where(log, true)
                 );
+                yours(&mut out);
+                out += "\nwhat the checks saw before they were stopped:\n";
+                out += &checks_so_far(log, &format!("still running after {}", seconds(*limit)));
             }
-            Status::Crashed(why) => out += &format!("\nthe checks' program died:\n{why}\n"),
+            Status::Crashed { why, log } => {
+                out += &format!(
+                    "\nthe checks' program ended without its report{}: {why}\n",
+                    running_where(log, true)
+                );
+                yours(&mut out);
+                if !log.finished.is_empty() || log.running.is_some() {
+                    out += "\nwhat the checks saw before:\n";
+                    out += &checks_so_far(log, "running when the program ended");
+                }
+            }
             Status::Failing { details, .. } | Status::NotStarted { details, .. } => {
-                out += &format!("\nyour code ({}):\n", ws.show(&file));
-                out += &learners_function(&file);
+                yours(&mut out);
                 out += "\nwhat the checks saw:\n";
                 out += details;
             }
+        }
+        out += &self.printed_text();
+        if !self.warnings.is_empty() {
+            out += &format!(
+                "\nthe compiler warns about {}:\n\n{}\n",
+                ws.show(&file),
+                self.warnings.trim_end()
+            );
         }
         let what = if e.kind == Kind::Bug {
             "find the bug"
@@ -223,6 +356,19 @@ impl Status {
             e.name
         );
         out
+    }
+
+    /// "your code printed (N lines):" and the lines kept, or nothing.
+    fn printed_text(&self) -> String {
+        if self.printed.is_empty() {
+            return String::new();
+        }
+        let n = self.printed.lines;
+        format!(
+            "\nyour code printed ({n} line{}):\n{}",
+            if n == 1 { "" } else { "s" },
+            self.printed.show()
+        )
     }
 }
 

@@ -1,13 +1,16 @@
 //! `watch [NAME]`: checks the current exercise (the first not done, or NAME) whenever its file is
-//! saved, redraws the screen, and moves on to the next exercise when it passes. Keys: `h` shows the
-//! next hint, `q` quits (on a terminal the keys act at once; from a pipe, one per line).
+//! saved, redraws the screen, and moves on to the next exercise when a save makes it pass. An
+//! exercise that already passes when `watch NAME` starts is watched all the same ([`next`]). Keys:
+//! `h` shows the next hint, `q` quits (on a terminal the keys act at once; from a pipe, one per
+//! line).
 //!
 //! A save is never lost: the file's stamp is read *before* each check, and a save made while the
-//! check ran (the stamp differs after it) checks again at once ([`check_until_unchanged`]). While a
-//! check runs, a line "checking NAME ..." says so; the result replaces it.
+//! check runs gives that check up (a loop for ever need not reach the time limit) and checks again
+//! at once ([`check_until_unchanged`]). While a check runs, a line "checking NAME ..." says so; the
+//! result replaces it.
 
 use crate::info::Exercise;
-use crate::status::Status;
+use crate::status::Checked;
 use crate::{Context, Error, say, sayln};
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::io::{IsTerminal, Read};
@@ -87,18 +90,21 @@ pub fn stamp(path: &Path) -> Stamp {
 }
 
 /// Runs `check` until the file did not change while it ran: reads `stamp` *before* the check and
-/// again after it; if they differ (the learner saved during the check), checks again at once.
-/// Returns the last result and the stamp it is for: the next save is a change from that stamp, so
-/// none is lost. `check` is given the round, 0 for the first check, 1 for the first re-check, ...
+/// gives the check a question, "has the file changed since?", which it asks while it runs; a check
+/// that gives up on a change (`None`), or a change seen after it, checks again at once. Returns the
+/// last result and the stamp it is for: the next save is a change from that stamp, so none is
+/// lost. `check` is given the round, 0 for the first check, 1 for the first re-check, ...
 pub fn check_until_unchanged<S: PartialEq, T, E>(
     mut stamp: impl FnMut() -> S,
-    mut check: impl FnMut(usize) -> Result<T, E>,
+    mut check: impl FnMut(usize, &mut dyn FnMut() -> bool) -> Result<Option<T>, E>,
 ) -> Result<(T, S), E> {
     let mut round = 0;
     loop {
         let before = stamp();
-        let result = check(round)?;
-        if stamp() == before {
+        let result = check(round, &mut || stamp() != before)?;
+        if let Some(result) = result
+            && stamp() == before
+        {
             return Ok((result, before));
         }
         round += 1;
@@ -106,11 +112,11 @@ pub fn check_until_unchanged<S: PartialEq, T, E>(
 }
 
 /// Checks `e` as [`check_until_unchanged`] does, saying "checking NAME ..." while it runs.
-fn check_now(ctx: &Context, e: &Exercise) -> Result<(Status, Stamp), Error> {
+fn check_now(ctx: &Context, e: &Exercise) -> Result<(Checked, Stamp), Error> {
     let file = ctx.ws.exercise_file(&e.name);
     check_until_unchanged(
         || stamp(&file),
-        |round| {
+        |round, changed| {
             if round == 0 {
                 sayln!("\nchecking {} ...", e.name)?;
             } else {
@@ -120,15 +126,42 @@ fn check_now(ctx: &Context, e: &Exercise) -> Result<(Status, Stamp), Error> {
                     e.name
                 )?;
             }
-            Ok(ctx.statuses(&[e])?.remove(0))
+            Ok(ctx.check_all_until(&[e], changed)?.map(|mut c| c.remove(0)))
         },
     )
+}
+
+/// What `watch` does after a check of exercise `current`: the states of all exercises, with
+/// `current`'s new one, and whether `current` was done before this check.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Next {
+    /// Keep watching `current`: it does not pass, or it passed already (`watch NAME` on an
+    /// exercise done before keeps watching it).
+    Stay,
+    /// It passes now, after a save: on to this exercise, the next one not done.
+    MoveTo(usize),
+    /// It passes now and every exercise is done.
+    AllDone,
+}
+
+/// See [`Next`].
+pub fn next(done: &[bool], current: usize, was_done: bool) -> Next {
+    if !done[current] || was_done {
+        return Next::Stay;
+    }
+    match (1..done.len())
+        .map(|k| (current + k) % done.len())
+        .find(|&j| !done[j])
+    {
+        Some(j) => Next::MoveTo(j),
+        None => Next::AllDone,
+    }
 }
 
 fn redraw(
     ctx: &Context,
     e: &Exercise,
-    s: &Status,
+    s: &Checked,
     done: usize,
     banner: &str,
     hint: usize,
@@ -162,21 +195,29 @@ fn redraw(
     say!("{out}")
 }
 
-/// Runs watch mode on `start` (or the first exercise not done) until `q`, or until every exercise
-/// is done.
+/// Runs watch mode on `start` (or the first exercise not done) until `q`, or until a save makes
+/// the last exercise not done pass.
 pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
     let all: Vec<&Exercise> = ctx.exercises.iter().collect();
     let file = |e: &Exercise| ctx.ws.exercise_file(&e.name);
     sayln!("checking every exercise, to see where you are ...")?;
     // The stamps before the check: a save during it is seen as a change below.
     let stamps: Vec<Stamp> = all.iter().map(|e| stamp(&file(e))).collect();
-    let mut statuses = ctx.statuses(&all)?;
+    let mut first = ctx.check_all(&all)?;
+    let mut done: Vec<bool> = first.iter().map(|c| c.status.is_done()).collect();
+    let mut banner = String::new();
     let mut current = match start {
-        Some(name) => all
-            .iter()
-            .position(|e| e.name == name)
-            .ok_or_else(|| Error::Failed(format!("no exercise `{name}`")))?,
-        None => match statuses.iter().position(|s| !s.is_done()) {
+        Some(name) => {
+            let i = all
+                .iter()
+                .position(|e| e.name == name)
+                .ok_or_else(|| Error::Failed(format!("no exercise `{name}`")))?;
+            if done[i] {
+                banner = format!("{name} passes already; watch keeps checking it on every save.");
+            }
+            i
+        }
+        None => match done.iter().position(|d| !d) {
             Some(i) => i,
             None => {
                 sayln!("every exercise is done: well done!")?;
@@ -186,41 +227,13 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
     };
     let _raw = KeysAtOnce::start();
     let mut keys = Some(keys());
-    let mut banner = String::new();
-    let mut status = statuses[current].clone();
+    let mut status = first.swap_remove(current);
     let mut checked = stamps[current];
     loop {
         let e = all[current];
-        let done = statuses.iter().filter(|s| s.is_done()).count();
-        if status.is_done() {
-            let next = (1..all.len())
-                .map(|k| (current + k) % all.len())
-                .find(|&j| !statuses[j].is_done());
-            match next {
-                Some(j) => {
-                    banner = format!(
-                        "{} passes! On to {} ({}).",
-                        e.name,
-                        all[j].name,
-                        all[j].label()
-                    );
-                    current = j;
-                    (status, checked) = check_now(ctx, all[j])?;
-                    statuses[j] = status.clone();
-                    continue;
-                }
-                None => {
-                    redraw(ctx, e, &status, done, "", 0)?;
-                    sayln!(
-                        "\n{} passes, and every exercise is done: well done!",
-                        e.name
-                    )?;
-                    return Ok(0);
-                }
-            }
-        }
         let mut hint = 0;
-        redraw(ctx, e, &status, done, &banner, hint)?;
+        let n_done = done.iter().filter(|&&d| d).count();
+        redraw(ctx, e, &status, n_done, &banner, hint)?;
         loop {
             let key = match &keys {
                 Some(rx) => match rx.recv_timeout(Duration::from_millis(200)) {
@@ -243,7 +256,7 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
                 }
                 Some(b'h' | b'H') => {
                     hint = hint % e.hints.len() + 1;
-                    redraw(ctx, e, &status, done, &banner, hint)?;
+                    redraw(ctx, e, &status, n_done, &banner, hint)?;
                 }
                 _ => {}
             }
@@ -253,7 +266,32 @@ pub fn watch(ctx: &Context, start: Option<&str>) -> Result<i32, Error> {
         }
         banner = format!("{} saved: checked again.", ctx.ws.show(&file(e)));
         (status, checked) = check_now(ctx, e)?;
-        statuses[current] = status.clone();
+        let was_done = done[current];
+        done[current] = status.status.is_done();
+        // On to the next exercise not done, as often as a fresh check finds one passing already.
+        let mut next_step = next(&done, current, was_done);
+        while let Next::MoveTo(j) = next_step {
+            let from = all[current];
+            banner = format!(
+                "{} passes! On to {} ({}).",
+                from.name,
+                all[j].name,
+                all[j].label()
+            );
+            current = j;
+            (status, checked) = check_now(ctx, all[j])?;
+            done[j] = status.status.is_done();
+            next_step = next(&done, j, false);
+        }
+        if next_step == Next::AllDone {
+            let e = all[current];
+            redraw(ctx, e, &status, done.len(), "", 0)?;
+            sayln!(
+                "\n{} passes, and every exercise is done: well done!",
+                e.name
+            )?;
+            return Ok(0);
+        }
     }
 }
 
@@ -269,12 +307,12 @@ mod tests {
         let checks = Cell::new(0);
         let (result, stamp) = check_until_unchanged(
             || saves.get(),
-            |round| {
+            |round, _| {
                 checks.set(checks.get() + 1);
                 if round == 0 {
                     saves.set(saves.get() + 1);
                 }
-                Ok::<_, ()>(format!("check of save {}", saves.get()))
+                Ok::<_, ()>(Some(format!("check of save {}", saves.get())))
             },
         )
         .unwrap();
@@ -286,13 +324,56 @@ mod tests {
         checks.set(0);
         let (_, stamp) = check_until_unchanged(
             || saves.get(),
-            |_| {
+            |_, _| {
                 checks.set(checks.get() + 1);
-                Ok::<_, ()>(())
+                Ok::<_, ()>(Some(()))
             },
         )
         .unwrap();
         assert_eq!((checks.get(), stamp), (1, 1));
+    }
+
+    #[test]
+    fn a_check_that_sees_a_save_gives_up_and_the_new_version_is_checked() {
+        // The first check runs until it sees the save (as a check that loops for ever would, had
+        // it no time limit), and gives up; the second finishes.
+        let saves = Cell::new(0);
+        let rounds = Cell::new(0);
+        let (result, stamp) = check_until_unchanged(
+            || saves.get(),
+            |round, changed| {
+                rounds.set(round + 1);
+                if round == 0 {
+                    for look in 0.. {
+                        if look == 3 {
+                            saves.set(1);
+                        }
+                        if changed() {
+                            return Ok::<_, ()>(None);
+                        }
+                    }
+                }
+                assert!(!changed(), "nothing changed since round {round} began");
+                Ok(Some(format!("check of save {}", saves.get())))
+            },
+        )
+        .unwrap();
+        assert_eq!(
+            (result.as_str(), stamp, rounds.get()),
+            ("check of save 1", 1, 2)
+        );
+    }
+
+    #[test]
+    fn watch_moves_on_only_when_a_save_makes_the_exercise_pass() {
+        // Failing: stay.
+        assert_eq!(next(&[true, false, false], 1, false), Next::Stay);
+        // Passing already when `watch NAME` started, or before this save: stay.
+        assert_eq!(next(&[true, false, false], 0, true), Next::Stay);
+        // A save made it pass: the next one not done, round the end of the list.
+        assert_eq!(next(&[false, true, false], 1, false), Next::MoveTo(2));
+        assert_eq!(next(&[false, false, true], 2, false), Next::MoveTo(0));
+        assert_eq!(next(&[true, true, true], 1, false), Next::AllDone);
     }
 
     #[test]

@@ -163,6 +163,12 @@ fn hints_come_one_level_at_a_time_and_bad_input_is_named() {
     let (code, _, err) = runner(&["frobnicate"]);
     assert_eq!(code, 2);
     assert!(err.contains("unknown command `frobnicate`"), "{err}");
+    let (code, _, err) = runner(&["chek", "ch02_estimate_pi"]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err.trim_end(),
+        "error: unknown command `chek`: did you mean `cargo exercises check`?"
+    );
 }
 
 /// A bad `RTL_EXERCISES_TIMEOUT` is named before anything is built.

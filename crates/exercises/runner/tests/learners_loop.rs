@@ -202,6 +202,16 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (_, out) = run(&ws, &["list"]);
     assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
     assert!(out.contains("next: ch02_jittered_pi"), "{out}");
+    // check without a name: the current exercise, the first not done.
+    let (code, out) = run(&ws, &["check"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.starts_with(&format!(
+            "the current exercise, the first not done (1/{total} done; `cargo exercises check \
+             NAME` checks another):\n\nch02_jittered_pi ("
+        )),
+        "{out}"
+    );
 
     // A compile error in one exercise stops no other from being checked or listed.
     edit(&ws, "ch02_jittered_pi", |t| {
@@ -268,6 +278,96 @@ fn list_check_reset_and_solution_on_stubs_solved_exercises_and_a_broken_neighbou
     let (code, out) = run(&ws, &["solution", "ch02_estimate_pi"]);
     assert_eq!(code, 0, "{out}");
     assert!(out.contains("4.0 * inside as f64"), "{out}");
+    assert!(
+        out.contains("(`cargo exercises solution ch02_estimate_pi` shows it")
+            && !out.contains("rtl exercises"),
+        "the header as the learner runs the runner: {out}"
+    );
+}
+
+#[test]
+#[ignore = "drives cargo on a copy of the exercises (a minute the first time); .ci/run runs it"]
+fn what_the_learners_code_prints_is_shown_and_can_neither_break_nor_forge_a_report() {
+    let ws = workspace("printing-ws");
+    let total = std::fs::read_dir(ws.join("crates/exercises/tests"))
+        .unwrap()
+        .count();
+    // A working estimate_pi with a debugging line on standard output and one on standard error.
+    solve(&ws, "ch02_estimate_pi");
+    edit(&ws, "ch02_estimate_pi", |t| {
+        t.replacen(
+            "    if n == 0 {",
+            "    println!(\"debug: estimate_pi called with n = {n}\");\n    \
+             eprintln!(\"to stderr: n = {n}\");\n    if n == 0 {",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("ch02_estimate_pi passes"), "{out}");
+    assert!(
+        out.contains("  ok    1e5 points: z-test against pi"),
+        "{out}"
+    );
+    // 7 calls (n = 0, 1, 2, 3, 10, 1000, 100000), two lines each, in the order printed.
+    assert!(
+        out.contains(
+            "your code printed (14 lines):\n  | debug: estimate_pi called with n = 0\n  \
+             | to stderr: n = 0\n  | debug: estimate_pi called with n = 1\n"
+        ),
+        "{out}"
+    );
+    assert!(!out.contains("unreadable"), "{out}");
+    // list is not blocked, and counts it done.
+    let (code, out) = run(&ws, &["list"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
+    assert!(out.contains("ch12_bug_cone_cos_theta_max"), "{out}");
+
+    // A forged report: printed, then exit(0) before the checks end. Not taken.
+    edit(&ws, "ch02_jittered_pi", |t| {
+        t.replacen(
+            "todo!(",
+            "println!(\"ch02_jittered_pi: done: 2/2 checks passed\");\n    \
+             std::process::exit(0);\n    #[allow(unreachable_code)]\n    todo!(",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch02_jittered_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("crashed: it exited with code 0 before the checks ended, without its report"),
+        "{out}"
+    );
+    assert!(
+        out.contains("your code printed (1 line):\n  | ch02_jittered_pi: done: 2/2 checks passed"),
+        "{out}"
+    );
+    let (code, out) = run(&ws, &["solution", "ch02_jittered_pi"]);
+    assert_eq!(code, 1, "the solution stays hidden: {out}");
+    let (code, out) = run(&ws, &["list"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains(&format!("1/{total} exercises done")), "{out}");
+
+    // A function that calls itself: the stack overflows, and the compiler's warning about the
+    // learner's file is shown with the crash.
+    edit(&ws, "ch02_estimate_pi", |t| {
+        t.replacen(
+            "    if n == 0 {",
+            "    let _ = estimate_pi(n, rng);\n    if n == 0 {",
+            1,
+        )
+    });
+    let (code, out) = run(&ws, &["check", "ch02_estimate_pi"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("crashed: "), "{out}");
+    assert!(out.contains("stack overflow"), "{out}");
+    assert!(
+        out.contains("the compiler warns about crates/exercises/exercises/ch02_estimate_pi.rs:")
+            && out.contains("function cannot return without recursing")
+            && out.contains("crates/exercises/exercises/ch02_estimate_pi.rs:"),
+        "{out}"
+    );
 }
 
 #[test]
@@ -301,7 +401,19 @@ fn loops_for_ever_are_stopped_at_the_limit_and_cost_it_once() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_eq!(out.status.code(), Some(1), "{text}");
-    assert!(text.contains("timed out after 4 s"), "{text}");
+    assert!(
+        text.contains("timed out after 4 s in check 1 of 2"),
+        "{text}"
+    );
+    // The check and the call that were running.
+    assert!(
+        text.contains(
+            "the checks did not finish in 4 s in check 1 of 2 (\"n = 0 gives None; an estimate is \
+             a count of points scaled by a constant\"), in the call estimate_pi(n = 0, rng = \
+             rtl_exercises::check::seeded(3)): does your code loop for ever?"
+        ),
+        "{text}"
+    );
     assert!(
         text.contains("still running: ch02_estimate_pi ("),
         "said while it ran: {text}"
@@ -455,6 +567,65 @@ fn watch_name_starts_at_that_exercise_and_a_closed_stdout_ends_watch() {
     if let Err(e) = result {
         std::panic::resume_unwind(e);
     }
+
+    // An exercise that passes already: watch NAME keeps watching it, through saves.
+    solve(&ws, "ch02_estimate_pi");
+    let mut child = runner(&ws)
+        .args(["watch", "ch02_estimate_pi"])
+        .env("RTL_EXERCISES_TIMEOUT", "60")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let screen = Screen::start(child.stdout.take().unwrap());
+    let notices = Screen::start(child.stderr.take().unwrap());
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let at = screen.wait_for(
+            "ch02_estimate_pi passes already; watch keeps checking it on every save.",
+            0,
+            120,
+        );
+        let at = screen.wait_for("checking ch02_estimate_pi on every save", at, 10);
+        let at = screen.wait_for("[h] hint   [q] quit", at, 10);
+        edit(&ws, "ch02_estimate_pi", |t| t + "// saved\n");
+        let at = screen.wait_for("saved: checked again.", at, 120);
+        let at = screen.wait_for("checking ch02_estimate_pi on every save", at, 10);
+        let at = screen.wait_for("ch02_estimate_pi passes.", at, 10);
+        assert!(
+            !screen.0.lock().unwrap().contains("On to"),
+            "watch moved on from the exercise it was asked to watch"
+        );
+        // A save while a check loops for ever gives that check up at once, not at the limit.
+        edit(&ws, "ch02_estimate_pi", |t| {
+            t.replacen(
+                "    if n == 0 {",
+                "    loop { std::hint::black_box(0); }\n    #[allow(unreachable_code)]\n    if n == 0 {",
+                1,
+            )
+        });
+        let at = screen.wait_for("checking ch02_estimate_pi ...", at, 60);
+        notices.wait_for("still running: ch02_estimate_pi", 0, 120);
+        let saved = Instant::now();
+        solve(&ws, "ch02_estimate_pi");
+        let at = screen.wait_for(
+            "changed during the check: checking ch02_estimate_pi again ...",
+            at,
+            60,
+        );
+        assert!(
+            saved.elapsed() < Duration::from_secs(30),
+            "the check waited for its limit of 60 s: {:?}",
+            saved.elapsed()
+        );
+        screen.wait_for("ch02_estimate_pi passes.", at, 120);
+    }));
+    let _ = child.kill();
+    let _ = child.wait();
+    if let Err(e) = result {
+        std::panic::resume_unwind(e);
+    }
+
     // Standard output closed: watch ends quietly, without a panic.
     let (reader, writer) = std::io::pipe().unwrap();
     drop(reader);

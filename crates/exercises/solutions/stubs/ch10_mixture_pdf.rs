@@ -9,10 +9,12 @@
 //! **Task.** Implement [`Pdf`] for [`MixturePdf`]: `generate` chooses part a with probability
 //! `weight_a` (else part b) and returns that part's direction; `value` returns the density of the
 //! directions `generate` draws, whichever part drew them. Weights of exactly 0 and 1 must work: the
-//! part of weight 0 is then never sampled.
+//! part of weight 0 is then neither sampled nor evaluated, as the book says, since it may be
+//! anything (its value NaN, say).
 //!
-//! The check: `value` at 1000 random directions (to rounding), for weights 0, 0.3 and 1; and, for
-//! the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
+//! The check: `value` at 1000 random directions (to rounding), for weights 0, 0.3 and 1; a part of
+//! weight 0 whose value and samples are NaN, which must change neither `value` nor `generate`
+//! (the first draw with u = 0, or 1 - 2^-53 for weight 1); and, for the mixture of a cosine lobe around +z and a narrow cone towards +z (like the book's
 //! cosine-plus-light mixture), a chi-square test of 1e5 generated directions in 16 x 25
 //! (phi, cos theta) cells against `n` times the integral of the mixture's own `value` over each
 //! cell: whatever `generate` samples, `value` must be its density.

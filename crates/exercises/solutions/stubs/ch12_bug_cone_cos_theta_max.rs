@@ -3,8 +3,11 @@
 //! **Read first:** the section "A sphere light: the cone it subtends" of chapter 9
 //! (`book/src/ch09-sampling-lights-directly.md`).
 //!
-//! A sphere light sampled through this function comes out too dim, and more so the closer the light
-//! is; far away it is almost right.
+//! A sphere light sampled through this function wastes samples: some of the directions drawn
+//! towards it miss it, about 12 % when the sphere nearly fills the view (r/d = 0.99), 46 % at
+//! r/d = 1/2, and half of them when the light is far away. Weighted by the cone's density, the light
+//! still comes out right on average, but noisier; and the sphere's density, which is 0 for a
+//! direction that misses it, disagrees with the directions its sampler draws.
 //!
 //! **Task.** The light is sampled uniformly in the cone of directions from the origin that just
 //! encloses the sphere (radius `radius`, centre at `distance`), with density

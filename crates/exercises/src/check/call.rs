@@ -4,6 +4,7 @@
 use glam::DVec3;
 use std::cell::Cell;
 use std::fmt;
+use std::sync::Mutex;
 
 use super::format::{count, num};
 use super::rng::RngState;
@@ -220,6 +221,36 @@ impl Draws {
 thread_local! {
     static CALL: Cell<Option<Call>> = const { Cell::new(None) };
     static DRAWS: Cell<Draws> = const { Cell::new(Draws { count: 0, last: [0; DRAWS_KEPT] }) };
+    /// Whether this thread's calls are copied to [`PUBLISHED`] ([`publish_calls`]).
+    static PUBLISHING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// The call in progress on the thread that [`publish_calls`] chose, readable from another thread.
+static PUBLISHED: Mutex<Option<Call>> = Mutex::new(None);
+
+/// Held by the tests that publish calls, which would otherwise read each other's.
+#[cfg(test)]
+pub(crate) static PUBLISHING_TEST: Mutex<()> = Mutex::new(());
+
+/// Makes the calls recorded on this thread readable from other threads ([`published_call`]): the
+/// harness does so on the thread that runs the checks, so that the runner can name the call in
+/// progress when the checks run out of time. Costs a lock per recorded call.
+pub fn publish_calls(on: bool) {
+    PUBLISHING.with(|p| p.set(on));
+    publish(None);
+}
+
+fn publish(call: Option<Call>) {
+    if PUBLISHING.with(Cell::get) {
+        *PUBLISHED.lock().unwrap_or_else(|e| e.into_inner()) = call;
+    }
+}
+
+/// The call in progress on the thread that publishes its calls ([`publish_calls`]), as text
+/// without what it drew: "estimate_pi(n = 100000, rng = rtl_exercises::check::seeded(2))".
+pub fn published_call() -> Option<String> {
+    let call = (*PUBLISHED.lock().unwrap_or_else(|e| e.into_inner()))?;
+    Some(call.describe())
 }
 
 /// Notes a 64-bit draw of a [`Generator`] for the report of the call in progress.
@@ -283,10 +314,27 @@ impl Call {
 fn record<T>(call: Call, f: impl FnOnce() -> T) -> T {
     let outer = CALL.with(|c| c.replace(Some(call)));
     let outer_draws = DRAWS.with(|d| d.replace(Draws::default()));
+    publish(Some(call));
     let out = f();
     CALL.with(|c| c.set(outer));
     DRAWS.with(|d| d.set(outer_draws));
+    publish(outer);
     out
+}
+
+impl Call {
+    /// "f(u = 0.5, w = [0, 0, 1])", with the state of the value of a method.
+    fn describe(&self) -> String {
+        let shown: Vec<String> = self.args[..self.n_args]
+            .iter()
+            .map(|(name, value)| format!("{name} = {value}"))
+            .collect();
+        let mut text = format!("{}({})", self.function, shown.join(", "));
+        if let Some((words, value)) = self.state {
+            text += &format!(" {words} {value}");
+        }
+        text
+    }
 }
 
 /// The recorded call in progress on this thread, as text ("sample_linear(u = 0.5)"), if any; with
@@ -294,16 +342,11 @@ fn record<T>(call: Call, f: impl FnOnce() -> T) -> T {
 /// ("generate(rng = rtl_exercises::check::seeded(7)), which drew u = 0.5").
 pub fn call_in_progress() -> Option<String> {
     let call = CALL.with(Cell::get)?;
-    let args = &call.args[..call.n_args];
-    let shown: Vec<String> = args
+    let mut text = call.describe();
+    if call.args[..call.n_args]
         .iter()
-        .map(|(name, value)| format!("{name} = {value}"))
-        .collect();
-    let mut text = format!("{}({})", call.function, shown.join(", "));
-    if let Some((words, value)) = call.state {
-        text += &format!(" {words} {value}");
-    }
-    if args.iter().any(|(_, a)| matches!(a, Arg::Rng(_))) {
+        .any(|(_, a)| matches!(a, Arg::Rng(_)))
+    {
         text += ", ";
         text += &DRAWS.with(Cell::get).describe();
         text += ",";
@@ -315,6 +358,7 @@ pub fn call_in_progress() -> Option<String> {
 pub fn forget_call() {
     CALL.with(|c| c.set(None));
     DRAWS.with(|d| d.set(Draws::default()));
+    publish(None);
 }
 
 #[cfg(test)]
@@ -397,6 +441,32 @@ mod tests {
             Arg::from(&v[..]).to_string(),
             "[[1, 1, 1], [NaN, NaN, NaN], [0, 0, 0], ...] (4 values; not finite at 1)"
         );
+    }
+
+    #[test]
+    fn a_published_call_is_readable_from_another_thread_while_it_runs() {
+        let _one_at_a_time = PUBLISHING_TEST.lock().unwrap_or_else(|e| e.into_inner());
+        let (inside, go_on) = (std::sync::Barrier::new(2), std::sync::Barrier::new(2));
+        std::thread::scope(|s| {
+            s.spawn(|| {
+                publish_calls(true);
+                calling("f", &[("u", 0.5.into())], || {
+                    calling("g", &[], || {});
+                    inside.wait();
+                    go_on.wait();
+                });
+                inside.wait();
+                publish_calls(false);
+            });
+            inside.wait();
+            // The inner call has ended: the outer one is in progress again.
+            assert_eq!(published_call().as_deref(), Some("f(u = 0.5)"));
+            go_on.wait();
+            inside.wait();
+            assert_eq!(published_call(), None);
+        });
+        // A thread that does not publish leaves nothing to read.
+        calling("h", &[], || assert_eq!(published_call(), None));
     }
 
     #[test]

@@ -14,7 +14,12 @@ mod chi_square;
 mod format;
 mod rng;
 
-pub use call::{Arg, List, call_in_progress, calling, calling_method, forget_call};
+#[cfg(test)]
+pub(crate) use call::PUBLISHING_TEST;
+pub use call::{
+    Arg, List, call_in_progress, calling, calling_method, forget_call, publish_calls,
+    published_call,
+};
 pub use chi_square::{
     Cells, ChiSquareError, Intervals, Region, SphereBins, chi_square, chi_square_p_value,
 };
