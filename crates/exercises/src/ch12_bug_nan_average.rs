@@ -77,11 +77,13 @@ pub fn check_exact(value: impl PixelValue) -> CheckResult {
         let sum: f64 = samples.iter().filter(|x| x.is_finite()).sum();
         let divided_by_all = !samples.is_empty() && got == sum / samples.len() as f64;
         let diagnosis = if divided_by_all && finite < samples.len() {
+            let dropped = match samples.len() - finite {
+                1 => "the dropped sample were".to_string(),
+                n => format!("each of the {n} dropped samples were"),
+            };
             format!(
-                "\n(that is the sum of the {finite} finite samples divided by all {} samples: each \
-                 dropped sample still counts, as a black one, and darkens the pixel; divide by the \
-                 number of samples you kept)",
-                samples.len()
+                "\n(as if {dropped} still there, as a black one: the pixel comes out darker by the \
+                 share of its samples that were dropped)"
             )
         } else {
             String::new()
@@ -202,7 +204,12 @@ mod tests {
             ),
             "{err}"
         );
-        assert!(err.contains("divided by all 2 samples"), "{err}");
+        assert!(
+            err.contains("as if the dropped sample were still there, as a black one"),
+            "{err}"
+        );
+        // the symptom, not the fix (the hints give that)
+        assert!(!err.contains("divide"), "{err}");
         // A guard that drops NaN but keeps infinities.
         let keeps_infinity = |samples: &[f64]| {
             let kept: Vec<f64> = samples.iter().copied().filter(|x| !x.is_nan()).collect();
