@@ -67,26 +67,32 @@ fn check_merge_outputs(args: &MergeArgs) -> Result<()> {
 }
 
 /// The parts are held in memory together (each as its bytes while it is read and then as its
-/// accumulation, about the same size): refuse before reading if they cannot fit in the memory the
-/// machine has available, rather than abort on allocation.
+/// accumulation, about the same size), with the merged accumulation beside them
+/// ([`limits::merge_need`]): refuse before reading if that does not fit in what each memory limit
+/// leaves, rather than abort on allocation.
 fn check_merge_memory(args: &MergeArgs) -> Result<()> {
-    let mut total: u64 = 0;
+    let mut sizes = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
         let len = std::fs::metadata(p)
             .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", p.display()))?
             .len();
-        total = total.saturating_add(len);
+        sizes.push(len);
     }
-    // The largest part is held twice while it is parsed, the merged result once more.
-    let needed = total.saturating_mul(2);
-    if let Some(available) = limits::available_memory()
-        && needed > available.bytes
-    {
+    let total = sizes.iter().fold(0u64, |t, &s| t.saturating_add(s));
+    let need = limits::merge_need(&sizes);
+    if let Some(short) = need.exceeds(&limits::memory_limits()) {
+        let what = match short.available.limit {
+            limits::MemoryLimit::AddressSpace => "address space",
+            _ => "memory",
+        };
         bail!(
-            "the {} part(s) hold {} and merging them needs about {}, but {available}",
+            "the {} part(s) hold {} and merging them needs about {} of {what} (the parts, and the \
+             largest once more while it is read and for the merged sums, with a tenth of margin), \
+             but {}",
             args.parts.len(),
             limits::Bytes(total),
-            limits::Bytes(needed),
+            limits::Bytes(short.needed),
+            short.available,
         );
     }
     Ok(())
@@ -100,6 +106,9 @@ pub fn run(args: MergeArgs) -> Result<()> {
         parts.push((p.display().to_string(), Checkpoint::read(p)?));
     }
     let merged = merge(&parts)?;
+    // The parts are done with once merged: the image and its encodings are made without them.
+    let (part_count, spp): (usize, u64) = (parts.len(), parts.iter().map(|(_, p)| p.spp()).sum());
+    drop(parts);
     let ck = &merged.checkpoint;
     if ck
         .acc
@@ -129,8 +138,21 @@ pub fn run(args: MergeArgs) -> Result<()> {
         }
         eprintln!("note: samples {} are missing", gaps.join(", "));
     }
+    // The merged part first (streamed from the accumulation), then the image of it, made without
+    // the accumulation (40 bytes a pixel); the images are written even if the part could not be.
+    let saved = args.part.as_ref().map(|p| {
+        ck.write(p)
+            .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", p.display()))
+    });
     let (w, h) = (ck.acc.width, ck.acc.height);
+    let (scene, start, end, dropped) = (
+        rtl_render::text::shown(&ck.identity.scene),
+        ck.start,
+        ck.acc.samples,
+        ck.acc.total_dropped(),
+    );
     let image = ck.acc.image();
+    drop(merged);
     let transfer = if args.srgb {
         Transfer::Srgb
     } else {
@@ -140,18 +162,11 @@ pub fn run(args: MergeArgs) -> Result<()> {
     if let Some(lin) = &args.linear {
         write_linear(lin, w, h, &image).map_err(anyhow::Error::msg)?;
     }
-    if let Some(p) = &args.part {
-        ck.write(p)
-            .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", p.display()))?;
+    if let Some(saved) = saved {
+        saved?;
     }
-    let spp: u64 = parts.iter().map(|(_, p)| p.spp()).sum();
     eprintln!(
-        "merged {} part(s) of {} ({w}x{h}): samples {}..{}, {spp} spp, {} non-finite samples dropped -> {}{}{}",
-        parts.len(),
-        rtl_render::text::shown(&ck.identity.scene),
-        ck.start,
-        ck.acc.samples,
-        ck.acc.total_dropped(),
+        "merged {part_count} part(s) of {scene} ({w}x{h}): samples {start}..{end}, {spp} spp, {dropped} non-finite samples dropped -> {}{}{}",
         args.output.display(),
         args.linear
             .as_ref()

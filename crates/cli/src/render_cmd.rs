@@ -497,18 +497,56 @@ pub(crate) fn check_output_files(
     Ok(())
 }
 
-/// The image's buffers, sized before they are allocated: refused if a side is too long or they do not
-/// fit in the machine's available memory.
-fn check_size(args: &RenderArgs, loaded: &Loaded, w: usize, h: usize) -> Result<()> {
-    limits::check_image(w, h, limits::available_memory()).map_err(|e| {
-        let from = match (args.width, &loaded.width_at) {
-            (Some(width), _) => format!("--width {width}"),
-            (None, Some(at)) => format!("{at}: the width {}", loaded.width),
-            (None, None) => "the scene's width".to_string(),
-        };
-        anyhow::anyhow!("{from} and the scene's aspect ratio: {e}")
-    })?;
+/// What the render needs, counted before anything is allocated: refused if a side is too long or
+/// it does not fit in what each memory limit leaves ([`limits::check_image`]): its buffers, a
+/// checkpoint to resume, `workers` threads and the Ctrl-C handler's, with their stacks and malloc
+/// arenas.
+fn check_size(
+    args: &RenderArgs,
+    loaded: &Loaded,
+    w: usize,
+    h: usize,
+    workers: usize,
+) -> Result<()> {
+    // (a file that cannot be read is refused by name when it is opened)
+    let resume_bytes = args
+        .resume
+        .as_ref()
+        .and_then(|p| std::fs::metadata(p).ok())
+        .map_or(0, |m| m.len());
+    limits::check_image(w, h, workers + 1, resume_bytes, &limits::memory_limits()).map_err(
+        |e| {
+            let from = match (args.width, &loaded.width_at) {
+                (Some(width), _) => format!("--width {width}"),
+                (None, Some(at)) => format!("{at}: the width {}", loaded.width),
+                (None, None) => "the scene's width".to_string(),
+            };
+            let threads = match args.threads {
+                Some(t) => format!(", with --threads {t}"),
+                None => String::new(),
+            };
+            anyhow::anyhow!("{from} and the scene's aspect ratio{threads}: {e}")
+        },
+    )?;
     Ok(())
+}
+
+/// The worker threads of the render's pool: `--threads` (`requested`), or where it is left out
+/// (0) as many as rayon would start: `RAYON_NUM_THREADS` (or the older `RAYON_RS_NUM_CPUS`) if set
+/// to a number above 0, otherwise one for each processor the process may use.
+fn worker_threads(requested: usize) -> usize {
+    if requested > 0 {
+        return requested;
+    }
+    ["RAYON_NUM_THREADS", "RAYON_RS_NUM_CPUS"]
+        .iter()
+        .find_map(|name| {
+            std::env::var(name)
+                .ok()
+                .and_then(|v| v.parse::<usize>().ok())
+                .filter(|&n| n > 0)
+        })
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
 /// The accumulation to continue: empty at sample `start`, or the `--resume` checkpoint's after checking
@@ -629,7 +667,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
         renderer
     };
     let (w, h) = (renderer.camera.width, renderer.camera.height);
-    check_size(&args, &job.loaded, w, h)?;
+    let workers = worker_threads(job.threads);
+    check_size(&args, &job.loaded, w, h, workers)?;
     let identity = Identity::new(&job.loaded.name, scene, &job.settings, w, h);
     let mut acc = open_or_resume(&args, &job, &renderer, &identity)?;
     for n in &job.loaded.built.notices {
@@ -639,9 +678,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
         eprintln!("note: {n}");
     }
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(job.threads)
+        .num_threads(workers)
         .build()
         .context("cannot start the thread pool")?;
+    // Every worker allocates once, and so has its malloc arena, before the render allocates the
+    // pass's copy of the accumulation: glibc maps twice an arena's size while it makes one, and
+    // the check counts one such making at a time (limits::threads_need), not one for each worker
+    // at once beside the render's buffers.
+    pool.broadcast(|_| drop(std::hint::black_box(Box::new(0u64))));
     let checkpoint_every = args.checkpoint_every.unwrap_or(CHECKPOINT_EVERY);
     let plan = Plan {
         start: job.start,
@@ -668,7 +712,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         &args,
         &job,
         &plan,
-        &acc,
+        acc,
         &stats,
         ending,
         secs,
@@ -748,7 +792,7 @@ fn report(
     args: &RenderArgs,
     job: &Job,
     plan: &Plan,
-    acc: &Accumulator,
+    acc: Accumulator,
     stats: &Stats,
     ending: Ending,
     secs: f64,
@@ -763,7 +807,7 @@ fn report(
     }
     // The checkpoint first (it holds the work; `rtl merge FILE` makes the image again), then the image
     // even if the checkpoint could not be written.
-    let saved = plan.saving.as_ref().map(|s| s.save(acc, start));
+    let saved = plan.saving.as_ref().map(|s| s.save(&acc, start));
     if spp == 0 {
         if let Some(saved) = saved {
             saved?;
@@ -778,8 +822,11 @@ fn report(
             args.time.unwrap_or_default()
         );
     }
-    let (w, h) = (acc.width, acc.height);
+    let (w, h, end) = (acc.width, acc.height, acc.samples);
     let image = acc.image();
+    // The accumulation is saved and its image made: the encodings are made without it (40 bytes a
+    // pixel), so that the output needs less than the passes did (limits::RENDER_BYTES_PER_PIXEL).
+    drop(acc);
     let transfer = if args.srgb {
         Transfer::Srgb
     } else {
@@ -794,7 +841,7 @@ fn report(
         eprintln!(
             "checkpoint {}: samples {start}..{} ({spp} spp)",
             s.path.display(),
-            acc.samples
+            end
         );
     }
     let samples = stats.samples as f64;
@@ -802,7 +849,7 @@ fn report(
         "{}: {w}x{h}, {spp} spp{}, {threads} threads, {secs:.2} s, {:.0}k samples/s, {:.2}M rays/s, {} non-finite samples dropped -> {}{}",
         job.loaded.name,
         if start > 0 {
-            format!(" (samples {start}..{})", acc.samples)
+            format!(" (samples {start}..{end})")
         } else {
             String::new()
         },
@@ -973,9 +1020,15 @@ mod tests {
                     prop_assert!(job.start < job.end);
                     prop_assert!(job.threads <= MAX_THREADS);
                     let r = Renderer::new(&job.loaded.built.scene, job.settings);
-                    // A refusal names --width (the only flag that sizes the image).
-                    if let Err(e) = check_size(&cli.args, &job.loaded, r.camera.width, r.camera.height) {
-                        prop_assert!(format!("{e:#}").contains("--width"), "{e:#}");
+                    // A refusal names --width (the only flag that sizes the image; --threads is
+                    // named too where it is given).
+                    let workers = worker_threads(job.threads);
+                    if let Err(e) = check_size(&cli.args, &job.loaded, r.camera.width, r.camera.height, workers) {
+                        let msg = format!("{e:#}");
+                        prop_assert!(
+                            msg.contains("--width") || msg.contains("the scene's width"),
+                            "{msg}"
+                        );
                     }
                 }
             }

@@ -108,10 +108,11 @@ fn rtl_under_ulimit(d: &Path, limit: &str, args: &[&str]) -> Output {
 
 #[test]
 fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
-    // 2000 x 2000 pixels need 636 MB: the machine has them, a process under `ulimit -v 400000`
-    // (or `-d`) has not. Only MemAvailable was asked, and the render aborted on allocation. (A
-    // limit this low is surely the least of the limits, so the refusal names it on any machine
-    // a test runs on; two threads keep the pool's stacks within it.)
+    // 2200 x 2200 pixels need 426 MB (88 bytes a pixel): the machine has them, a process under
+    // `ulimit -v 400000` (or `-d`) has not. Only MemAvailable was asked, and the render aborted on
+    // allocation. (A limit this low is surely the least of the limits, so the refusal names it on
+    // any machine a test runs on; two threads keep the pool's stacks within it. Past `ulimit -v`,
+    // memory_limits.rs.)
     let d = dir("ulimit");
     let quads = |width: &'static str| {
         [
@@ -128,10 +129,10 @@ fn an_image_past_the_processs_own_memory_limit_is_refused_not_aborted() {
         ]
     };
     for (limit, words) in [("-v 400000", "ulimit -v"), ("-d 400000", "ulimit -d")] {
-        let out = rtl_under_ulimit(&d, limit, &quads("2000"));
+        let out = rtl_under_ulimit(&d, limit, &quads("2200"));
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "ulimit {limit}: {err}");
-        for w in ["--width 2000", "2000x2000", words] {
+        for w in ["--width 2200", "2200x2200", words] {
             assert!(err.contains(w), "ulimit {limit}: wanted {w:?} in: {err}");
         }
         assert!(files(&d).is_empty());

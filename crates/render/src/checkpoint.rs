@@ -7,7 +7,8 @@
 //! never stopped. A *part* is the same file for a range that does not start at 0: [`merge`] adds parts
 //! with disjoint ranges into the accumulation of their union.
 //!
-//! The format is little-endian binary, written whole to a temporary file and renamed into place (so a
+//! The format is little-endian binary, streamed to a temporary file (its checksum computed on the way:
+//! a file as large as the image's accumulation is never held in memory) and renamed into place (so a
 //! crash leaves the old file or the new one, never half of one), and ends with a 64-bit FNV-1a checksum
 //! of everything before it, so a truncated or damaged file is refused before any of it is used:
 //!
@@ -254,38 +255,19 @@ impl Checkpoint {
         self.acc.samples - self.start
     }
 
-    /// The file's bytes.
+    /// The checkpoint as borrowed parts, which is all that writing it needs.
+    pub fn borrowed(&self) -> CheckpointRef<'_> {
+        CheckpointRef {
+            identity: &self.identity,
+            rtl_version: &self.rtl_version,
+            start: self.start,
+            acc: &self.acc,
+        }
+    }
+
+    /// The file's bytes ([`CheckpointRef::to_bytes`]).
     pub fn to_bytes(&self) -> Vec<u8> {
-        let n = self.acc.sum.len();
-        let mut b = Vec::with_capacity(128 + n * 40);
-        b.extend_from_slice(MAGIC);
-        b.extend_from_slice(&VERSION.to_le_bytes());
-        b.extend_from_slice(&0u64.to_le_bytes()); // the length, filled in below
-        put_str(&mut b, &self.rtl_version);
-        put_str(&mut b, &self.identity.scene);
-        b.extend_from_slice(&self.identity.scene_hash.to_le_bytes());
-        put_str(&mut b, &self.identity.settings);
-        for v in [
-            self.identity.width as u64,
-            self.identity.height as u64,
-            self.start,
-            self.acc.samples,
-        ] {
-            b.extend_from_slice(&v.to_le_bytes());
-        }
-        for i in 0..n {
-            let s = self.acc.sum[i];
-            for v in [s.x, s.y, s.z] {
-                b.extend_from_slice(&v.to_bits().to_le_bytes());
-            }
-            b.extend_from_slice(&self.acc.count[i].to_le_bytes());
-            b.extend_from_slice(&self.acc.dropped[i].to_le_bytes());
-        }
-        let len = (b.len() + 8) as u64;
-        b[12..20].copy_from_slice(&len.to_le_bytes());
-        let sum = Fnv1a::hash(&b);
-        b.extend_from_slice(&sum.to_le_bytes());
-        b
+        self.borrowed().to_bytes()
     }
 
     /// Parse a checkpoint, refusing anything truncated, damaged or inconsistent (`path` is for messages).
@@ -400,12 +382,139 @@ impl Checkpoint {
         Checkpoint::from_bytes(&bytes, path)
     }
 
-    /// Write atomically ([`crate::output::write_atomically`]): to a temporary file, flushed to disk,
-    /// then renamed over `path`.
+    /// Write atomically ([`CheckpointRef::write`]).
+    pub fn write(&self, path: &Path) -> std::io::Result<()> {
+        self.borrowed().write(path)
+    }
+}
+
+/// A checkpoint to be written, its parts borrowed: a render saves its accumulation between passes
+/// and at the end without copying it (a copy is 40 bytes a pixel).
+#[derive(Clone, Copy, Debug)]
+pub struct CheckpointRef<'a> {
+    pub identity: &'a Identity,
+    pub rtl_version: &'a str,
+    /// The first sample of every pixel's stream it holds; `acc.samples` is one past the last.
+    pub start: u64,
+    pub acc: &'a Accumulator,
+}
+
+/// Bytes of a checkpoint's file before its strings: magic, version, length.
+const FIXED_HEAD: u64 = 8 + 4 + 8;
+/// Bytes of a checkpoint's file besides its strings and pixels: [`FIXED_HEAD`], three string
+/// lengths, the scene hash, width, height, start and end, and the checksum.
+const FIXED_BYTES: u64 = FIXED_HEAD + 3 * 4 + 8 + 4 * 8 + 8;
+/// Bytes of one pixel in a checkpoint's file: three f64 sums and two u64 counts.
+pub const FILE_BYTES_PER_PIXEL: u64 = 40;
+/// How many pixels [`CheckpointRef::write_to`] encodes at a time.
+const PIXELS_PER_WRITE: usize = 1024;
+
+/// What passes through it is written on to `inner` and hashed (FNV-1a): the checksum of a file that
+/// is streamed, never held whole.
+struct Hashing<W> {
+    inner: W,
+    hash: Fnv1a,
+    written: u64,
+}
+
+impl<W: Write> Write for Hashing<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.hash.update(&buf[..n]);
+        self.written += n as u64;
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+impl CheckpointRef<'_> {
+    /// The length of the file in bytes, known before any of it is written (the header holds it).
+    pub fn file_len(&self) -> u64 {
+        let strings = [
+            self.rtl_version,
+            &self.identity.scene,
+            &self.identity.settings,
+        ];
+        FIXED_BYTES
+            + strings.iter().map(|s| s.len() as u64).sum::<u64>()
+            + FILE_BYTES_PER_PIXEL * self.acc.sum.len() as u64
+    }
+
+    /// Stream the file to `w`, its checksum computed as it goes; the bytes are those of
+    /// [`Self::to_bytes`], and nothing the size of the image is allocated.
+    pub fn write_to(&self, w: impl Write) -> std::io::Result<()> {
+        let len = self.file_len();
+        let mut h = Hashing {
+            inner: w,
+            hash: Fnv1a::new(),
+            written: 0,
+        };
+        h.write_all(MAGIC)?;
+        h.write_all(&VERSION.to_le_bytes())?;
+        h.write_all(&len.to_le_bytes())?;
+        put_str(&mut h, self.rtl_version)?;
+        put_str(&mut h, &self.identity.scene)?;
+        h.write_all(&self.identity.scene_hash.to_le_bytes())?;
+        put_str(&mut h, &self.identity.settings)?;
+        for v in [
+            self.identity.width as u64,
+            self.identity.height as u64,
+            self.start,
+            self.acc.samples,
+        ] {
+            h.write_all(&v.to_le_bytes())?;
+        }
+        let acc = self.acc;
+        let n = acc.sum.len();
+        let mut block = [0u8; FILE_BYTES_PER_PIXEL as usize * PIXELS_PER_WRITE];
+        for first in (0..n).step_by(PIXELS_PER_WRITE) {
+            let last = (first + PIXELS_PER_WRITE).min(n);
+            let pixels = block.chunks_exact_mut(FILE_BYTES_PER_PIXEL as usize);
+            for (i, out) in (first..last).zip(pixels) {
+                let s = acc.sum[i];
+                let words = [
+                    s.x.to_bits(),
+                    s.y.to_bits(),
+                    s.z.to_bits(),
+                    acc.count[i],
+                    acc.dropped[i],
+                ];
+                for (word, bytes) in words.iter().zip(out.chunks_exact_mut(8)) {
+                    bytes.copy_from_slice(&word.to_le_bytes());
+                }
+            }
+            h.write_all(&block[..(last - first) * FILE_BYTES_PER_PIXEL as usize])?;
+        }
+        // (the checksum covers everything before it, and so not itself)
+        if h.written + 8 != len {
+            return Err(std::io::Error::other(format!(
+                "internal: a checkpoint of {} bytes where its header says {len}",
+                h.written + 8
+            )));
+        }
+        let sum = h.hash.0;
+        h.inner.write_all(&sum.to_le_bytes())?;
+        h.inner.flush()
+    }
+
+    /// The file's bytes, in a vector of exactly their length (allocated once).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut b = Vec::with_capacity(self.file_len() as usize);
+        self.write_to(&mut b)
+            .expect("writing into a vector of the file's length cannot fail");
+        b
+    }
+
+    /// Write atomically ([`crate::output::write_atomically`]): streamed through a buffer to a
+    /// temporary file, flushed to disk, then renamed over `path`.
     pub fn write(&self, path: &Path) -> std::io::Result<()> {
         crate::output::write_atomically(path, |tmp| {
-            let mut f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
-            f.write_all(&self.to_bytes()).map_err(|e| e.to_string())?;
+            let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+            let mut f = std::io::BufWriter::with_capacity(1 << 16, f);
+            self.write_to(&mut f).map_err(|e| e.to_string())?;
+            let f = f.into_inner().map_err(|e| e.error().to_string())?;
             f.sync_all().map_err(|e| e.to_string())
         })
         .map_err(std::io::Error::other)
@@ -426,9 +535,9 @@ fn sum_problem(sum: Color, count: u64) -> Option<&'static str> {
     }
 }
 
-fn put_str(b: &mut Vec<u8>, s: &str) {
-    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
-    b.extend_from_slice(s.as_bytes());
+fn put_str(w: &mut impl Write, s: &str) -> std::io::Result<()> {
+    w.write_all(&(s.len() as u32).to_le_bytes())?;
+    w.write_all(s.as_bytes())
 }
 
 /// Bounds-checked little-endian reads: `None` past the end, never a panic.
@@ -589,6 +698,75 @@ mod tests {
         let p = part(4, 9, 1);
         let back = Checkpoint::from_bytes(&p.to_bytes(), Path::new("p")).unwrap();
         assert_eq!(back, p);
+    }
+
+    /// The format as the module's documentation gives it, put together field by field in one vector:
+    /// what the streaming writer must produce byte for byte.
+    fn bytes_as_documented(c: &Checkpoint) -> Vec<u8> {
+        let mut b = Vec::new();
+        let text = |b: &mut Vec<u8>, s: &str| {
+            b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+            b.extend_from_slice(s.as_bytes());
+        };
+        b.extend_from_slice(MAGIC);
+        b.extend_from_slice(&VERSION.to_le_bytes());
+        b.extend_from_slice(&0u64.to_le_bytes());
+        text(&mut b, &c.rtl_version);
+        text(&mut b, &c.identity.scene);
+        b.extend_from_slice(&c.identity.scene_hash.to_le_bytes());
+        text(&mut b, &c.identity.settings);
+        for v in [
+            c.identity.width as u64,
+            c.identity.height as u64,
+            c.start,
+            c.acc.samples,
+        ] {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        for i in 0..c.acc.sum.len() {
+            let s = c.acc.sum[i];
+            for v in [s.x.to_bits(), s.y.to_bits(), s.z.to_bits()] {
+                b.extend_from_slice(&v.to_le_bytes());
+            }
+            b.extend_from_slice(&c.acc.count[i].to_le_bytes());
+            b.extend_from_slice(&c.acc.dropped[i].to_le_bytes());
+        }
+        let len = (b.len() + 8) as u64;
+        b[12..20].copy_from_slice(&len.to_le_bytes());
+        let sum = Fnv1a::hash(&b);
+        b.extend_from_slice(&sum.to_le_bytes());
+        b
+    }
+
+    #[test]
+    fn the_streamed_file_is_the_documented_format_and_its_vector_is_allocated_once() {
+        // an image of more pixels than one block of the writer, and one of fewer
+        for (w, h) in [(3, 2), (1000, 3)] {
+            let mut c = part(7, 12, 3);
+            c.identity.width = w;
+            c.identity.height = h;
+            let mut acc = Accumulator::new(w, h);
+            for i in 0..w * h {
+                acc.sum[i] = Color::new(i as f64, 0.5 / (1 + i) as f64, 1e300);
+                acc.count[i] = 5 - (i as u64 % 3);
+                acc.dropped[i] = i as u64 % 3;
+            }
+            acc.samples = 12;
+            c.acc = acc;
+            let want = bytes_as_documented(&c);
+            let b = c.to_bytes();
+            assert_eq!(b, want, "{w}x{h}");
+            // the header's strings (the settings are some 170 bytes) no longer make it grow
+            assert_eq!(b.capacity(), b.len(), "{w}x{h}");
+            assert_eq!(c.borrowed().file_len(), b.len() as u64);
+            let dir = std::env::temp_dir().join(format!("rtl-ck-stream-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let path = dir.join("c.ck");
+            c.write(&path).unwrap();
+            assert_eq!(std::fs::read(&path).unwrap(), want, "{w}x{h}");
+            assert_eq!(Checkpoint::read(&path).unwrap(), c);
+            let _ = std::fs::remove_dir_all(&dir);
+        }
     }
 
     #[test]

@@ -6,8 +6,10 @@
 //!   least [`MIN_POSITIVE`]: then squares and triple products of lengths, which intersection and the
 //!   solid-angle densities form, stay finite and nonzero.
 //! - **Paths** have between 1 and [`MAX_DEPTH`] intersections.
-//! - **Images** are at most [`MAX_SIDE`] pixels on a side, and the buffers a render needs
-//!   ([`BYTES_PER_PIXEL`] per pixel) must fit in the memory the machine has available.
+//! - **Images** are at most [`MAX_SIDE`] pixels on a side, and what a render needs
+//!   ([`RENDER_BYTES_PER_PIXEL`] per pixel, its threads' stacks and malloc arenas, and the process:
+//!   [`render_need`]) must fit in what each memory limit leaves, each compared with what it counts
+//!   ([`Need`]).
 //! - **Threads** number at most [`MAX_THREADS`].
 //! - **Scenes** hold at most [`MAX_EXPANDED_OBJECTS`] objects once their instances are expanded, and
 //!   nest groups at most [`MAX_NESTING`] deep: a few kilobytes of instances of instances would
@@ -25,8 +27,15 @@ use std::fmt;
 use std::path::Path;
 
 mod memory;
+mod need;
 pub use memory::{
-    Available, MemoryLimit, available_memory, available_of, control_group_available, mem_available,
+    Available, MemoryLimit, available_memory, available_of, control_group_available, limits_of,
+    mem_available, memory_limits,
+};
+pub use need::{
+    MALLOC_ARENA_BYTES, Need, PROCESS_BASE, RENDER_BYTES_PER_PIXEL, Shortfall, THREAD_ARENA_DATA,
+    THREAD_MAPPINGS, THREAD_RESIDENT, arena_limit, cpu_list_len, malloc_arenas, merge_need,
+    render_need, thread_stack_bytes, threads_need,
 };
 
 /// The largest magnitude of any number in a scene file.
@@ -277,25 +286,38 @@ pub fn max_depth_problem(d: u32) -> Option<String> {
     }
 }
 
-/// Bytes of memory one pixel of a render needs at most: the accumulation (three f64 sums and two u64
-/// counts) and its copy for the pass in flight, a checkpoint's bytes, the image of means, and its
-/// linear (3 f32) and 8-bit (3 u8) encodings.
-pub const BYTES_PER_PIXEL: u64 = 40 + 40 + 40 + 24 + 12 + 3;
-
 /// Why an image cannot be rendered at this size.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SizeError {
     #[error("the image would be {width}x{height} pixels: each side may be at most {MAX_SIDE}")]
     TooLarge { width: usize, height: usize },
     #[error(
-        "the image would be {width}x{height} pixels, which needs {} of memory ({BYTES_PER_PIXEL} bytes \
-         a pixel), but {available}",
-        Bytes(*needed)
+        "the image would be {width}x{height} pixels, which needs {} of {} ({RENDER_BYTES_PER_PIXEL} \
+         bytes a pixel, and {} for the process and its {threads} threads besides the main one{}), but \
+         {available}",
+        Bytes(*needed),
+        match available.limit {
+            MemoryLimit::AddressSpace => "address space",
+            _ => "memory",
+        },
+        Bytes(needed.saturating_sub(*buffers)),
+        match available.limit {
+            MemoryLimit::AddressSpace => {
+                ": their stacks and malloc arenas; fewer threads, or MALLOC_ARENA_MAX=1, map less"
+            }
+            MemoryLimit::DataSize => ": their stacks",
+            _ => "",
+        }
     )]
     OutOfMemory {
         width: usize,
         height: usize,
+        /// Threads besides the main one.
+        threads: usize,
+        /// What the render needs of what `available` counts ([`Need::of`]).
         needed: u64,
+        /// Of which its buffers.
+        buffers: u64,
         available: Available,
     },
 }
@@ -316,26 +338,34 @@ impl fmt::Display for Bytes {
     }
 }
 
-/// Check that a `width x height` render fits: each side at most [`MAX_SIDE`] and its buffers within
-/// the memory `available` (if known). Returns the bytes it needs.
+/// Check that a `width x height` render fits: each side at most [`MAX_SIDE`], and what it needs
+/// with `threads` threads besides the main one (its workers and any other, [`render_need`]) and a
+/// checkpoint of `resume_bytes` to read (0 if none) within every limit of `limits`
+/// ([`memory_limits`]: none if nothing says). Returns what it needs.
 pub fn check_image(
     width: usize,
     height: usize,
-    available: Option<Available>,
-) -> Result<u64, SizeError> {
+    threads: usize,
+    resume_bytes: u64,
+    limits: &[Available],
+) -> Result<Need, SizeError> {
     if width > MAX_SIDE || height > MAX_SIDE {
         return Err(SizeError::TooLarge { width, height });
     }
     // Both sides are at most 2^16, so this cannot overflow.
-    let needed = width as u64 * height as u64 * BYTES_PER_PIXEL;
-    match available {
-        Some(available) if needed > available.bytes => Err(SizeError::OutOfMemory {
+    let pixels = width as u64 * height as u64;
+    let need = render_need(pixels, threads, resume_bytes);
+    match need.exceeds(limits) {
+        Some(Shortfall { needed, available }) => Err(SizeError::OutOfMemory {
             width,
             height,
+            threads,
             needed,
+            buffers: render_need(pixels, 0, resume_bytes).of(available.limit)
+                - PROCESS_BASE.of(available.limit),
             available,
         }),
-        _ => Ok(needed),
+        None => Ok(need),
     }
 }
 
@@ -367,23 +397,60 @@ mod tests {
 
     #[test]
     fn images_past_a_side_or_the_memory_are_refused() {
-        let gib = Some(Available {
+        let gib = [Available {
             bytes: 1 << 30,
             limit: MemoryLimit::Machine,
-        });
-        assert!(check_image(600, 600, gib).is_ok());
+        }];
+        assert!(check_image(600, 600, 2, 0, &gib).is_ok());
         assert_eq!(
-            check_image(MAX_SIDE + 1, 1, None),
+            check_image(MAX_SIDE + 1, 1, 2, 0, &[]),
             Err(SizeError::TooLarge {
                 width: MAX_SIDE + 1,
                 height: 1
             })
         );
-        let e = check_image(10_000, 10_000, gib).unwrap_err();
-        assert!(
-            e.to_string().contains("15.9 GB") && e.to_string().contains("1.1 GB"),
-            "{e}"
-        );
-        assert!(e.to_string().contains("MemAvailable"), "{e}");
+        let e = check_image(10_000, 10_000, 2, 0, &gib).unwrap_err();
+        let text = e.to_string();
+        for words in [
+            "8.8 GB of memory",
+            "88 bytes a pixel",
+            "1.1 GB",
+            "MemAvailable",
+        ] {
+            assert!(text.contains(words), "{words}: {e}");
+        }
+    }
+
+    #[test]
+    fn under_ulimit_v_the_threads_arenas_count_and_the_message_says_so() {
+        // 600 x 600 pixels (31.7 MB) on two workers and the Ctrl-C handler's thread: within 100 MB of
+        // memory, but their malloc arenas (64 MiB each, as address space) are not within 250 MB of
+        // address space.
+        let limits = [
+            Available {
+                bytes: 100_000_000,
+                limit: MemoryLimit::Machine,
+            },
+            Available {
+                bytes: 250_000_000,
+                limit: MemoryLimit::AddressSpace,
+            },
+        ];
+        let r = check_image(600, 600, 3, 0, &limits);
+        if malloc_arenas(3) < 3 {
+            return; // not glibc, or MALLOC_ARENA_MAX set: no arenas to count
+        }
+        let e = r.unwrap_err();
+        let text = e.to_string();
+        for words in [
+            "600x600",
+            "of address space",
+            "3 threads besides the main one: their stacks and malloc arenas",
+            "ulimit -v",
+        ] {
+            assert!(text.contains(words), "{words}: {e}");
+        }
+        // the machine's memory alone: it fits
+        assert!(check_image(600, 600, 3, 0, &limits[..1]).is_ok());
     }
 }

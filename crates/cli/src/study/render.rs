@@ -465,7 +465,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
     rtl_render::limits::check_image(
         r.camera.width,
         r.camera.height,
-        rtl_render::limits::available_memory(),
+        rayon::current_num_threads(),
+        0,
+        &rtl_render::limits::memory_limits(),
     )
     .map_err(|e| anyhow::anyhow!("--width {width}: {e}"))?;
     // (made only once every flag is checked, so that a refused command leaves nothing behind)

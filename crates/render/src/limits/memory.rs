@@ -66,15 +66,24 @@ impl fmt::Display for Available {
 /// an allocation past them fails, and the program aborts, however much the machine has free) and
 /// what its control group's limit leaves (a container's: past it the kernel kills the process).
 pub fn available_memory() -> Option<Available> {
+    memory_limits().into_iter().min_by_key(|a| a.bytes)
+}
+
+/// Every limit on the memory of a new allocation that applies, each with what it leaves (empty
+/// where nothing says): the limits count different things (a thread's malloc arena is address
+/// space, `ulimit -v`, but neither data nor memory in use), so work that needs more of one kind
+/// than of another is checked against each ([`super::Need`]).
+pub fn memory_limits() -> Vec<Available> {
     let read = |path: &Path| std::fs::read_to_string(path).ok();
     let group = read(Path::new("/proc/self/cgroup"))
         .and_then(|c| control_group_available(&c, Path::new("/sys/fs/cgroup"), &read));
-    let rest = available_of(
+    let mut limits = limits_of(
         read(Path::new("/proc/meminfo")).as_deref(),
         read(Path::new("/proc/self/limits")).as_deref(),
         read(Path::new("/proc/self/status")).as_deref(),
     );
-    [rest, group].into_iter().flatten().min_by_key(|a| a.bytes)
+    limits.extend(group);
+    limits
 }
 
 /// What the memory limits of the process's control group and of every group above it leave, the
@@ -157,6 +166,19 @@ pub fn available_of(
     limits: Option<&str>,
     status: Option<&str>,
 ) -> Option<Available> {
+    limits_of(meminfo, limits, status)
+        .into_iter()
+        .min_by_key(|a| a.bytes)
+}
+
+/// Each of the machine's free memory, the address-space limit and the data-size limit that applies,
+/// with what it leaves, from the texts of `/proc/meminfo`, `/proc/self/limits` and
+/// `/proc/self/status`.
+pub fn limits_of(
+    meminfo: Option<&str>,
+    limits: Option<&str>,
+    status: Option<&str>,
+) -> Vec<Available> {
     let machine = meminfo.and_then(mem_available).map(|bytes| Available {
         bytes,
         limit: MemoryLimit::Machine,
@@ -176,7 +198,7 @@ pub fn available_of(
     ]
     .into_iter()
     .flatten()
-    .min_by_key(|a| a.bytes)
+    .collect()
 }
 
 /// `MemAvailable` of the text of `/proc/meminfo`, in bytes.
@@ -283,6 +305,32 @@ mod tests {
             control_group_available("0::/\n", root, &read).map(|a| a.bytes),
             Some(0)
         );
+    }
+
+    #[test]
+    fn every_limit_is_listed_with_what_it_leaves() {
+        let both = UNLIMITED
+            .replacen(
+                "Max address space         unlimited",
+                "Max address space         1536000000",
+                1,
+            )
+            .replacen(
+                "Max data size             unlimited",
+                "Max data size             104857600",
+                1,
+            );
+        let limits = limits_of(Some(MEMINFO), Some(&both), Some(STATUS));
+        let of = |l: MemoryLimit| limits.iter().find(|a| a.limit == l).map(|a| a.bytes);
+        assert_eq!(limits.len(), 3);
+        assert_eq!(of(MemoryLimit::Machine), Some(8_000_000 * 1024));
+        assert_eq!(
+            of(MemoryLimit::AddressSpace),
+            Some(1_536_000_000 - 200_000 * 1024)
+        );
+        assert_eq!(of(MemoryLimit::DataSize), Some(104_857_600 - 50_000 * 1024));
+        assert_eq!(limits_of(Some(MEMINFO), Some(UNLIMITED), None).len(), 1);
+        assert!(limits_of(None, None, None).is_empty());
     }
 
     #[test]
