@@ -3,20 +3,15 @@
 //! No cargo, a few seconds.
 #![cfg(unix)]
 
+mod common;
+
 use rtl_exercises_runner::cargo::{self, Ran, Workspace};
 use rtl_exercises_runner::info;
 use rtl_exercises_runner::status::{self, Checked, Status};
-use std::os::unix::fs::PermissionsExt;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// A shell script `name` in `dir`, executable.
-fn script(dir: &Path, name: &str, body: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
-    path
-}
+use common::{fresh_dir, script};
 
 /// The report file of a program whose check 1 passed and check 2 failed, as the harness writes
 /// it, as shell commands.
@@ -59,13 +54,6 @@ fn run(dir: &Path, scripts: &[(&str, &str)], limit: Duration) -> Vec<(Ran, Check
             (ran, checked, text)
         })
         .collect()
-}
-
-fn fresh_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 #[test]

@@ -3,24 +3,17 @@
 //! not one each; and a long run is reported while it runs.
 #![cfg(unix)]
 
+mod common;
+
 use rtl_exercises_runner::cargo::{self, Ran, Workspace};
-use std::os::unix::fs::PermissionsExt;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Duration;
 
-/// A shell script `name` in a directory of this test, executable.
-fn script(dir: &Path, name: &str, body: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
-    path
-}
+use common::{fresh_dir, script};
 
 #[test]
 fn loops_cost_one_time_limit_together_and_a_long_run_is_reported() {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("time-limits");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_dir("time-limits");
     let ws = Workspace { root: dir.clone() };
     // `exec` so that stopping the script stops the sleep (no grandchild keeps the pipes open).
     // Each loop notes its start in `started`, then sleeps.
