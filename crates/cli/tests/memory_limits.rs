@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{RTL, dir};
+use common::{RTL, dir, rtl_under_ulimit};
 use rtl_render::checkpoint::Checkpoint;
 use rtl_render::limits::{merge_need, render_need};
 use std::path::Path;
@@ -24,15 +24,7 @@ fn rtl_under_ulimit_v(d: &Path, kib: u64, args: &[&str]) -> Output {
 
 /// [`rtl_under_ulimit_v`] with environment variables `env` set.
 fn rtl_under_ulimit_v_with(d: &Path, kib: u64, env: &[(&str, &str)], args: &[&str]) -> Output {
-    Command::new("sh")
-        .arg("-c")
-        .arg(format!("ulimit -v {kib} && exec timeout 120 \"$0\" \"$@\""))
-        .arg(RTL)
-        .args(args)
-        .envs(env.iter().copied())
-        .current_dir(d)
-        .output()
-        .expect("sh runs")
+    rtl_under_ulimit(d, &format!("-v {kib}"), env, args)
 }
 
 /// Bytes in a number the way rtl writes them: `244.8 MB`.

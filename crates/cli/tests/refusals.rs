@@ -6,7 +6,7 @@ use rtl_render::checkpoint::Checkpoint;
 use rtl_render::vec::Color;
 mod common;
 
-use common::{RTL, dir, ok, refused_with, rtl};
+use common::{dir, ok, refused_with, rtl};
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -96,14 +96,7 @@ fn an_image_past_the_side_limit_or_the_memory_is_refused_before_allocation() {
 
 /// Run `rtl args` in `d` under `ulimit` (`limit`, e.g. `-v 1500000`: KiB of address space).
 fn rtl_under_ulimit(d: &Path, limit: &str, args: &[&str]) -> Output {
-    Command::new("sh")
-        .arg("-c")
-        .arg(format!("ulimit {limit} && exec timeout 60 \"$0\" \"$@\""))
-        .arg(RTL)
-        .args(args)
-        .current_dir(d)
-        .output()
-        .expect("sh runs")
+    common::rtl_under_ulimit(d, limit, &[], args)
 }
 
 #[test]

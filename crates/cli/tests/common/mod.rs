@@ -56,3 +56,17 @@ pub fn refused_with(d: &Path, code: i32, args: &[&str], words: &[&str]) {
         assert!(err.contains(w), "rtl {args:?}: wanted {w:?} in: {err}");
     }
 }
+
+/// `rtl args` in `d` under `ulimit LIMIT` (`-v 250000`: KiB of address space; `-d`: of data), with
+/// environment variables `env` set, killed after two minutes.
+pub fn rtl_under_ulimit(d: &Path, limit: &str, env: &[(&str, &str)], args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit {limit} && exec timeout 120 \"$0\" \"$@\""))
+        .arg(RTL)
+        .args(args)
+        .envs(env.iter().copied())
+        .current_dir(d)
+        .output()
+        .expect("sh runs")
+}
