@@ -105,6 +105,16 @@ pub fn run(args: MergeArgs) -> Result<()> {
     for p in &args.parts {
         parts.push((p.display().to_string(), Checkpoint::read(p)?));
     }
+    // (as `rtl render --resume` notes it: another build may trace differently)
+    for (name, part) in &parts {
+        if part.rtl_version != env!("CARGO_PKG_VERSION") {
+            eprintln!(
+                "note: {name} was written by rtl {}, this is {}",
+                rtl_render::text::shown(&part.rtl_version),
+                env!("CARGO_PKG_VERSION")
+            );
+        }
+    }
     let merged = merge(&parts)?;
     // The parts are done with once merged: the image and its encodings are made without them.
     let (part_count, spp): (usize, u64) = (parts.len(), parts.iter().map(|(_, p)| p.spp()).sum());

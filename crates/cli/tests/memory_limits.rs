@@ -281,3 +281,24 @@ fn a_merge_just_past_ulimit_v_is_refused_and_one_just_within_it_writes_its_part(
     assert!(d.join("m.png").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `rtl lab` under `ulimit -v 100000` started, then aborted half-way through an allocation when
+/// its page asked for a 600-pixel render. It is refused at the start now, saying what it may come
+/// to need, before it listens on any port.
+#[test]
+fn the_lab_is_refused_at_its_start_under_too_tight_a_limit() {
+    let d = dir("lab");
+    let out = rtl_under_ulimit(
+        &d,
+        "-v 300000",
+        &[],
+        &["lab", "--port", "0", "--reference-dir", "refs"],
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(err.contains("the lab may need"), "{err}");
+    assert!(err.contains("ulimit -v"), "{err}");
+    assert!(!err.contains("open http"), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}

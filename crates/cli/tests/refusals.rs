@@ -417,6 +417,11 @@ fn a_checkpoints_strings_are_shown_not_sent_to_the_terminal() {
         err.contains("of cornell\\u{001B}[2J\\u{001B}[31mPWNED"),
         "{err}"
     );
+    // (merge notes another version as --resume does)
+    assert!(
+        err.contains("note: forged was written by rtl 9.9.9\\u{001B}[31m"),
+        "{err}"
+    );
     // resumed: the version's note
     let mut resumable = good.clone();
     resumable.rtl_version = "9.9.9\u{1b}[31m".into();

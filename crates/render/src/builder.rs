@@ -420,6 +420,33 @@ impl SceneBuilder {
         Ok(())
     }
 
+    /// [`Self::each_quad`] for the spheres (moving ones too) of group `g`.
+    pub fn each_sphere<E>(
+        &self,
+        g: GroupId,
+        to: Transform,
+        budget: &mut usize,
+        f: &mut impl FnMut(&Sphere, Transform) -> Result<(), E>,
+    ) -> Result<(), E> {
+        for o in self.groups.get(g.0 as usize).into_iter().flatten() {
+            if *budget == 0 {
+                return Ok(());
+            }
+            match o {
+                Object::Sphere(s) => {
+                    *budget -= 1;
+                    f(s, to)?;
+                }
+                Object::Group(inner) => self.each_sphere(*inner, to, budget, f)?,
+                Object::Instance { transform, group } => {
+                    self.each_sphere(*group, transform.then(to), budget, f)?
+                }
+                Object::Quad(_) | Object::Medium(_) => {}
+            }
+        }
+        Ok(())
+    }
+
     pub fn instance(&mut self, g: GroupId, inner: GroupId, transform: Transform) {
         self.add_to(
             g,

@@ -17,8 +17,25 @@ pub fn acts(c: char) -> bool {
         )
 }
 
-/// `s` for a one-line message: every character that [`acts`], and tab and line ends, as
-/// `\u{XXXX}`, and at most [`SHOWN_CHARS`] characters of it, the rest counted.
+/// Whether `c` shows as nothing (a zero-width space or joiner, a soft hyphen, a byte-order mark, a
+/// line or paragraph separator, an invisible operator): two names that differ by one read alike.
+pub fn invisible(c: char) -> bool {
+    matches!(
+        c,
+        '\u{00AD}'
+            | '\u{034F}'
+            | '\u{200B}'..='\u{200D}'
+            | '\u{2028}'
+            | '\u{2029}'
+            | '\u{2060}'..='\u{2064}'
+            | '\u{206A}'..='\u{206F}'
+            | '\u{FEFF}'
+            | '\u{FFF9}'..='\u{FFFB}'
+    )
+}
+
+/// `s` for a one-line message: every character that [`acts`] or is [`invisible`], and tab and
+/// line ends, as `\u{XXXX}`, and at most [`SHOWN_CHARS`] characters of it, the rest counted.
 pub fn shown(s: &str) -> String {
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {
@@ -27,7 +44,7 @@ pub fn shown(s: &str) -> String {
             out.push_str(&format!("... ({rest} more characters)"));
             break;
         }
-        if acts(c) || matches!(c, '\t' | '\n' | '\r') {
+        if acts(c) || invisible(c) || matches!(c, '\t' | '\n' | '\r') {
             out.push_str(&format!("\\u{{{:04X}}}", c as u32));
         } else {
             out.push(c);
@@ -52,5 +69,7 @@ mod tests {
             format!("{}... (5 more characters)", "é".repeat(SHOWN_CHARS))
         );
         assert!(acts('\u{2067}') && acts('\u{7f}') && !acts('\t') && !acts('é'));
+        // what shows as nothing is written out too (`mar\u{200D}ble` read as `marble`)
+        assert_eq!(shown("mar\u{200D}ble\u{FEFF}"), "mar\\u{200D}ble\\u{FEFF}");
     }
 }

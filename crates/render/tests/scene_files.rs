@@ -732,6 +732,56 @@ fn a_sphere_too_large_to_place_for_the_camera_is_an_error() {
     load(&high).unwrap();
 }
 
+/// A sphere's hits are computed in its group's coordinates, and its rays leave it from an error
+/// bound of those: the book's floor written 1e11 off in a group translated back was accepted (its
+/// world place is ordinary) and rendered black; the same floor placed by an instance 1e11 away,
+/// with the camera beside it, likewise (an instance re-checked only its quads). Both refused now.
+#[test]
+fn a_sphere_far_off_in_its_own_group_or_placed_far_by_an_instance_is_refused() {
+    let camera = "[camera]\nlookfrom = [0, 3, 3]\nlookat = [0, 0, 0]\n";
+    let rest = "[materials]\nwhite = { type = \"lambertian\", albedo = 0.7 }\n\
+                lamp = { type = \"light\", emit = 10 }\n";
+    let moved = format!(
+        "{camera}{rest}[[objects]]\ntype = \"group\"\ntransform = [{{ translate = [0, 1e11, 0] }}]\n\
+         [[objects.objects]]\ntype = \"sphere\"\ncenter = [0, -100000001000, 0]\nradius = 1000\n\
+         material = \"white\"\n"
+    );
+    let e = load(&moved).err().unwrap_or_else(|| panic!("accepted"));
+    assert!(e.contains("field `objects[0].objects[0].radius`"), "{e}");
+    assert!(
+        e.contains("is too large for this camera: rays leave its surface"),
+        "{e}"
+    );
+    // the same floor written where it is: accepted
+    load(&format!(
+        "{camera}{rest}[[objects]]\ntype = \"sphere\"\ncenter = [0, -1000, 0]\nradius = 1000\n\
+         material = \"white\"\n"
+    ))
+    .unwrap();
+    let far = camera
+        .replace("[0, 3, 3]", "[1e11, 3, 3]")
+        .replace("lookat = [0, 0, 0]", "lookat = [1e11, 0, 0]");
+    let group = "[[objects]]\ntype = \"group\"\nname = \"g\"\n\
+                 [[objects.objects]]\ntype = \"sphere\"\ncenter = [0, -1000, 0]\nradius = 1000\n\
+                 material = \"white\"\n";
+    let placed = |at: &str| {
+        format!(
+            "{far}{rest}{group}[[objects]]\ntype = \"instance\"\nof = \"g\"\n\
+             transform = [{{ translate = [{at}, 0, 0] }}]\n"
+        )
+    };
+    let e = load(&placed("1e11"))
+        .err()
+        .unwrap_or_else(|| panic!("accepted"));
+    assert!(e.contains("field `objects[1]`"), "{e}");
+    assert!(
+        e.contains("is too large for this camera: rays leave its surface"),
+        "{e}"
+    );
+    // placed 1e5 away instead, where the camera (at 1e11) sees it from afar: accepted
+    load(&placed("1e5")).unwrap();
+}
+
 /// The largest sphere floor accepted under a lamp (radius 1e7, its rays leaving it 0.0012 off it,
 /// the camera 5 from what it looks at) is lit as the book's floor of radius 1000 is: the same
 /// numbers make the same paths, so the lower half of the image (the floor) comes out within 1% of

@@ -95,6 +95,50 @@ pub enum LabError {
         file.display()
     )]
     ReferenceDir { dir: PathBuf, file: PathBuf },
+    /// Less memory than the lab may come to need: under `ulimit -v 100000` it started, then a
+    /// page's request for a 600-pixel render aborted it half-way through an allocation.
+    #[error(
+        "the lab may need {} of {} (its saved renders, a render and a reference of {side} x {side}, \
+         and {threads} threads with their stacks and malloc arenas), but {available}",
+        rtl_render::limits::Bytes(*needed),
+        match available.limit {
+            rtl_render::limits::MemoryLimit::AddressSpace => "address space",
+            _ => "memory",
+        }
+    )]
+    Memory {
+        needed: u64,
+        side: usize,
+        threads: usize,
+        available: rtl_render::limits::Available,
+    },
+}
+
+/// What the lab may come to need at once, checked against each memory limit before it starts
+/// ([`rtl_render::limits::Need::exceeds`]): the renders it keeps to go back to
+/// ([`cornell::SAVED_BYTES`]), the render and a reference at the largest width the page offers
+/// (an accumulation each, with the pass's copy and the noise measurement's moments: three at the
+/// render's bytes a pixel), and the threads that render: two pools of the cores (the render's and
+/// the reference's) and the render thread. (The connections' threads allocate little and share
+/// the arenas of those.)
+fn check_memory() -> Result<(), LabError> {
+    use rtl_render::limits::{self, Need};
+    let side = cornell::WIDTHS.1;
+    let pixels = (side * side) as u64;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = 2 * cores + 1;
+    let need = Need::all(cornell::SAVED_BYTES as u64 + 3 * pixels * limits::RENDER_BYTES_PER_PIXEL)
+        .plus(limits::threads_need(threads))
+        .plus(limits::PROCESS_BASE);
+    match need.exceeds(&limits::memory_limits()) {
+        None => Ok(()),
+        Some(s) => Err(LabError::Memory {
+            needed: s.needed,
+            side,
+            threads,
+            available: s.available,
+        }),
+    }
 }
 
 /// Refuse a `--reference-dir` that is, or lies under, a file (or a device): it could never be
@@ -122,6 +166,7 @@ fn check_reference_dir(dir: &Path) -> Result<(), LabError> {
 
 pub fn run(args: LabArgs) -> Result<()> {
     check_reference_dir(&args.reference_dir)?;
+    check_memory()?;
     let listener = TcpListener::bind(SocketAddr::new(args.bind, args.port)).map_err(|e| {
         if e.kind() == std::io::ErrorKind::AddrInUse {
             LabError::PortInUse {

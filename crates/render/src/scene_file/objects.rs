@@ -7,7 +7,7 @@ use super::doc::{
 };
 use super::loader::{Loader, Named, check_quad, known, positive};
 use super::span::{Fail, Span, Val, fail};
-use super::values::{Num, Real, Step};
+use super::values::{Num, Step};
 use crate::boundary_pieces::{Piece, PieceKind};
 use crate::closed_surface::{OpenQuad, OpenSurface};
 use crate::hit::{REL_ERROR, SPAWN_ERRORS};
@@ -16,7 +16,6 @@ use crate::scene::{GroupId, ImportanceTarget, NO_MATERIAL, Object, Transform};
 use crate::separation::{parallelogram_distance, segment_distance};
 use crate::shapes::{Quad, Sphere};
 use crate::vec::{Point3, Vec3};
-use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
 impl Loader<'_> {
@@ -52,7 +51,7 @@ impl Loader<'_> {
         let m = self.material_id(&d.material)?;
         let r = positive(&d.radius, "radius")?;
         let p = self.placement(into, &d.transform, to_world, &span)?;
-        self.placeable(&[p.to_world.point(d.center.0)], r, &d.radius)?;
+        self.placeable(&[d.center.0], p.to_world, r, d.radius.span())?;
         self.count(p.group, None, &span, "this sphere")?;
         self.b
             .sphere(p.group, d.center.0, r, m)
@@ -62,30 +61,38 @@ impl Loader<'_> {
         self.name(d.name, Named::Sphere(world))
     }
 
-    /// Refuses a sphere whose surface doubles cannot place finely enough for the camera: the
-    /// spacing of doubles at its farthest coordinate (a world-space `centers`' largest plus the
-    /// radius `r`) more than 1/1024 of the scale the camera sees it at, the larger of its distance to
-    /// `lookat` and its distance to the sphere's surface. Its hits would be off by about that much (a
-    /// floor of radius 1e17 seen from 10 away rendered black); seen from far enough, the same sphere
+    /// Refuses a sphere (centres `local`, radius `r`, in the coordinates of its group, which
+    /// `to_world` places; the object at `span`) whose surface doubles cannot place finely enough
+    /// for the camera: the spacing of doubles at its farthest coordinate (a centre's largest plus
+    /// the radius, in its group's coordinates, where its hits are computed, or in the world's,
+    /// whichever is larger) more than 1/1024 of the distance it is seen at ([`Self::seen_at`]). Its hits would be off by about that much (a floor of
+    /// radius 1e17 seen from 10 away rendered black); seen from far enough, the same sphere
     /// renders. Likewise where the rays leaving it start farther off it than that
     /// ([`Self::leaves_close_enough`]).
-    fn placeable(&self, centers: &[Point3], r: f64, radius: &Spanned<Real>) -> Result<(), Fail> {
+    fn placeable(
+        &self,
+        local: &[Point3],
+        to_world: Transform,
+        r: f64,
+        span: Span,
+    ) -> Result<(), Fail> {
         let c = &self.b.camera;
-        let view = (c.lookfrom - c.lookat).length();
-        let surface = centers
+        let world: Vec<Point3> = local.iter().map(|&p| to_world.point(p)).collect();
+        let surface = world
             .iter()
             .map(|p| ((c.lookfrom - *p).length() - r).abs())
             .fold(f64::INFINITY, f64::min);
-        let scale = view.max(surface);
-        let far = centers
+        let scale = self.seen_at(surface);
+        let far = local
             .iter()
+            .chain(&world)
             .map(|p| p.abs().max_element())
             .fold(0.0, f64::max)
             + r;
         let spacing = far.next_up() - far;
         if spacing > scale / 1024.0 {
             return fail(
-                radius.span(),
+                span,
                 format!(
                     "a sphere reaching {far:.3e} from the origin cannot be placed finely enough for \
                      this camera: doubles there are {spacing:.3e} apart, more than 1/1024 of the \
@@ -95,7 +102,16 @@ impl Loader<'_> {
                 ),
             );
         }
-        Self::leaves_close_enough(far, scale, "sphere", radius.span())
+        Self::leaves_close_enough(far, scale, "sphere", span)
+    }
+
+    /// The distance at which the camera sees a surface `distance` from it, the scale its placement
+    /// is held to: the larger of that and the camera's distance to `lookat`, the scale of what it
+    /// looks at (a camera standing on a floor sees it at that scale, not at 0). (So a `lookat` set
+    /// a million times farther off in the same direction lets a larger surface through.)
+    fn seen_at(&self, distance: f64) -> f64 {
+        let c = &self.b.camera;
+        (c.lookfrom - c.lookat).length().max(distance)
     }
 
     /// Refuses a surface (`what`, at `span`) whose rays would leave it too far off it for the scale
@@ -161,7 +177,7 @@ impl Loader<'_> {
             .iter()
             .map(|&(s, e)| segment_distance(c.lookfrom, s, e))
             .fold(f64::INFINITY, f64::min);
-        let scale = (c.lookfrom - c.lookat).length().max(edge);
+        let scale = self.seen_at(edge);
         let spacing = far.next_up() - far;
         if spacing > scale / 1024.0 {
             return fail(
@@ -179,9 +195,7 @@ impl Loader<'_> {
         let size = |q: Point3, u: Vec3, v: Vec3| {
             q.abs().max_element() + u.abs().max_element() + v.abs().max_element()
         };
-        let seen_at = (c.lookfrom - c.lookat)
-            .length()
-            .max(parallelogram_distance(c.lookfrom, wq, wu, wv));
+        let seen_at = self.seen_at(parallelogram_distance(c.lookfrom, wq, wu, wv));
         Self::leaves_close_enough(
             size(q, u, v).max(size(wq, wu, wv)),
             seen_at,
@@ -207,7 +221,7 @@ impl Loader<'_> {
         let motion = d.center1.0 - d.center0.0;
         let (c0, c1) = (d.center0.0 + open * motion, d.center0.0 + close * motion);
         let p = self.placement(into, &d.transform, to_world, &span)?;
-        self.placeable(&[p.to_world.point(c0), p.to_world.point(c1)], r, &d.radius)?;
+        self.placeable(&[c0, c1], p.to_world, r, d.radius.span())?;
         self.count(p.group, None, &span, "this moving sphere")?;
         self.b
             .moving_sphere(p.group, c0, c1, r, m)
@@ -379,6 +393,10 @@ impl Loader<'_> {
         let mut budget = self.instance_quad_checks;
         self.b.each_quad(g, world, &mut budget, &mut |q, t| {
             self.edges_placeable(q.q, q.u, q.v, t, &span)
+        })?;
+        // and its spheres (a floor placed a long way off with the camera beside it rendered black)
+        self.b.each_sphere(g, world, &mut budget, &mut |s, t| {
+            self.placeable(&[s.center, s.center + s.motion], t, s.radius, span.clone())
         })?;
         self.instance_quad_checks = budget;
         self.add_placed(into, g, &d.transform, &span, &what)?;
