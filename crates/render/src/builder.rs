@@ -391,57 +391,31 @@ impl SceneBuilder {
         }
     }
 
-    /// The quads group `g` holds, directly or in groups and instances within it (at most `budget` of
-    /// them, so that instances of instances cannot make the walk long), each with the transform that
-    /// places it in `g`'s space followed by `to`; stops at the first `Err` of `f`.
-    pub fn each_quad<E>(
+    /// The shapes (quads and spheres) group `g` holds, directly or in groups and instances within
+    /// it (at most `budget` of them, so that instances of instances cannot make the walk long), each
+    /// with the transform that places it in `g`'s space followed by `to`; stops at the first `Err`
+    /// of `f`.
+    pub fn each_shape<E>(
         &self,
         g: GroupId,
         to: Transform,
         budget: &mut usize,
-        f: &mut impl FnMut(&Quad, Transform) -> Result<(), E>,
+        f: &mut impl FnMut(&Object, Transform) -> Result<(), E>,
     ) -> Result<(), E> {
         for o in self.groups.get(g.0 as usize).into_iter().flatten() {
             if *budget == 0 {
                 return Ok(());
             }
             match o {
-                Object::Quad(q) => {
+                Object::Quad(_) | Object::Sphere(_) => {
                     *budget -= 1;
-                    f(q, to)?;
+                    f(o, to)?;
                 }
-                Object::Group(inner) => self.each_quad(*inner, to, budget, f)?,
+                Object::Group(inner) => self.each_shape(*inner, to, budget, f)?,
                 Object::Instance { transform, group } => {
-                    self.each_quad(*group, transform.then(to), budget, f)?
+                    self.each_shape(*group, transform.then(to), budget, f)?
                 }
-                Object::Sphere(_) | Object::Medium(_) => {}
-            }
-        }
-        Ok(())
-    }
-
-    /// [`Self::each_quad`] for the spheres (moving ones too) of group `g`.
-    pub fn each_sphere<E>(
-        &self,
-        g: GroupId,
-        to: Transform,
-        budget: &mut usize,
-        f: &mut impl FnMut(&Sphere, Transform) -> Result<(), E>,
-    ) -> Result<(), E> {
-        for o in self.groups.get(g.0 as usize).into_iter().flatten() {
-            if *budget == 0 {
-                return Ok(());
-            }
-            match o {
-                Object::Sphere(s) => {
-                    *budget -= 1;
-                    f(s, to)?;
-                }
-                Object::Group(inner) => self.each_sphere(*inner, to, budget, f)?,
-                Object::Instance { transform, group } => {
-                    self.each_sphere(*group, transform.then(to), budget, f)?
-                }
-                Object::Quad(_) | Object::Medium(_) => {}
+                Object::Medium(_) => {}
             }
         }
         Ok(())

@@ -73,9 +73,9 @@ pub(super) struct Loader<'t> {
     pub(super) labels: HashMap<u32, String>,
     /// The image files the textures were read from (inputs a render must not overwrite).
     pub(super) texture_files: Vec<PathBuf>,
-    /// How many more quads placed again by instances the placement rule looks at (a bound on the
-    /// loader's time for instances of instances).
-    pub(super) instance_quad_checks: usize,
+    /// How many more shapes (quads, spheres) placed again by instances the placement rules look
+    /// at (a bound on the loader's time for instances of instances).
+    pub(super) instance_shape_checks: usize,
     /// Where each quad of the file was written, by its group and index among the group's objects
     /// (a medium's boundary that is open names its quad).
     pub(super) quad_spans: HashMap<(u32, usize), Span>,
@@ -96,7 +96,7 @@ impl<'t> Loader<'t> {
             sizes: Vec::new(),
             labels: HashMap::new(),
             texture_files: Vec::new(),
-            instance_quad_checks: 1 << 20,
+            instance_shape_checks: 1 << 20,
             quad_spans: HashMap::new(),
         }
     }

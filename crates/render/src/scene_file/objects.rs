@@ -387,18 +387,20 @@ impl Loader<'_> {
             }
         };
         let what = format!("this instance of `{}`", d.of.get_ref());
-        // Its quads where this instance puts them, held to the quad's placement rule (the group's
+        // Its shapes where this instance puts them, held to the placement rules (the group's
         // own placement was checked where it was defined; a million over the whole file at most).
         let world = self.compose(&d.transform, &span)?.then(to_world);
-        let mut budget = self.instance_quad_checks;
-        self.b.each_quad(g, world, &mut budget, &mut |q, t| {
-            self.edges_placeable(q.q, q.u, q.v, t, &span)
-        })?;
-        // and its spheres (a floor placed a long way off with the camera beside it rendered black)
-        self.b.each_sphere(g, world, &mut budget, &mut |s, t| {
-            self.placeable(&[s.center, s.center + s.motion], t, s.radius, span.clone())
-        })?;
-        self.instance_quad_checks = budget;
+        let mut budget = self.instance_shape_checks;
+        // (its spheres too: a floor placed a long way off, the camera beside it, rendered black)
+        self.b
+            .each_shape(g, world, &mut budget, &mut |o, t| match o {
+                Object::Quad(q) => self.edges_placeable(q.q, q.u, q.v, t, &span),
+                Object::Sphere(s) => {
+                    self.placeable(&[s.center, s.center + s.motion], t, s.radius, span.clone())
+                }
+                _ => Ok(()),
+            })?;
+        self.instance_shape_checks = budget;
         self.add_placed(into, g, &d.transform, &span, &what)?;
         self.name(d.name, Named::Other("an instance"))
     }
