@@ -180,6 +180,36 @@ fn an_unknown_material_lists_the_known_ones() {
     );
 }
 
+/// A name that reads like a known one but holds a character that shows as nothing (a zero-width
+/// joiner, a byte-order mark) is written out in the message, the known names too: otherwise
+/// "unknown material `marble`; known materials: `marble`" reads as a contradiction.
+#[test]
+fn invisible_characters_in_names_are_written_out_in_messages() {
+    error_at(
+        &BASE.replace("material = \"white\"", "material = \"wh\\u200Dite\""),
+        13,
+        "objects[0].material",
+        "unknown material `wh\\u{200D}ite`; known materials: `white`",
+    );
+    let twice = BASE.replace("white = {", "\"white\\uFEFF\" = {");
+    error_at(
+        &twice,
+        13,
+        "objects[0].material",
+        "unknown material `white`; known materials: `white\\u{FEFF}`",
+    );
+    let Err(err) = load(&format!(
+        "{BASE}[[objects]]\ntype = \"instance\"\nof = \"bo\\u200Bx\"\n"
+    )) else {
+        panic!("an instance of an unknown group loaded");
+    };
+    assert!(
+        err.contains("`bo\\u{200B}x` is not a group or box"),
+        "{err}"
+    );
+    assert!(!err.contains('\u{200B}'), "{err}");
+}
+
 #[test]
 fn an_unknown_texture_is_an_error() {
     error_at(

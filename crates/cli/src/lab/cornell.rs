@@ -483,60 +483,79 @@ impl Bench {
         }
         refs.insert(width, Reference::Rendering);
         let (me, scene) = (Arc::clone(self), Arc::clone(scene));
-        std::thread::spawn(move || {
-            let _done = ReferenceThread {
-                bench: Arc::clone(&me),
-                width,
-            };
-            let dir = &me.reference_dir;
-            let spp = cached_reference_spp(dir, width).unwrap_or(me.reference_spp);
-            // Stopped when nobody watches: the page closed, or went to another bench.
-            let stop = || me.is_idle();
-            // A pool of its own: in the render's pool its long passes would hold up the frames
-            // (rayon runs one injected job after another); beside it, the two share the cores.
-            let pool = rayon::ThreadPoolBuilder::new()
-                .thread_name(|i| format!("reference-{i}"))
-                .build()
-                .map_err(anyhow::Error::from);
-            let result = pool
-                .as_ref()
-                .map_err(|e| anyhow::anyhow!("{e:#}"))
-                .and_then(|pool| {
-                    std::fs::create_dir_all(dir).map_err(|e| {
-                        anyhow::anyhow!("cannot create the directory {}: {e}", dir.display())
-                    })?;
-                    pool.install(|| reference_until(dir, glue::SCENE, &scene, width, spp, &stop))
-                });
-            let mut ready = None;
-            {
-                let mut refs = me.references.lock().unwrap();
-                match result {
-                    Ok(Some(img)) => {
-                        let pixels = Arc::new(img.pixels);
-                        ready = Some(Arc::clone(&pixels));
-                        refs.insert(width, Reference::Ready(pixels, spp, img.not_cached));
-                    }
-                    // Asked for again (from the start) when the page is back.
-                    Ok(None) => {
-                        refs.remove(&width);
-                    }
-                    Err(e) => {
-                        refs.insert(width, Reference::Failed(format!("{e:#}"), Instant::now()));
-                    }
+        let spawned = std::thread::Builder::new()
+            .name("reference".into())
+            .spawn(move || me.render_reference(&scene, width));
+        match spawned {
+            Ok(_) => Reference::Rendering,
+            // No thread (the process's or the system's limit): shown as the page shows any
+            // failure, and tried again later like one.
+            Err(e) => {
+                let failed = Reference::Failed(
+                    format!("cannot start the reference's thread: {e}"),
+                    Instant::now(),
+                );
+                refs.insert(width, failed.clone());
+                self.reference_busy.store(false, Ordering::SeqCst);
+                failed
+            }
+        }
+    }
+
+    /// The reference's thread: render it at `width` (or read it from the cache), record it, and
+    /// measure its noise where that is not known.
+    fn render_reference(self: &Arc<Self>, scene: &Scene, width: usize) {
+        let _done = ReferenceThread {
+            bench: Arc::clone(self),
+            width,
+        };
+        let dir = &self.reference_dir;
+        let spp = cached_reference_spp(dir, width).unwrap_or(self.reference_spp);
+        // Stopped when nobody watches: the page closed, or went to another bench.
+        let stop = || self.is_idle();
+        // A pool of its own: in the render's pool its long passes would hold up the frames
+        // (rayon runs one injected job after another); beside it, the two share the cores.
+        let pool = rayon::ThreadPoolBuilder::new()
+            .thread_name(|i| format!("reference-{i}"))
+            .build()
+            .map_err(anyhow::Error::from);
+        let result = pool
+            .as_ref()
+            .map_err(|e| anyhow::anyhow!("{e:#}"))
+            .and_then(|pool| {
+                std::fs::create_dir_all(dir).map_err(|e| {
+                    anyhow::anyhow!("cannot create the directory {}: {e}", dir.display())
+                })?;
+                pool.install(|| reference_until(dir, glue::SCENE, scene, width, spp, &stop))
+            });
+        let mut ready = None;
+        {
+            let mut refs = self.references.lock().unwrap();
+            match result {
+                Ok(Some(img)) => {
+                    let pixels = Arc::new(img.pixels);
+                    ready = Some(Arc::clone(&pixels));
+                    refs.insert(width, Reference::Ready(pixels, spp, img.not_cached));
+                }
+                // Asked for again (from the start) when the page is back.
+                Ok(None) => {
+                    refs.remove(&width);
+                }
+                Err(e) => {
+                    refs.insert(width, Reference::Failed(format!("{e:#}"), Instant::now()));
                 }
             }
-            // The reference's noise: measured here unless it is known or the render will measure
-            // it (it renders like the reference at this width, and has not passed its spp).
-            let measured = me.noise.lock().unwrap().contains_key(&width);
-            let current = me.settings();
-            let by_render = current.width == width
-                && renders_like_the_reference(&current)
-                && me.frame.lock().unwrap().spp < spp;
-            if let (Some(reference), false, false, Ok(pool)) = (ready, measured, by_render, &pool) {
-                pool.install(|| me.measure_noise(&scene, width, &reference, spp, &stop));
-            }
-        });
-        Reference::Rendering
+        }
+        // The reference's noise: measured here unless it is known or the render will measure
+        // it (it renders like the reference at this width, and has not passed its spp).
+        let measured = self.noise.lock().unwrap().contains_key(&width);
+        let current = self.settings();
+        let by_render = current.width == width
+            && renders_like_the_reference(&current)
+            && self.frame.lock().unwrap().spp < spp;
+        if let (Some(reference), false, false, Ok(pool)) = (ready, measured, by_render, &pool) {
+            pool.install(|| self.measure_noise(scene, width, &reference, spp, &stop));
+        }
     }
 
     /// Render the reference's strategy at `width` under seed 998 (the reference's is 999, the

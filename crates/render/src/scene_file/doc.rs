@@ -52,7 +52,8 @@ pub(super) fn typed<'i>(v: Val<'i>, what: &str, kinds: &[&'static str]) -> Resul
         None => fail(
             ty_span,
             format!(
-                "unknown {what} type `{name}`; known types: {}",
+                "unknown {what} type `{}`; known types: {}",
+                crate::text::shown(name),
                 kinds.join(", ")
             ),
         ),

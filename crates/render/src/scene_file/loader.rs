@@ -195,7 +195,7 @@ impl<'t> Loader<'t> {
                     k.span(),
                     format!(
                         "unknown field `{}`, expected one of {}",
-                        k.get_ref(),
+                        crate::text::shown(k.get_ref()),
                         TOP_KEYS.join(", ")
                     ),
                 );
@@ -267,7 +267,8 @@ impl<'t> Loader<'t> {
                         return fail(
                             l.span(),
                             format!(
-                                "`{name}` is already in `lights` (at {}): list each target once",
+                                "`{}` is already in `lights` (at {}): list each target once",
+                                crate::text::shown(name),
                                 self.at(first)
                             ),
                         );
@@ -503,7 +504,8 @@ impl<'t> Loader<'t> {
                 None => fail(
                     c.span(),
                     format!(
-                        "unknown texture `{name}`; {}",
+                        "unknown texture `{}`; {}",
+                        crate::text::shown(name),
                         known("textures", self.textures.iter().map(|(n, _)| n.as_str()))
                     ),
                 ),
@@ -596,7 +598,7 @@ impl<'t> Loader<'t> {
                 name.span(),
                 format!(
                     "unknown material `{}`; {}",
-                    name.get_ref(),
+                    crate::text::shown(name.get_ref()),
                     known("materials", self.materials.iter().map(|(n, _)| n.as_str()))
                 ),
             ),
@@ -610,7 +612,7 @@ impl<'t> Loader<'t> {
                 name.span(),
                 format!(
                     "the name `{}` is already used (first at {})",
-                    name.get_ref(),
+                    crate::text::shown(name.get_ref()),
                     self.at(first.start)
                 ),
             );
@@ -723,7 +725,7 @@ pub(super) fn known<'a>(what: &str, names: impl Iterator<Item = &'a str>) -> Str
     let shown: Vec<String> = names
         .by_ref()
         .take(SHOWN)
-        .map(|n| format!("`{n}`"))
+        .map(|n| format!("`{}`", crate::text::shown(n)))
         .collect();
     let more = names.count();
     let more = if more > 0 {

@@ -299,7 +299,7 @@ impl Loader<'_> {
             .box_group(a, b, m)
             .or_else(|e| fail(span.clone(), e.to_string()))?;
         let label = match &d.name {
-            Some(n) => format!("box `{}`", n.get_ref()),
+            Some(n) => format!("box `{}`", crate::text::shown(n.get_ref())),
             None => format!("the box at {}", self.at(span.start)),
         };
         self.labels.insert(g.0, label.clone());
@@ -338,7 +338,7 @@ impl Loader<'_> {
         }
         let g = self.b.group();
         let label = match &d.name {
-            Some(n) => format!("group `{}`", n.get_ref()),
+            Some(n) => format!("group `{}`", crate::text::shown(n.get_ref())),
             None => format!("the group at {}", self.at(span.start)),
         };
         self.labels.insert(g.0, label.clone());
@@ -380,13 +380,13 @@ impl Loader<'_> {
                     d.of.span(),
                     format!(
                         "`{}` is not a group or box defined earlier in the file; {}",
-                        d.of.get_ref(),
+                        crate::text::shown(d.of.get_ref()),
                         known("groups and boxes", groups.into_iter())
                     ),
                 );
             }
         };
-        let what = format!("this instance of `{}`", d.of.get_ref());
+        let what = format!("this instance of `{}`", crate::text::shown(d.of.get_ref()));
         // Its shapes where this instance puts them, held to the placement rules (the group's
         // own placement was checked where it was defined; a million over the whole file at most).
         let world = self.compose(&d.transform, &span)?.then(to_world);
@@ -586,11 +586,17 @@ impl Loader<'_> {
             Some((_, Named::Quad(q))) => Ok(ImportanceTarget::Quad(*q)),
             Some((_, Named::Group(_))) => fail(
                 span,
-                format!("`{name}` is a group or box; importance targets are spheres and quads"),
+                format!(
+                    "`{}` is a group or box; importance targets are spheres and quads",
+                    crate::text::shown(name)
+                ),
             ),
             Some((_, Named::Other(what))) => fail(
                 span,
-                format!("`{name}` is {what}; importance targets are spheres and quads"),
+                format!(
+                    "`{}` is {what}; importance targets are spheres and quads",
+                    crate::text::shown(name)
+                ),
             ),
             None => {
                 let mut shapes: Vec<&str> = self
@@ -603,7 +609,8 @@ impl Loader<'_> {
                 fail(
                     span,
                     format!(
-                        "no object is named `{name}`; {}",
+                        "no object is named `{}`; {}",
+                        crate::text::shown(name),
                         known("named spheres and quads", shapes.into_iter())
                     ),
                 )

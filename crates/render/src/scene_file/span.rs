@@ -143,14 +143,21 @@ fn duplicate_key(text: &str, span: Span) -> String {
             .map_or(String::new(), |(at, l)| {
                 first_at(at + l.len() - l.trim_start().len())
             });
-        return format!("duplicate key `{bare}`: the table {h} is defined twice{first}");
+        return format!(
+            "duplicate key `{}`: the table {} is defined twice{first}",
+            crate::text::shown(bare),
+            crate::text::shown(&h)
+        );
     }
     // The table the key is in: the inline table around it, or the last header before it.
     let tree = DeTable::parse_recoverable(text).0;
     let inline = field_at(tree.get_ref(), &span);
     let (table, from) = match before().find(|(_, l)| header(l).is_some()) {
-        _ if !inline.is_empty() => (format!("in `{inline}`"), 0),
-        Some((at, l)) => (format!("in {}", header(l).unwrap_or_default()), at),
+        _ if !inline.is_empty() => (format!("in `{}`", crate::text::shown(&inline)), 0),
+        Some((at, l)) => (
+            format!("in {}", crate::text::shown(&header(l).unwrap_or_default())),
+            at,
+        ),
         None => ("at the top level of the file".to_owned(), 0),
     };
     // Its first definition: the last key of that name before this one, after the table starts.
@@ -161,7 +168,10 @@ fn duplicate_key(text: &str, span: Span) -> String {
         }
     });
     let first = first.map_or(String::new(), first_at);
-    format!("duplicate key `{bare}` {table}{first}")
+    format!(
+        "duplicate key `{}` {table}{first}",
+        crate::text::shown(bare)
+    )
 }
 
 /// Calls `found` with the span of every key named `name` in `t`, at any depth.
