@@ -31,7 +31,7 @@ const CHECKPOINT_EVERY: Duration = Duration::from_secs(5);
 #[derive(Args)]
 pub struct RenderArgs {
     /// A built-in scene name (see `--list`) or a path to a scene file (`.toml`).
-    pub scene: Option<String>,
+    pub scene: Option<std::ffi::OsString>,
     /// List the built-in scenes and exit.
     #[arg(long)]
     pub list: bool,
@@ -632,6 +632,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
     }
     let Some(scene_arg) = args.scene.as_deref() else {
         bail!("name a scene to render (rtl render --list shows the built-in ones) or a scene file");
+    };
+    // Read as UTF-8 here rather than by the argument parser, whose message names no argument.
+    let Some(scene_arg) = scene_arg.to_str() else {
+        bail!(
+            "SCENE '{}': this path is not UTF-8, and rtl reads scene names, scene files and the \
+             names inside them as UTF-8; rename the file",
+            Path::new(scene_arg).display()
+        );
     };
     let mut race = match args.hit_tier {
         Some(TierChoice::Fixed(tier)) => {

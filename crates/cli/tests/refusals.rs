@@ -1117,3 +1117,27 @@ fn time_budgets_shorter_than_a_nanosecond_are_quoted_as_given() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A scene path that is not UTF-8 is refused by name (the argument parser said only "invalid UTF-8
+/// was detected in one or more arguments", naming none).
+#[cfg(unix)]
+#[test]
+fn a_scene_path_that_is_not_utf8_is_refused_by_name() {
+    use std::os::unix::ffi::OsStrExt;
+    let d = dir("not-utf8");
+    let bad = std::ffi::OsStr::from_bytes(b"sc\xffne.toml");
+    std::fs::write(d.join(bad), scene("")).unwrap();
+    let out = Command::new(common::RTL)
+        .current_dir(&d)
+        .arg("render")
+        .arg(bad)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("SCENE 'sc\u{FFFD}ne.toml'") && err.contains("not UTF-8"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
