@@ -81,10 +81,7 @@ fn check_merge_memory(args: &MergeArgs) -> Result<()> {
     let total = sizes.iter().fold(0u64, |t, &s| t.saturating_add(s));
     let need = limits::merge_need(&sizes);
     if let Some(short) = need.exceeds(&limits::memory_limits()) {
-        let what = match short.available.limit {
-            limits::MemoryLimit::AddressSpace => "address space",
-            _ => "memory",
-        };
+        let what = short.available.limit.counts();
         bail!(
             "the {} part(s) hold {} and merging them needs about {} of {what} (the parts, and the \
              largest once more while it is read and for the merged sums, with a tenth of margin), \

@@ -296,10 +296,7 @@ pub enum SizeError {
          bytes a pixel, and {} for the process and its {threads} threads besides the main one{}), but \
          {available}",
         Bytes(*needed),
-        match available.limit {
-            MemoryLimit::AddressSpace => "address space",
-            _ => "memory",
-        },
+        available.limit.counts(),
         Bytes(needed.saturating_sub(*buffers)),
         match available.limit {
             MemoryLimit::AddressSpace => {

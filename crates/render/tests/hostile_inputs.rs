@@ -149,6 +149,30 @@ fn exponential_instancing_is_refused_at_once_naming_the_group() {
     }
 }
 
+/// A group without a name is named by its place in the message: "the group at line L:1", not
+/// "this the group at ...".
+#[test]
+fn an_unnamed_group_past_the_limit_is_named_by_its_place() {
+    // the scene holds 786411 objects up to g17; an unnamed group of an instance of g17 adds
+    // 393216 (g17's 393214, the instance, the group)
+    let text = format!(
+        "{}[[objects]]\ntype = \"group\"\n[[objects.objects]]\ntype = \"instance\"\nof = \"g17\"\n",
+        laughs(17, "white")
+    );
+    let line = text.matches('\n').count() - 4;
+    let err = refused(
+        &text,
+        line,
+        &[
+            &format!(
+                "too many objects once instances are expanded: the group at line {line}:1 (393216 objects)"
+            ),
+            "brings the scene to 1179627",
+        ],
+    );
+    assert!(!err.contains("this the group"), "{err}");
+}
+
 #[test]
 fn instancing_within_the_limit_loads_and_its_walks_see_every_emitter() {
     // g16 holds 2^17 - 1 objects; the scene 2^18 - 19, within 2^20.

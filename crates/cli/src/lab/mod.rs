@@ -101,10 +101,7 @@ pub enum LabError {
         "the lab may need {} of {} (its saved renders, a render and a reference of {side} x {side}, \
          and {threads} threads with their stacks and malloc arenas), but {available}",
         rtl_render::limits::Bytes(*needed),
-        match available.limit {
-            rtl_render::limits::MemoryLimit::AddressSpace => "address space",
-            _ => "memory",
-        }
+        available.limit.counts()
     )]
     Memory {
         needed: u64,

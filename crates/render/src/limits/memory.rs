@@ -23,6 +23,17 @@ pub enum MemoryLimit {
     ControlGroup,
 }
 
+impl MemoryLimit {
+    /// What the limit counts, for a message ("needs 300 MB of address space"): address space for
+    /// `ulimit -v`, memory for the others.
+    pub fn counts(self) -> &'static str {
+        match self {
+            MemoryLimit::AddressSpace => "address space",
+            MemoryLimit::Machine | MemoryLimit::DataSize | MemoryLimit::ControlGroup => "memory",
+        }
+    }
+}
+
 /// The memory a new allocation may take, in bytes, and the limit that says so.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Available {

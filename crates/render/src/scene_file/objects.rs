@@ -65,10 +65,10 @@ impl Loader<'_> {
     /// `to_world` places; the object at `span`) whose surface doubles cannot place finely enough
     /// for the camera: the spacing of doubles at its farthest coordinate (a centre's largest plus
     /// the radius, in its group's coordinates, where its hits are computed, or in the world's,
-    /// whichever is larger) more than 1/1024 of the distance it is seen at ([`Self::seen_at`]). Its hits would be off by about that much (a floor of
-    /// radius 1e17 seen from 10 away rendered black); seen from far enough, the same sphere
-    /// renders. Likewise where the rays leaving it start farther off it than that
-    /// ([`Self::leaves_close_enough`]).
+    /// whichever is larger) more than 1/1024 of the distance it is seen at ([`Self::seen_at`]).
+    /// Its hits would be off by about that much (a floor of radius 1e17 seen from 10 away rendered
+    /// black); seen from far enough, the same sphere renders. Likewise where the rays leaving it
+    /// start farther off it than that ([`Self::leaves_close_enough`]).
     fn placeable(
         &self,
         local: &[Point3],
@@ -307,13 +307,13 @@ impl Loader<'_> {
         for _ in 0..6 {
             self.count(g, None, &span, "this box")?;
         }
-        // ("this group `g`", or "the group at line 20:1", not "this the group at ...")
-        let what = if d.name.is_some() {
-            format!("this {label}")
-        } else {
-            label
-        };
-        self.add_placed(into, g, &d.transform, &span, &what)?;
+        self.add_placed(
+            into,
+            g,
+            &d.transform,
+            &span,
+            &this(&label, d.name.is_some()),
+        )?;
         self.name(d.name, Named::Group(g))
     }
 
@@ -347,13 +347,13 @@ impl Loader<'_> {
         for c in children {
             self.object(g, c, inner_to_world)?;
         }
-        // ("this group `g`", or "the group at line 20:1", not "this the group at ...")
-        let what = if d.name.is_some() {
-            format!("this {label}")
-        } else {
-            label
-        };
-        self.add_placed(into, g, &d.transform, &span, &what)?;
+        self.add_placed(
+            into,
+            g,
+            &d.transform,
+            &span,
+            &this(&label, d.name.is_some()),
+        )?;
         self.name(d.name, Named::Group(g))
     }
 
@@ -674,3 +674,13 @@ fn touching_pieces(a: &Piece, b: &Piece, exact: bool) -> String {
 const ENCLOSE: &str = "a medium's boundary must enclose a volume (a sphere, a moving sphere, a box, a \
      group or instance of them, or quads that close a surface: each edge of each quad an edge of \
      exactly one other, or shared stretch by stretch where other quads' corners lie along it)";
+
+/// A group's or box's label as the subject of a message: "this group `g`" where it is named, "the
+/// group at line 20:1" where it is not (not "this the group at ...").
+fn this(label: &str, named: bool) -> String {
+    if named {
+        format!("this {label}")
+    } else {
+        label.to_owned()
+    }
+}
